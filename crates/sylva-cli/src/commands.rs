@@ -1,0 +1,298 @@
+//! What each subcommand does: load and check inputs, call the library, write files, report.
+
+use crate::args::{BenchArgs, Cli, Command, GenerateArgs, SpeciesCommand, ViewArg};
+use anyhow::{Context, Result, bail};
+use image::ImageEncoder;
+use std::path::Path;
+use std::time::Instant;
+use sylva::export::{Materials, to_glb, write_atomically, write_obj};
+use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::params::{PARAMS, format_value};
+use sylva::preview::{PreviewOptions, View, render_preview};
+use sylva::{GenerateOptions, TreeParams};
+
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Generate(args) => generate(&args),
+        Command::Species(SpeciesCommand::List) => species_list(),
+        Command::Species(SpeciesCommand::Show { name, toml }) => species_show(&name, toml),
+        Command::Bench(args) => bench(&args),
+    }
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Format {
+    Glb,
+    Obj,
+}
+
+fn output_format(path: &Path) -> Result<Format> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("glb") => Ok(Format::Glb),
+        Some("obj") => Ok(Format::Obj),
+        _ => bail!(
+            "output {}: unknown format; use a .glb or .obj file name",
+            path.display()
+        ),
+    }
+}
+
+/// Loads the species and applies `--set` overrides.
+fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
+    let mut params = sylva::species::load(species)?;
+    for item in overrides {
+        let (name, value) = item.split_once('=').with_context(|| {
+            format!("--set {item}: expected NAME=VALUE, e.g. --set 1Branches=30")
+        })?;
+        let value: f64 = value
+            .trim()
+            .parse()
+            .with_context(|| format!("--set {item}: `{value}` is not a number"))?;
+        params
+            .set(name.trim(), value)
+            .with_context(|| format!("--set {item}"))?;
+    }
+    params
+        .validate()
+        .with_context(|| format!("species {species}"))?;
+    Ok(params)
+}
+
+fn mesh_options(params: &TreeParams, quality: f64) -> MeshOptions {
+    // Arbaro's Smooth (0..1, default 0.5) scales the mesh resolution around the default.
+    MeshOptions {
+        quality: quality * (0.5 + params.smooth),
+    }
+}
+
+fn generate(args: &GenerateArgs) -> Result<()> {
+    let format = output_format(&args.output)?;
+    if let Some(png) = &args.preview
+        && !png
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    {
+        bail!(
+            "--preview {}: the picture is written as PNG; use a .png file name",
+            png.display()
+        );
+    }
+    let params = load_params(&args.species, &args.set)?;
+    let options = GenerateOptions {
+        seed: args.seed,
+        max_levels: args.levels,
+        quality: args.quality,
+        leaves: !args.no_leaves,
+        max_triangles: args.max_triangles,
+        ..Default::default()
+    };
+    if args.levels == Some(0) {
+        bail!("--levels 0: expected 1 (trunk only) or more");
+    }
+    let t0 = Instant::now();
+    let skeleton = sylva::generate(&params, &options)?;
+    let generate_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let t1 = Instant::now();
+    let mesh = mesh_tree(&skeleton, &mesh_options(&params, args.quality));
+    let mesh_ms = t1.elapsed().as_secs_f64() * 1e3;
+    if mesh.triangle_count() as u64 > args.max_triangles {
+        bail!(
+            "the mesh has {} triangles, over the budget of {} (--max-triangles)",
+            mesh.triangle_count(),
+            args.max_triangles
+        );
+    }
+    let materials = Materials::default();
+    match format {
+        Format::Glb => {
+            let bytes = to_glb(&mesh, &params.name, &materials)?;
+            write_atomically(&args.output, &bytes)?;
+        }
+        Format::Obj => write_obj(&args.output, &mesh, &params.name, &materials)?,
+    }
+    if let Some(png) = &args.preview {
+        write_preview(png, &mesh, args.view)?;
+    }
+    let stats = skeleton.stats();
+    if args.json {
+        let summary = serde_json::json!({
+            "species": params.name,
+            "seed": args.seed,
+            "stems_per_level": stats.stems_per_level,
+            "leaves": stats.leaves,
+            "vertices": mesh.vertex_count(),
+            "triangles": mesh.triangle_count(),
+            "height_m": round3(stats.height),
+            "crown_width_m": round3(stats.crown_width),
+            "generate_ms": round3(generate_ms as f32),
+            "mesh_ms": round3(mesh_ms as f32),
+            "output": args.output.display().to_string(),
+        });
+        println!("{summary}");
+    } else {
+        print_summary(&params, args, &stats, &mesh, generate_ms, mesh_ms);
+    }
+    Ok(())
+}
+
+fn write_preview(path: &Path, mesh: &TreeMesh, view: ViewArg) -> Result<()> {
+    let view = match view {
+        ViewArg::Front => View::Front,
+        ViewArg::Side => View::Side,
+        ViewArg::Top => View::Top,
+    };
+    let picture = render_preview(
+        mesh,
+        &PreviewOptions {
+            view,
+            ..Default::default()
+        },
+    );
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(
+            &picture.rgb,
+            picture.width,
+            picture.height,
+            image::ExtendedColorType::Rgb8,
+        )
+        .context("encoding the preview PNG")?;
+    write_atomically(path, &bytes)?;
+    Ok(())
+}
+
+fn round3(x: f32) -> f64 {
+    (x as f64 * 1000.0).round() / 1000.0
+}
+
+fn print_summary(
+    params: &TreeParams,
+    args: &GenerateArgs,
+    stats: &sylva::SkeletonStats,
+    mesh: &TreeMesh,
+    generate_ms: f64,
+    mesh_ms: f64,
+) {
+    let levels: Vec<String> = stats
+        .stems_per_level
+        .iter()
+        .map(|n| n.to_string())
+        .collect();
+    println!("{} (seed {})", params.name, args.seed);
+    println!("  stems per level  {}", levels.join(" / "));
+    println!("  leaves           {}", stats.leaves);
+    println!("  height           {:.2} m", stats.height);
+    println!("  crown width      {:.2} m", stats.crown_width);
+    println!(
+        "  mesh             {} vertices, {} triangles (bark {}, leaves {})",
+        mesh.vertex_count(),
+        mesh.triangle_count(),
+        mesh.bark.triangle_count(),
+        mesh.leaves.triangle_count()
+    );
+    println!("  time             generate {generate_ms:.1} ms, mesh {mesh_ms:.1} ms");
+    println!("  wrote            {}", args.output.display());
+    if let Some(png) = &args.preview {
+        println!("  picture          {}", png.display());
+    }
+}
+
+fn species_list() -> Result<()> {
+    for id in sylva::species::builtin_ids() {
+        let p = sylva::species::builtin(id).context("built-in species")?;
+        println!("{id:<18} {:<22} {}", p.name, p.description);
+    }
+    Ok(())
+}
+
+fn species_show(name: &str, toml: bool) -> Result<()> {
+    let params = sylva::species::load(name)?;
+    if toml {
+        print!("{}", sylva::params::to_toml(&params));
+        return Ok(());
+    }
+    println!("{}", params.name);
+    if !params.description.is_empty() {
+        println!("{}", params.description);
+    }
+    println!();
+    println!(
+        "{:<16} {:>9}  {:<13} {:<22} meaning",
+        "parameter", "value", "unit", "range"
+    );
+    let row = |def: &sylva::params::ParamDef, level: usize| {
+        println!(
+            "{:<16} {:>9}  {:<13} {:<22} {}",
+            def.name_at(level),
+            format_value((def.get)(&params, level)),
+            def.unit,
+            def.range_text(),
+            def.doc
+        );
+    };
+    for def in PARAMS.iter().filter(|d| !d.per_level) {
+        row(def, 0);
+    }
+    for level in 0..sylva::params::LEVEL_SETS {
+        for def in PARAMS
+            .iter()
+            .filter(|d| d.per_level && d.levels().contains(&level))
+        {
+            row(def, level);
+        }
+    }
+    Ok(())
+}
+
+fn bench(args: &BenchArgs) -> Result<()> {
+    let runs = args.runs.max(1);
+    println!(
+        "{:<16} {:>9} {:>10} {:>10} {:>10} {:>12} {:>9}",
+        "species", "triangles", "gen ms", "mesh ms", "total ms", "Mtri/s", "x copy"
+    );
+    for id in [
+        "quaking_aspen",
+        "black_tupelo",
+        "weeping_willow",
+        "ca_black_oak",
+    ] {
+        let params = sylva::species::builtin(id).context("built-in species")?;
+        let options = GenerateOptions::default();
+        let mesh_opts = mesh_options(&params, 1.0);
+        let (mut best_gen, mut best_mesh, mut best_copy) = (f64::MAX, f64::MAX, f64::MAX);
+        let mut triangles = 0;
+        for _ in 0..runs {
+            let t = Instant::now();
+            let skeleton = sylva::generate(&params, &options)?;
+            best_gen = best_gen.min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            let mesh = mesh_tree(&skeleton, &mesh_opts);
+            best_mesh = best_mesh.min(t.elapsed().as_secs_f64());
+            // Baseline measured in the same run: copying the finished mesh's buffers.
+            let t = Instant::now();
+            let copy = std::hint::black_box(mesh.clone());
+            best_copy = best_copy.min(t.elapsed().as_secs_f64());
+            triangles = copy.triangle_count();
+        }
+        let total = best_gen + best_mesh;
+        println!(
+            "{:<16} {:>9} {:>10.2} {:>10.2} {:>10.2} {:>12.2} {:>9.1}",
+            id,
+            triangles,
+            best_gen * 1e3,
+            best_mesh * 1e3,
+            total * 1e3,
+            triangles as f64 / total / 1e6,
+            total / best_copy
+        );
+    }
+    println!(
+        "(fastest of {runs} runs each, one thread; `x copy` = time / time to copy the finished mesh)"
+    );
+    Ok(())
+}

@@ -1,0 +1,20 @@
+//! Writing meshes to files: glTF 2.0 binary (GLB) and Wavefront OBJ + MTL.
+//!
+//! Both formats get Y up (glTF's convention, and what most OBJ readers assume): a skeleton
+//! point (x, y, z) with Z up becomes (x, z, -y), a rotation, so winding and handedness are kept.
+//! Files are written to a temporary name beside the target and renamed into place, so a failure
+//! never leaves half a file.
+
+mod atomic;
+mod glb;
+mod obj;
+
+pub use atomic::write_atomically;
+pub use glb::{Materials, to_glb};
+pub use obj::{to_obj, write_obj};
+
+/// Z-up model coordinates to Y-up file coordinates.
+#[inline]
+pub(crate) fn y_up(v: [f32; 3]) -> [f32; 3] {
+    [v[0], v[2], -v[1]]
+}

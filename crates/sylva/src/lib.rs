@@ -1,0 +1,39 @@
+//! Sylva: realistic trees from parameters.
+//!
+//! The pipeline has one intermediate form, the [`Skeleton`]:
+//!
+//! ```text
+//! species file (TOML, Arbaro XML) -> TreeParams -> weber_penn::generate -> Skeleton
+//!                                                                            |
+//!                              mesh::mesh_tree -> TreeMesh -> export::{to_glb, write_obj}
+//! ```
+//!
+//! Conventions: metres; Z up in the model with the trunk base at the origin (exporters convert
+//! to Y up); degrees in parameter files, radians inside. The same parameters and seed always give
+//! the same bytes.
+//!
+//! ```
+//! let params = sylva::species::builtin("quaking_aspen").unwrap();
+//! let options = sylva::GenerateOptions { seed: 7, ..Default::default() };
+//! let skeleton = sylva::generate(&params, &options).unwrap();
+//! let mesh = sylva::mesh::mesh_tree(&skeleton, &Default::default());
+//! assert!(mesh.triangle_count() > 10_000);
+//! let glb = sylva::export::to_glb(&mesh, &params.name, &Default::default()).unwrap();
+//! assert_eq!(&glb[..4], b"glTF");
+//! ```
+#![deny(missing_docs)]
+
+pub mod error;
+pub mod export;
+pub mod mesh;
+pub mod params;
+pub mod preview;
+pub mod rng;
+pub mod skeleton;
+pub mod species;
+pub mod weber_penn;
+
+pub use error::{ExportError, GenerateError, ParamsError};
+pub use params::TreeParams;
+pub use skeleton::{CrossSection, Leaf, LeafShape, Skeleton, SkeletonStats, Stem, StemId};
+pub use weber_penn::{GenerateOptions, Wind, generate};

@@ -1,0 +1,328 @@
+//! Leaf outlines. Each shape is a template of unit length (local z from 0 to 1) and unit width
+//! (local x from -0.5 to 0.5), lying in the local x-z plane with its upper side facing +y;
+//! leaves are instances of it, scaled and placed by the skeleton's leaf frames.
+
+use super::Mesh;
+use crate::skeleton::{LeafShape, Skeleton};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+use std::sync::OnceLock;
+
+/// A leaf shape ready to instance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LeafTemplate {
+    /// Local positions (x across, y off the blade, z along).
+    pub positions: Vec<Vec3>,
+    /// Local unit normals.
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates 0..1.
+    pub uvs: Vec<[f32; 2]>,
+    /// Triangles, counter-clockwise seen from the normal side.
+    pub indices: Vec<u32>,
+}
+
+/// The template of a shape (built once, shared).
+pub fn leaf_template(shape: LeafShape) -> &'static LeafTemplate {
+    static TEMPLATES: OnceLock<Vec<LeafTemplate>> = OnceLock::new();
+    let all = TEMPLATES.get_or_init(|| LeafShape::ALL.iter().map(|&s| build(s)).collect());
+    &all[LeafShape::ALL.iter().position(|&s| s == shape).unwrap_or(0)]
+}
+
+/// Triangles per leaf of a shape.
+pub fn leaf_triangles(shape: LeafShape) -> usize {
+    leaf_template(shape).indices.len() / 3
+}
+
+pub(super) fn mesh_leaves(skeleton: &Skeleton, mesh: &mut Mesh) {
+    for leaf in &skeleton.leaves {
+        let t = leaf_template(leaf.shape);
+        let base = mesh.positions.len() as u32;
+        let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
+        for ((p, n), uv) in t.positions.iter().zip(&t.normals).zip(&t.uvs) {
+            mesh.push(
+                leaf.position + leaf.orientation * (*p * scale),
+                leaf.orientation * *n,
+                *uv,
+            );
+        }
+        mesh.indices.extend(t.indices.iter().map(|i| base + i));
+    }
+}
+
+/// Flat outline in the (x, z) plane, counter-clockwise, triangulated as a fan from `centre`
+/// (the outline must be star-shaped about it) or, with `centre = None`, from its first point
+/// (the outline must be convex).
+fn flat(parts: &[(Option<Vec2>, Vec<Vec2>)]) -> LeafTemplate {
+    let mut t = LeafTemplate {
+        positions: vec![],
+        normals: vec![],
+        uvs: vec![],
+        indices: vec![],
+    };
+    let push = |t: &mut LeafTemplate, p: Vec2| {
+        t.positions.push(Vec3::new(p.x, 0.0, p.y));
+        t.normals.push(Vec3::Y);
+        t.uvs.push([p.x + 0.5, p.y]);
+        t.positions.len() as u32 - 1
+    };
+    for (centre, outline) in parts {
+        let first = t.positions.len() as u32;
+        let k = outline.len() as u32;
+        for &p in outline {
+            push(&mut t, p);
+        }
+        // Outlines run counter-clockwise in (x, z), which faces -y; emit (a, c, b) to face +y.
+        match centre {
+            Some(c) => {
+                let ci = push(&mut t, *c);
+                for i in 0..k {
+                    t.indices
+                        .extend_from_slice(&[ci, first + (i + 1) % k, first + i]);
+                }
+            }
+            None => {
+                for i in 1..k - 1 {
+                    t.indices
+                        .extend_from_slice(&[first, first + i + 1, first + i]);
+                }
+            }
+        }
+    }
+    t
+}
+
+/// Outline from a polar radius function about `(0, cz)`, `samples` points, counter-clockwise,
+/// then fitted to the unit box (x in -0.5..0.5, z in 0..1).
+fn polar(samples: usize, radius: impl Fn(f32) -> f32) -> (Option<Vec2>, Vec<Vec2>) {
+    let pts: Vec<Vec2> = (0..samples)
+        .map(|i| {
+            let a = -PI / 2.0 + 2.0 * PI * i as f32 / samples as f32;
+            Vec2::new(a.cos(), a.sin()) * radius(a)
+        })
+        .collect();
+    let lo = pts.iter().fold(Vec2::splat(f32::MAX), |m, p| m.min(*p));
+    let hi = pts.iter().fold(Vec2::splat(f32::MIN), |m, p| m.max(*p));
+    let size = (hi - lo).max(Vec2::splat(1e-6));
+    let fit = |p: Vec2| Vec2::new((p.x - lo.x) / size.x - 0.5, (p.y - lo.y) / size.y);
+    (Some(fit(Vec2::ZERO)), pts.into_iter().map(fit).collect())
+}
+
+/// Sum of lobes: each `(direction, reach)` adds a bump of reach `reach` around `direction`
+/// (radians from +x), sharper with larger `power`.
+fn lobed(lobes: &[(f32, f32)], core: f32, power: i32) -> impl Fn(f32) -> f32 + '_ {
+    move |a| {
+        core + lobes
+            .iter()
+            .map(|&(dir, reach)| reach * (a - dir).cos().max(0.0).powi(power))
+            .sum::<f32>()
+    }
+}
+
+fn ellipse(width: f32) -> Vec<Vec2> {
+    // Base, three points up each side, tip: an octagon close to an ellipse.
+    let side = |z: f32| width * (1.0 - (2.0 * z - 1.0).powi(2)).sqrt();
+    vec![
+        Vec2::new(0.0, 0.0),
+        Vec2::new(side(0.2), 0.2),
+        Vec2::new(side(0.5), 0.5),
+        Vec2::new(side(0.8), 0.8),
+        Vec2::new(0.0, 1.0),
+        Vec2::new(-side(0.8), 0.8),
+        Vec2::new(-side(0.5), 0.5),
+        Vec2::new(-side(0.2), 0.2),
+    ]
+}
+
+fn build(shape: LeafShape) -> LeafTemplate {
+    let up = PI / 2.0;
+    match shape {
+        LeafShape::Oval => flat(&[(None, ellipse(0.5))]),
+        LeafShape::Triangle => flat(&[(
+            None,
+            vec![
+                Vec2::new(0.0, 0.0),
+                Vec2::new(0.5, 0.25),
+                Vec2::new(0.0, 1.0),
+                Vec2::new(-0.5, 0.25),
+            ],
+        )]),
+        LeafShape::Square => flat(&[(
+            None,
+            vec![
+                Vec2::new(-0.5, 0.0),
+                Vec2::new(0.5, 0.0),
+                Vec2::new(0.5, 1.0),
+                Vec2::new(-0.5, 1.0),
+            ],
+        )]),
+        LeafShape::Palm => flat(&[(
+            None,
+            vec![
+                Vec2::new(0.0, 0.0),
+                Vec2::new(0.5, 0.25),
+                Vec2::new(0.35, 0.7),
+                Vec2::new(0.0, 1.0),
+                Vec2::new(-0.35, 0.7),
+                Vec2::new(-0.5, 0.25),
+            ],
+        )]),
+        LeafShape::Oak => flat(&[polar(
+            24,
+            lobed(
+                &[
+                    (up, 0.55),
+                    (up + 1.0, 0.4),
+                    (up - 1.0, 0.4),
+                    (up + 2.0, 0.25),
+                    (up - 2.0, 0.25),
+                ],
+                0.3,
+                6,
+            ),
+        )]),
+        LeafShape::Maple3 => flat(&[polar(
+            30,
+            lobed(&[(up, 0.8), (up + 0.95, 0.65), (up - 0.95, 0.65)], 0.2, 12),
+        )]),
+        LeafShape::Maple5 => flat(&[polar(
+            40,
+            lobed(
+                &[
+                    (up, 0.8),
+                    (up + 0.85, 0.7),
+                    (up - 0.85, 0.7),
+                    (up + 1.8, 0.45),
+                    (up - 1.8, 0.45),
+                ],
+                0.2,
+                14,
+            ),
+        )]),
+        LeafShape::ThreeLeaflets => {
+            // Three small ovals from the petiole tip: one straight on, two at +-55 degrees.
+            let leaflet = |angle: f32, length: f32| {
+                let (s, c) = angle.sin_cos();
+                let outline = ellipse(0.35)
+                    .into_iter()
+                    .map(|p| {
+                        let p = p * length;
+                        Vec2::new(p.x * c + p.y * s, -p.x * s + p.y * c)
+                    })
+                    .collect();
+                (None, outline)
+            };
+            let mut t = flat(&[leaflet(0.0, 0.6), leaflet(0.95, 0.5), leaflet(-0.95, 0.5)]);
+            // Fit to the unit box.
+            let lo = t
+                .positions
+                .iter()
+                .fold(Vec3::splat(f32::MAX), |m, p| m.min(*p));
+            let hi = t
+                .positions
+                .iter()
+                .fold(Vec3::splat(f32::MIN), |m, p| m.max(*p));
+            let w = (hi.x - lo.x).max(1e-6);
+            let h = (hi.z - lo.z).max(1e-6);
+            for (p, uv) in t.positions.iter_mut().zip(&mut t.uvs) {
+                *p = Vec3::new((p.x - lo.x) / w - 0.5, 0.0, (p.z - lo.z) / h);
+                *uv = [p.x + 0.5, p.z];
+            }
+            t
+        }
+        LeafShape::Sphere => sphere(),
+    }
+}
+
+/// An octahedron subdivided once and pushed onto the sphere inscribed in the unit box.
+fn sphere() -> LeafTemplate {
+    let v = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
+    let faces = [
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    let mut t = LeafTemplate {
+        positions: vec![],
+        normals: vec![],
+        uvs: vec![],
+        indices: vec![],
+    };
+    for f in faces {
+        let [a, b, c] = f.map(|i| v[i]);
+        let (ab, bc, ca) = (
+            (a + b).normalize(),
+            (b + c).normalize(),
+            (c + a).normalize(),
+        );
+        for tri in [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]] {
+            for p in tri {
+                let i = t.positions.len() as u32;
+                t.positions.push(p * 0.5 + Vec3::new(0.0, 0.0, 0.5));
+                t.normals.push(p);
+                t.uvs.push([0.5 + 0.5 * p.x, 0.5 + 0.5 * p.z]);
+                t.indices.push(i);
+            }
+        }
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_template_fits_the_unit_box_and_faces_its_normal() {
+        for shape in LeafShape::ALL {
+            let t = leaf_template(shape);
+            assert!(!t.indices.is_empty(), "{shape:?}");
+            for p in &t.positions {
+                assert!(p.x >= -0.5 - 1e-4 && p.x <= 0.5 + 1e-4, "{shape:?} {p}");
+                assert!(p.z >= -1e-4 && p.z <= 1.0 + 1e-4, "{shape:?} {p}");
+            }
+            for uv in &t.uvs {
+                assert!(
+                    uv.iter().all(|c| (-1e-4..=1.0 + 1e-4).contains(c)),
+                    "{shape:?} {uv:?}"
+                );
+            }
+            let mut area = 0.0;
+            for tri in t.indices.chunks(3) {
+                let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| t.positions[i as usize]);
+                let n = (b - a).cross(c - a);
+                let vertex_normal = t.normals[tri[0] as usize];
+                assert!(
+                    n.dot(vertex_normal) >= -1e-6,
+                    "{shape:?}: triangle faces away from its normal"
+                );
+                area += n.length() / 2.0;
+            }
+            assert!(area > 0.1, "{shape:?} area {area}");
+        }
+    }
+
+    #[test]
+    fn lobed_shapes_are_not_convex_and_oval_is() {
+        // A lobed leaf covers clearly less of its bounding box than an oval does.
+        let area = |s| {
+            let t = leaf_template(s);
+            t.indices
+                .chunks(3)
+                .map(|tri| {
+                    let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| t.positions[i as usize]);
+                    (b - a).cross(c - a).length() / 2.0
+                })
+                .sum::<f32>()
+        };
+        let oval = area(LeafShape::Oval);
+        assert!((oval - PI / 4.0).abs() < 0.12, "oval area {oval}");
+        for s in [LeafShape::Maple5, LeafShape::Maple3, LeafShape::Oak] {
+            assert!(area(s) < oval, "{s:?}");
+        }
+    }
+}

@@ -1,0 +1,98 @@
+//! Meshing a [`Skeleton`](crate::Skeleton): stems become closed-around tubes, leaves become
+//! their outlines. Output is flat buffers (positions, normals, UVs, 32-bit indices), one mesh for
+//! bark and one for leaves, in the skeleton's Z-up metres; exporters convert the axes.
+
+mod leaves;
+mod stems;
+
+pub use leaves::{LeafTemplate, leaf_template, leaf_triangles};
+pub use stems::ring_vertices;
+
+use crate::skeleton::Skeleton;
+
+/// A triangle mesh as flat buffers. Triangles wind counter-clockwise seen from the front.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions, metres.
+    pub positions: Vec<[f32; 3]>,
+    /// Unit vertex normals.
+    pub normals: Vec<[f32; 3]>,
+    /// Texture coordinates. Bark: u around (0..1, seam duplicated), v along the stem in units
+    /// of the base circumference. Leaves: 0..1 over the blade.
+    pub uvs: Vec<[f32; 2]>,
+    /// Three indices per triangle.
+    pub indices: Vec<u32>,
+}
+
+impl Mesh {
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// Axis-aligned bounds (min, max), or `None` for an empty mesh.
+    pub fn bounds(&self) -> Option<([f32; 3], [f32; 3])> {
+        let first = *self.positions.first()?;
+        Some(self.positions.iter().fold((first, first), |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+            )
+        }))
+    }
+
+    fn push(&mut self, position: glam::Vec3, normal: glam::Vec3, uv: [f32; 2]) -> u32 {
+        let i = self.positions.len() as u32;
+        self.positions.push(position.to_array());
+        self.normals.push(normal.to_array());
+        self.uvs.push(uv);
+        i
+    }
+}
+
+/// Bark and leaves of one tree.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TreeMesh {
+    /// All stems.
+    pub bark: Mesh,
+    /// All leaves (drawn double-sided).
+    pub leaves: Mesh,
+}
+
+impl TreeMesh {
+    /// Vertices of both meshes.
+    pub fn vertex_count(&self) -> usize {
+        self.bark.vertex_count() + self.leaves.vertex_count()
+    }
+
+    /// Triangles of both meshes.
+    pub fn triangle_count(&self) -> usize {
+        self.bark.triangle_count() + self.leaves.triangle_count()
+    }
+}
+
+/// How finely to mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshOptions {
+    /// Resolution factor: 1 is the default; ring vertices scale with it (at least 3).
+    pub quality: f64,
+}
+
+impl Default for MeshOptions {
+    fn default() -> Self {
+        Self { quality: 1.0 }
+    }
+}
+
+/// Meshes every stem and leaf of a skeleton.
+pub fn mesh_tree(skeleton: &Skeleton, options: &MeshOptions) -> TreeMesh {
+    let mut mesh = TreeMesh::default();
+    stems::mesh_stems(skeleton, options, &mut mesh.bark);
+    leaves::mesh_leaves(skeleton, &mut mesh.leaves);
+    mesh
+}

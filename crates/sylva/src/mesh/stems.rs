@@ -1,0 +1,250 @@
+//! Stem tubes: one ring per cross-section, rings joined by quads, a point or a cap at the tip.
+
+use super::{Mesh, MeshOptions};
+use crate::skeleton::{CrossSection, Skeleton, Stem};
+use glam::{Quat, Vec3};
+use std::f32::consts::TAU;
+
+/// Vertices around a stem of `level` at mesh `quality` (at least 3). A lobed trunk gets at least
+/// four vertices per lobe so the lobes show.
+pub fn ring_vertices(level: usize, quality: f64, lobes: u32) -> usize {
+    const BASE: [f64; 4] = [20.0, 10.0, 6.0, 4.0];
+    let n = (BASE[level.min(3)] * quality).round().max(3.0) as usize;
+    if lobes > 0 {
+        n.max((4 * lobes as usize).min(256))
+    } else {
+        n
+    }
+}
+
+/// Unit circle for `n` vertices, seam vertex duplicated (n + 1 entries).
+fn circle(n: usize, out: &mut Vec<(f32, f32)>) {
+    out.clear();
+    out.extend((0..=n).map(|i| {
+        let t = TAU * i as f32 / n as f32;
+        (t.cos(), t.sin())
+    }));
+}
+
+pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) {
+    let mut unit = Vec::new();
+    let mut unit_n = 0;
+    for stem in &skeleton.stems {
+        let sections = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
+        if sections.len() < 2 {
+            continue;
+        }
+        let n = ring_vertices(stem.level as usize, options.quality, stem.lobes);
+        if n != unit_n {
+            circle(n, &mut unit);
+            unit_n = n;
+        }
+        mesh_stem(stem, sections, &unit, mesh);
+    }
+}
+
+/// Ring frame at section `j`: the bisector of the segments meeting there, so joints don't pinch.
+fn ring_frame(sections: &[CrossSection], j: usize) -> Quat {
+    if j == 0 || j + 1 == sections.len() {
+        sections[j].orientation
+    } else {
+        let a = sections[j - 1].orientation;
+        let b = sections[j].orientation;
+        let b = if a.dot(b) < 0.0 { -b } else { b };
+        a.lerp(b, 0.5).normalize()
+    }
+}
+
+fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: &mut Mesh) {
+    let n = unit.len() - 1;
+    let m = sections.len();
+    let base_radius = sections
+        .iter()
+        .map(|c| c.radius)
+        .fold(0.0f32, f32::max)
+        .max(1e-6);
+    let v_scale = 1.0 / (TAU * base_radius);
+    let lobed = stem.lobes > 0 && stem.lobe_depth != 0.0;
+    let (lobes, depth) = (stem.lobes as f32, stem.lobe_depth);
+    let tip_is_point = sections[m - 1].radius <= base_radius * 1e-4;
+    let rings = if tip_is_point { m - 1 } else { m };
+    let mut distance = 0.0f32;
+    let first_ring = mesh.positions.len() as u32;
+    for j in 0..rings {
+        let c = &sections[j];
+        if j > 0 {
+            distance += c.position.distance(sections[j - 1].position);
+        }
+        let q = ring_frame(sections, j);
+        let (x, y, z) = (q * Vec3::X, q * Vec3::Y, q * Vec3::Z);
+        // Radius slope along the stem, for normals on tapering and flaring stems.
+        let (a, b) = (sections[j.saturating_sub(1)], sections[(j + 1).min(m - 1)]);
+        let ds = a.position.distance(b.position);
+        let slope = if ds > 1e-9 {
+            (b.radius - a.radius) / ds
+        } else {
+            0.0
+        };
+        let v = distance * v_scale;
+        for (i, &(cos, sin)) in unit.iter().enumerate() {
+            let radial = x * cos + y * sin;
+            let (r, normal_in_plane) = if lobed {
+                let t = TAU * i as f32 / n as f32;
+                let (ls, lc) = (lobes * t).sin_cos();
+                let r = c.radius * (1.0 + depth * ls);
+                let dr = c.radius * depth * lobes * lc;
+                let tangent = y * cos - x * sin;
+                (r, (radial * r - tangent * dr).normalize_or(radial))
+            } else {
+                (c.radius, radial)
+            };
+            let normal = (normal_in_plane - z * slope).normalize_or(radial);
+            mesh.push(c.position + radial * r, normal, [i as f32 / n as f32, v]);
+        }
+    }
+    let stride = (n + 1) as u32;
+    for j in 0..rings.saturating_sub(1) as u32 {
+        let a = first_ring + j * stride;
+        let b = a + stride;
+        for i in 0..n as u32 {
+            mesh.indices
+                .extend_from_slice(&[a + i, a + i + 1, b + i + 1, a + i, b + i + 1, b + i]);
+        }
+    }
+    let last_ring = first_ring + (rings as u32 - 1) * stride;
+    let tip = sections[m - 1];
+    let axis = tip.orientation * Vec3::Z;
+    if tip_is_point {
+        distance += tip.position.distance(sections[m - 2].position);
+        let apex = mesh.positions.len() as u32;
+        // One apex vertex per quad column keeps the u coordinate continuous.
+        for i in 0..n {
+            mesh.push(
+                tip.position,
+                axis,
+                [(i as f32 + 0.5) / n as f32, distance * v_scale],
+            );
+        }
+        for i in 0..n as u32 {
+            mesh.indices
+                .extend_from_slice(&[last_ring + i, last_ring + i + 1, apex + i]);
+        }
+    } else {
+        // Close the open end with a flat cap.
+        let centre = mesh.push(tip.position, axis, [0.5, 0.5]);
+        let rim = mesh.positions.len() as u32;
+        for i in 0..=n {
+            let p = mesh.positions[(last_ring + i as u32) as usize];
+            let (cos, sin) = unit[i];
+            mesh.push(Vec3::from(p), axis, [0.5 + 0.5 * cos, 0.5 + 0.5 * sin]);
+        }
+        for i in 0..n as u32 {
+            mesh.indices
+                .extend_from_slice(&[centre, rim + i, rim + i + 1]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::skeleton::StemId;
+
+    /// A straight vertical cone of height 2 and base radius 0.5:
+    ///
+    /// ```text
+    ///   .  z = 2, r = 0
+    ///  / \
+    /// /___\ z = 0, r = 0.5
+    /// ```
+    fn cone(lobes: u32) -> Skeleton {
+        let sec = |z: f32, r: f32| CrossSection {
+            position: Vec3::new(0.0, 0.0, z),
+            orientation: Quat::IDENTITY,
+            radius: r,
+            z: z / 2.0,
+        };
+        Skeleton {
+            stems: vec![Stem {
+                level: 0,
+                parent: None,
+                clone_of: None,
+                offset: 0.0,
+                length: 2.0,
+                sections: 0..3,
+                lobes,
+                lobe_depth: if lobes > 0 { 0.1 } else { 0.0 },
+            }],
+            sections: vec![sec(0.0, 0.5), sec(1.0, 0.25), sec(2.0, 0.0)],
+            leaves: vec![],
+        }
+    }
+
+    #[test]
+    fn cone_counts_and_normals() {
+        let mut mesh = Mesh::default();
+        mesh_stems(&cone(0), &MeshOptions { quality: 1.0 }, &mut mesh);
+        let n = ring_vertices(0, 1.0, 0);
+        // Two rings of n + 1, then n apex vertices; n quads and n tip triangles.
+        assert_eq!(mesh.vertex_count(), 2 * (n + 1) + n);
+        assert_eq!(mesh.triangle_count(), 2 * n + n);
+        // The cone's side normal tilts up by atan(0.5 / 2).
+        let nz = mesh.normals[0][2];
+        let want = (0.25f32).atan().sin();
+        assert!((nz - want).abs() < 1e-3, "{nz} vs {want}");
+        for t in mesh.indices.chunks(3) {
+            // Every triangle faces outwards: its normal points away from the axis.
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| Vec3::from(mesh.positions[i as usize]));
+            let normal = (b - a).cross(c - a);
+            let centre = (a + b + c) / 3.0;
+            let out = Vec3::new(centre.x, centre.y, 0.0);
+            assert!(normal.dot(out) > 0.0, "inward triangle at {centre}");
+        }
+        // Seam: u runs 0..1 on every ring.
+        assert_eq!(mesh.uvs[0][0], 0.0);
+        assert_eq!(mesh.uvs[n][0], 1.0);
+        let _ = StemId(0);
+    }
+
+    #[test]
+    fn lobes_change_the_radius_around_the_ring() {
+        let mut mesh = Mesh::default();
+        mesh_stems(&cone(5), &MeshOptions { quality: 1.0 }, &mut mesh);
+        let n = ring_vertices(0, 1.0, 5);
+        assert!(n >= 20);
+        let radii: Vec<f32> = mesh.positions[..n]
+            .iter()
+            .map(|p| p[0].hypot(p[1]))
+            .collect();
+        let (lo, hi) = radii
+            .iter()
+            .fold((f32::MAX, 0.0f32), |(l, h), &r| (l.min(r), h.max(r)));
+        assert!(
+            (hi - 0.55).abs() < 0.01 && (lo - 0.45).abs() < 0.01,
+            "{lo}..{hi}"
+        );
+    }
+
+    #[test]
+    fn open_tip_gets_a_cap() {
+        let mut sk = cone(0);
+        sk.sections[2].radius = 0.1;
+        let mut mesh = Mesh::default();
+        mesh_stems(&sk, &MeshOptions { quality: 1.0 }, &mut mesh);
+        let n = ring_vertices(0, 1.0, 0);
+        assert_eq!(mesh.triangle_count(), 2 * 2 * n + n);
+    }
+
+    #[test]
+    fn degenerate_stems_do_not_panic() {
+        let mut sk = cone(0);
+        sk.sections.iter_mut().for_each(|c| {
+            c.position = Vec3::ZERO;
+            c.radius = 0.0;
+        });
+        let mut mesh = Mesh::default();
+        mesh_stems(&sk, &MeshOptions { quality: 0.01 }, &mut mesh);
+        assert!(mesh.positions.iter().flatten().all(|v| v.is_finite()));
+        assert!(mesh.normals.iter().flatten().all(|v| v.is_finite()));
+    }
+}

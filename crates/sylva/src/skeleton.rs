@@ -1,0 +1,223 @@
+//! The Skeleton: what every tree model produces and every output consumes.
+//!
+//! Stems are polylines of cross-sections (centre, orientation, radius); leaves are frames with a
+//! size and a shape. Nothing here refers to model parameters, so a mesher, an exporter or a
+//! measurement works the same for every model.
+//!
+//! Coordinates: metres, Z up, the base of the (first) trunk at the origin. A cross-section's
+//! orientation maps the stem's local axes to the world: local z is the growth direction, x and y
+//! span the section plane (for a branch growing sideways, y points up).
+
+use glam::{Quat, Vec3};
+use std::ops::Range;
+
+/// Index of a stem in [`Skeleton::stems`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct StemId(pub u32);
+
+/// One ring along a stem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CrossSection {
+    /// Centre of the section, metres.
+    pub position: Vec3,
+    /// Frame of the stem segment that starts here (local z along the stem).
+    pub orientation: Quat,
+    /// Radius before lobing, metres (taper and flare included).
+    pub radius: f32,
+    /// Unit position along the stem, 0 at its base, 1 at its tip (clones continue their
+    /// original's scale, so a clone starts above 0).
+    pub z: f32,
+}
+
+/// A trunk, branch or clone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stem {
+    /// Recursion level: 0 trunk, 1 main branches, ...
+    pub level: u8,
+    /// The stem this one grows from (`None` for trunks).
+    pub parent: Option<StemId>,
+    /// For a clone (a split of a stem), the stem it split from.
+    pub clone_of: Option<StemId>,
+    /// Distance from the parent's base to where this stem attaches, metres.
+    pub offset: f32,
+    /// Length of the stem from its base (a clone: of the stem it split from), metres.
+    pub length: f32,
+    /// Range of this stem's cross-sections in [`Skeleton::sections`].
+    pub sections: Range<u32>,
+    /// Number of sinusoidal lobes around the stem (0: round).
+    pub lobes: u32,
+    /// Lobe amplitude relative to the radius.
+    pub lobe_depth: f32,
+}
+
+/// Leaf outline, scaled per leaf (unit length along local z, unit width along local x).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LeafShape {
+    /// Elliptic leaf (index 0), the paper's most used shape.
+    Oval,
+    /// Deltoid leaf (1), as poplars and birches.
+    Triangle,
+    /// Three-lobed oak leaf (2).
+    Oak,
+    /// Three-lobed maple leaf (3).
+    Maple3,
+    /// Five-lobed maple leaf (4).
+    Maple5,
+    /// Three leaflets on one petiole (5).
+    ThreeLeaflets,
+    /// Square (6), Arbaro's `square`.
+    Square,
+    /// Long narrow leaflet (7), for palms, grasses and bamboo; Arbaro's `palm`.
+    Palm,
+    /// Small closed sphere (8), for berries and grain; Arbaro's `sphere`.
+    Sphere,
+}
+
+impl LeafShape {
+    /// All shapes in index order.
+    pub const ALL: [LeafShape; 9] = [
+        LeafShape::Oval,
+        LeafShape::Triangle,
+        LeafShape::Oak,
+        LeafShape::Maple3,
+        LeafShape::Maple5,
+        LeafShape::ThreeLeaflets,
+        LeafShape::Square,
+        LeafShape::Palm,
+        LeafShape::Sphere,
+    ];
+
+    /// Shape for a `LeafShape` index; out-of-range indices give `None`.
+    pub fn from_index(index: u32) -> Option<Self> {
+        Self::ALL.get(index as usize).copied()
+    }
+
+    /// Lower-case name (`oval`, `maple5`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            LeafShape::Oval => "oval",
+            LeafShape::Triangle => "triangle",
+            LeafShape::Oak => "oak",
+            LeafShape::Maple3 => "maple3",
+            LeafShape::Maple5 => "maple5",
+            LeafShape::ThreeLeaflets => "three-leaflets",
+            LeafShape::Square => "square",
+            LeafShape::Palm => "palm",
+            LeafShape::Sphere => "sphere",
+        }
+    }
+}
+
+/// A leaf: its blade starts at `position` and extends along local z; local y is the blade normal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Leaf {
+    /// Base of the blade (end of the petiole), metres.
+    pub position: Vec3,
+    /// Blade frame: z along the leaf, x across it, y its normal (the upper side).
+    pub orientation: Quat,
+    /// Blade length, metres.
+    pub length: f32,
+    /// Blade width, metres.
+    pub width: f32,
+    /// Outline.
+    pub shape: LeafShape,
+    /// The stem carrying the leaf.
+    pub stem: StemId,
+}
+
+/// A whole tree as plain data.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Skeleton {
+    /// Stems in creation order (a parent always before its children).
+    pub stems: Vec<Stem>,
+    /// All cross-sections, stem after stem.
+    pub sections: Vec<CrossSection>,
+    /// Leaves in creation order.
+    pub leaves: Vec<Leaf>,
+}
+
+/// Counts and sizes of a skeleton.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SkeletonStats {
+    /// Stems (clones included) per level, index = level.
+    pub stems_per_level: Vec<usize>,
+    /// Number of leaves.
+    pub leaves: usize,
+    /// Highest point of stems (centre plus radius) and leaves, metres above the trunk base.
+    pub height: f32,
+    /// Crown width: the largest horizontal extent (x or y) of everything but the trunks, metres.
+    pub crown_width: f32,
+}
+
+impl Skeleton {
+    /// Cross-sections of a stem.
+    pub fn sections_of(&self, id: StemId) -> &[CrossSection] {
+        let r = &self.stems[id.0 as usize].sections;
+        &self.sections[r.start as usize..r.end as usize]
+    }
+
+    /// Position, segment frame and radius at unit position `z` of a stem (clamped to the stem's
+    /// sections). Positions and radii are interpolated; the frame is that of the segment holding `z`.
+    pub fn sample(&self, id: StemId, z: f32) -> (Vec3, Quat, f32) {
+        let s = self.sections_of(id);
+        debug_assert!(!s.is_empty());
+        let i = s.partition_point(|c| c.z <= z);
+        if i == 0 {
+            return (s[0].position, s[0].orientation, s[0].radius);
+        }
+        if i >= s.len() {
+            let last = s[s.len() - 1];
+            return (last.position, last.orientation, last.radius);
+        }
+        let (a, b) = (s[i - 1], s[i]);
+        let t = if b.z > a.z {
+            (z - a.z) / (b.z - a.z)
+        } else {
+            0.0
+        };
+        (
+            a.position.lerp(b.position, t),
+            a.orientation,
+            a.radius + (b.radius - a.radius) * t,
+        )
+    }
+
+    /// Counts and dimensions.
+    pub fn stats(&self) -> SkeletonStats {
+        let mut stats = SkeletonStats::default();
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        let mut height = 0.0f32;
+        for stem in &self.stems {
+            let level = stem.level as usize;
+            if stats.stems_per_level.len() <= level {
+                stats.stems_per_level.resize(level + 1, 0);
+            }
+            stats.stems_per_level[level] += 1;
+            let crown = stem.level > 0;
+            for c in &self.sections[stem.sections.start as usize..stem.sections.end as usize] {
+                height = height.max(c.position.z + c.radius);
+                if crown {
+                    lo = lo.min(c.position - c.radius);
+                    hi = hi.max(c.position + c.radius);
+                }
+            }
+        }
+        for leaf in &self.leaves {
+            let tip = leaf.position + leaf.orientation * Vec3::new(0.0, 0.0, leaf.length);
+            for p in [leaf.position, tip] {
+                height = height.max(p.z);
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+        stats.leaves = self.leaves.len();
+        stats.height = height;
+        stats.crown_width = if lo.x.is_finite() {
+            (hi.x - lo.x).max(hi.y - lo.y)
+        } else {
+            0.0
+        };
+        stats
+    }
+}

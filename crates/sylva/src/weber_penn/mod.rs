@@ -1,0 +1,602 @@
+//! The Weber–Penn model (Weber & Penn 1995, restated in `shared/spec/weber-penn.md`):
+//! parameters in, [`Skeleton`] out.
+//!
+//! Each stem draws from its own random stream keyed by its place in the tree (trunk i, child j
+//! of that, clone k of that...), so the tree does not depend on generation order, and changing a
+//! parameter of a deep level leaves the stems above it untouched.
+
+pub mod equations;
+mod trace;
+
+use crate::error::GenerateError;
+use crate::mesh::{leaf_triangles, ring_vertices};
+use crate::params::TreeParams;
+use crate::rng::{Random, StreamKey};
+use crate::skeleton::{Leaf, LeafShape, Skeleton, Stem, StemId};
+use equations::{Envelope, inside_envelope, shape_ratio};
+use glam::{DQuat, DVec3, Vec3};
+use trace::{StemStart, Tracer};
+
+const KEY_TRUNK: u64 = 1;
+const KEY_CHILD: u64 = 2;
+const KEY_CLONE: u64 = 3;
+const KEY_LEAF: u64 = 4;
+const KEY_WIND: u64 = 5;
+
+/// Degrees to radians.
+fn deg(d: f64) -> f64 {
+    d.to_radians()
+}
+
+/// Wind at one instant (spec section 12). The default is calm, which changes nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Wind {
+    /// Steady wind speed (the paper's `wind_speed`; 50 doubles the base sway).
+    pub speed: f64,
+    /// Gust strength on top of the steady wind.
+    pub gust: f64,
+    /// Time, seconds.
+    pub time: f64,
+}
+
+impl Wind {
+    /// True when the wind moves anything.
+    pub fn is_active(&self) -> bool {
+        self.speed != 0.0 || self.gust != 0.0
+    }
+}
+
+/// Options of one generation run (what the calling program decides, not the species).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GenerateOptions {
+    /// The user's seed; hashed before use.
+    pub seed: u64,
+    /// Show only stem levels below this (1 = trunk only); leaves appear only when no level is
+    /// cut. The stems shown are exactly those of the full tree. `None` = all levels.
+    pub max_levels: Option<u32>,
+    /// The paper's quality factor from the calling program: multiplies `LeafQuality` (more,
+    /// smaller leaves) and the mesh resolution estimate used by the budget.
+    pub quality: f64,
+    /// Whether to generate leaves.
+    pub leaves: bool,
+    /// Wind at one instant.
+    pub wind: Wind,
+    /// Stop with [`GenerateError::Budget`] when the tree's mesh would exceed this many triangles.
+    pub max_triangles: u64,
+}
+
+impl Default for GenerateOptions {
+    fn default() -> Self {
+        Self {
+            seed: 0,
+            max_levels: None,
+            quality: 1.0,
+            leaves: true,
+            wind: Wind::default(),
+            max_triangles: 10_000_000,
+        }
+    }
+}
+
+/// Generates the tree of `params` (validated first) with `options`.
+pub fn generate(params: &TreeParams, options: &GenerateOptions) -> Result<Skeleton, GenerateError> {
+    params.validate()?;
+    if !(options.quality > 0.0 && options.quality <= 16.0) {
+        return Err(crate::error::ParamsError::OutOfRange {
+            name: "quality".into(),
+            value: options.quality,
+            allowed: "0..16 (exclusive of 0)".into(),
+            source_name: None,
+        }
+        .into());
+    }
+    let root = StreamKey::from_seed(options.seed);
+    let mut tree_rng = root.stream();
+    let scale = params.scale + tree_rng.var(params.scale_v);
+    let z_scale = params.z_scale + tree_rng.var(params.z_scale_v);
+    let stem_levels = options
+        .max_levels
+        .map_or(params.levels, |m| m.clamp(1, params.levels)) as usize;
+    let mut g = Generator {
+        tracer: Tracer {
+            p: params,
+            wind: options.wind,
+        },
+        options,
+        scale,
+        stem_levels,
+        leaves_on: options.leaves && params.leaves != 0 && stem_levels == params.levels as usize,
+        leaf_quality: params.leaf_quality * options.quality,
+        leaf_shape: LeafShape::from_index(params.leaf_shape).unwrap_or(LeafShape::Oval),
+        envelope: Envelope {
+            peak: params.prune_width_peak,
+            power_low: params.prune_power_low,
+            power_high: params.prune_power_high,
+        },
+        skeleton: Skeleton::default(),
+        triangles: 0,
+        profile: Vec::new(),
+        shares: Vec::new(),
+    };
+    g.grow_trunks(root)?;
+    if (z_scale - 1.0).abs() > 1e-12 {
+        stretch_vertically(&mut g.skeleton, z_scale as f32);
+    }
+    Ok(g.skeleton)
+}
+
+/// Per-stem facts needed to grow its children after its axis is traced.
+struct Traced {
+    id: StemId,
+    start: StemStart,
+    shares: Vec<f64>,
+    rng: Random,
+}
+
+struct Generator<'a> {
+    tracer: Tracer<'a>,
+    options: &'a GenerateOptions,
+    scale: f64,
+    stem_levels: usize,
+    leaves_on: bool,
+    leaf_quality: f64,
+    leaf_shape: LeafShape,
+    envelope: Envelope,
+    skeleton: Skeleton,
+    triangles: u64,
+    profile: Vec<f64>,
+    shares: Vec<f64>,
+}
+
+impl<'a> Generator<'a> {
+    fn p(&self) -> &'a TreeParams {
+        self.tracer.p
+    }
+
+    fn spend(&mut self, triangles: u64, level: usize) -> Result<(), GenerateError> {
+        self.triangles += triangles;
+        if self.triangles > self.options.max_triangles {
+            return Err(GenerateError::Budget {
+                what: "triangles",
+                limit: self.options.max_triangles,
+                reached: self.triangles,
+                level,
+            });
+        }
+        Ok(())
+    }
+
+    fn grow_trunks(&mut self, root: StreamKey) -> Result<(), GenerateError> {
+        let p = self.p();
+        let trunks = p.trunks.max(1);
+        let l0 = &p.level[0];
+        for i in 0..trunks {
+            let key = root.child(KEY_TRUNK).child(i as u64);
+            let mut rng = key.stream();
+            let length = (l0.length + rng.var(l0.length_v)) * self.scale;
+            let radius = length * p.ratio * (p.trunk_scale + rng.var(p.trunk_scale_v));
+            let azimuth = 360.0 * i as f64 / trunks as f64 + l0.rotate + rng.var(l0.rotate_v);
+            let lean = l0.down_angle + rng.var(l0.down_angle_v);
+            let spread = if trunks > 1 {
+                p.trunk_spread * (0.5 + 0.5 * rng.unit())
+            } else {
+                0.0
+            };
+            let a = deg(azimuth);
+            let start = StemStart {
+                level: 0,
+                parent: None,
+                clone_of: None,
+                offset: 0.0,
+                length,
+                radius,
+                position: DVec3::new(spread * a.cos(), spread * a.sin(), 0.0),
+                orientation: DQuat::from_rotation_z(a + std::f64::consts::FRAC_PI_2)
+                    * DQuat::from_rotation_x(deg(lean)),
+                key,
+                first_segment: 0,
+                curve_correction: 0.0,
+                split_error: 0.0,
+                share: 1.0,
+                parent_length: 0.0,
+                parent_lmax: 0.0,
+                z_min: p.base_size,
+                rotate_start: 0.0,
+            };
+            self.grow_stem(start)?;
+        }
+        Ok(())
+    }
+
+    /// Prunes (levels >= 1), traces the stem and its clones, then grows their children.
+    fn grow_stem(&mut self, mut start: StemStart) -> Result<(), GenerateError> {
+        if start.length <= 1e-6 || start.radius <= 0.0 {
+            return Ok(());
+        }
+        let mut rng = start.key.stream();
+        start.split_error = rng.var(0.5);
+        if start.level >= 1 && self.p().prune_ratio > 0.0 {
+            match self.pruned_length(&start, &rng) {
+                Some(length) if length > 1e-6 => {
+                    let ratio = length / start.length;
+                    start.radius *= ratio.powf(self.p().ratio_power).min(1.0);
+                    start.length = length;
+                }
+                _ => return Ok(()),
+            }
+        }
+        let family = self.trace_family(start, rng)?;
+        for traced in family {
+            self.grow_children(traced)?;
+        }
+        Ok(())
+    }
+
+    /// Traces a stem and all clones it splits into, adding them to the skeleton.
+    fn trace_family(
+        &mut self,
+        start: StemStart,
+        rng: Random,
+    ) -> Result<Vec<Traced>, GenerateError> {
+        let mut pending = vec![(start, rng)];
+        let mut family = Vec::new();
+        let mut clones = Vec::new();
+        while let Some((st, mut rng)) = pending.pop() {
+            let level = st.level;
+            let id = StemId(self.skeleton.stems.len() as u32);
+            let first = self.skeleton.sections.len() as u32;
+            self.tracer.profile_samples(&st, &mut self.profile);
+            self.shares.clear();
+            clones.clear();
+            self.tracer.trace(
+                &st,
+                &mut rng,
+                &self.profile,
+                &mut self.skeleton.sections,
+                &mut clones,
+                &mut self.shares,
+            );
+            let end = self.skeleton.sections.len() as u32;
+            let rings = (end - first) as u64;
+            let ring = ring_vertices(level, self.options.quality, 0) as u64;
+            self.spend(rings.saturating_sub(1) * ring * 2, level)?;
+            let (lobes, lobe_depth) = if level == 0 {
+                (self.p().lobes, self.p().lobe_depth as f32)
+            } else {
+                (0, 0.0)
+            };
+            self.skeleton.stems.push(Stem {
+                level: level as u8,
+                parent: st.parent,
+                clone_of: st.clone_of,
+                offset: st.offset as f32,
+                length: st.length as f32,
+                sections: first..end,
+                lobes,
+                lobe_depth,
+            });
+            for mut c in clones.drain(..) {
+                c.clone_of = Some(id);
+                let crng = c.key.stream();
+                pending.push((c, crng));
+            }
+            family.push(Traced {
+                id,
+                start: st,
+                shares: self.shares.clone(),
+                rng,
+            });
+        }
+        Ok(family)
+    }
+
+    /// The pruned length of a stem (spec section 10), or `None` when nothing of it fits.
+    fn pruned_length(&mut self, start: &StemStart, rng: &Random) -> Option<f64> {
+        let p = self.p();
+        let original = start.length;
+        let n = p.level(start.level).curve_res.max(1) as f64;
+        let mut length = original;
+        let mut sections = Vec::new();
+        let mut clones = Vec::new();
+        let mut shares = Vec::new();
+        let mut profile = Vec::new();
+        loop {
+            let mut probe = start.clone();
+            probe.length = length;
+            let mut pending = vec![(probe, rng.clone())];
+            let mut fail: Option<f64> = None;
+            while let Some((st, mut r)) = pending.pop() {
+                sections.clear();
+                clones.clear();
+                self.tracer.profile_samples(&st, &mut profile);
+                self.tracer.trace(
+                    &st,
+                    &mut r,
+                    &profile,
+                    &mut sections,
+                    &mut clones,
+                    &mut shares,
+                );
+                let outside = sections.iter().skip(1).find(|c| {
+                    let rho = (c.position.x as f64).hypot(c.position.y as f64);
+                    !inside_envelope(
+                        rho,
+                        c.position.z as f64,
+                        self.scale,
+                        p.base_size,
+                        p.prune_width,
+                        &self.envelope,
+                    )
+                });
+                if let Some(c) = outside {
+                    // Segment index of the offending point: s = floor(z N).
+                    let s = ((c.z as f64 * n).ceil() - 1.0).max(0.0);
+                    fail = Some(fail.map_or(s, |f: f64| f.min(s)));
+                    break;
+                }
+                pending.extend(clones.drain(..).map(|c| {
+                    let r = c.key.stream();
+                    (c, r)
+                }));
+            }
+            let Some(s) = fail else { break };
+            let seg = length / n;
+            length = (s * seg).max(length / 2.0).min(length - original / 15.0);
+            if length < 0.001 * self.scale {
+                length = 0.0;
+                break;
+            }
+        }
+        Some(original - (original - length) * p.prune_ratio)
+    }
+
+    /// Children (stems or leaves) of a traced stem.
+    fn grow_children(&mut self, t: Traced) -> Result<(), GenerateError> {
+        let level = t.start.level;
+        if level + 1 < self.stem_levels {
+            self.grow_child_stems(t)
+        } else if self.leaves_on && level + 1 == self.stem_levels {
+            self.grow_leaves(t)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Unit positions along the stem where `count` items go, error-diffused over the segments
+    /// (spec section 4), honouring the bare base, clone shares and `BranchDist`.
+    fn place(
+        &self,
+        t: &Traced,
+        count: f64,
+        branch_dist: f64,
+        rng: &mut Random,
+        out: &mut Vec<f64>,
+    ) {
+        out.clear();
+        let n = self.p().level(t.start.level).curve_res.max(1) as usize;
+        let nf = n as f64;
+        let z_min = t.start.z_min.clamp(0.0, 1.0);
+        if count <= 0.0 || z_min >= 1.0 {
+            return;
+        }
+        let rate = count / (1.0 - z_min);
+        let mut error = rng.var(0.5);
+        for s in t.start.first_segment..n {
+            let z0 = (s as f64 / nf).max(z_min);
+            let z1 = (s + 1) as f64 / nf;
+            if z1 <= z0 {
+                continue;
+            }
+            let expected = rate * (z1 - z0) * t.shares[s];
+            let k = (expected + error + 0.5).floor().max(0.0);
+            error -= k - expected;
+            let d = (z1 - z0) / k;
+            for i in 0..k as usize {
+                let along = (i as f64 + 0.5) * d + rng.var(d / 4.0);
+                out.push((z0 + branch_dist * along).clamp(z0, z1));
+            }
+        }
+    }
+
+    fn grow_child_stems(&mut self, t: Traced) -> Result<(), GenerateError> {
+        let p = self.p();
+        let level = t.start.level;
+        let child_level = level + 1;
+        let cp = p.level(child_level).clone();
+        let mut rng = t.rng.clone();
+        let lmax = cp.length + rng.var(cp.length_v);
+        let length = t.start.length;
+        let mut zs = Vec::new();
+        let fan = cp.branches < 0;
+        if fan {
+            zs.resize(cp.branches.unsigned_abs() as usize, 1.0);
+        } else {
+            let b = cp.branches as f64;
+            let count = match level {
+                0 => b,
+                1 => {
+                    b * (0.2
+                        + 0.8 * (length / t.start.parent_length) / t.start.parent_lmax.max(1e-9))
+                }
+                _ => b * (1.0 - 0.5 * t.start.offset / t.start.parent_length.max(1e-9)),
+            };
+            self.place(&t, count, cp.branch_dist, &mut rng, &mut zs);
+        }
+        let mut phi = t.start.rotate_start;
+        let mut side = 1.0;
+        let fan_count = zs.len();
+        for (index, &z) in zs.iter().enumerate() {
+            let (pos, q_seg, r_here) = self.skeleton.sample(t.id, z as f32);
+            let offset = z * length;
+            let orientation = if fan {
+                let spread = if fan_count > 1 {
+                    -cp.rotate / 2.0 + cp.rotate * index as f64 / (fan_count - 1) as f64
+                } else {
+                    0.0
+                };
+                q_seg.as_dquat()
+                    * DQuat::from_rotation_y(deg(spread))
+                    * DQuat::from_rotation_x(deg(cp.down_angle))
+            } else {
+                let azimuth = if cp.rotate >= 0.0 {
+                    phi += cp.rotate + rng.var(cp.rotate_v);
+                    phi
+                } else {
+                    side = -side;
+                    side * (180.0 + cp.rotate + rng.var(cp.rotate_v))
+                };
+                let down = if cp.down_angle_v >= 0.0 {
+                    cp.down_angle + rng.var(cp.down_angle_v)
+                } else {
+                    let span = if level == 0 {
+                        length * (1.0 - p.base_size)
+                    } else {
+                        length
+                    };
+                    let r = ((length - offset) / span.max(1e-9)).clamp(0.0, 1.0);
+                    cp.down_angle
+                        + cp.down_angle_v * (1.0 - 2.0 * shape_ratio(0, r, &self.envelope))
+                };
+                q_seg.as_dquat()
+                    * DQuat::from_rotation_z(deg(azimuth))
+                    * DQuat::from_rotation_x(deg(down))
+            };
+            let child_length = if level == 0 {
+                let base = p.base_size * self.scale;
+                let r = ((length - offset) / (length - base).max(1e-9)).clamp(0.0, 1.0);
+                length * lmax * shape_ratio(p.shape, r, &self.envelope)
+            } else {
+                lmax * (length - 0.6 * offset)
+            };
+            if child_length <= 1e-6 {
+                continue;
+            }
+            let radius =
+                (t.start.radius * (child_length / length).powf(p.ratio_power)).min(r_here as f64);
+            let child = StemStart {
+                level: child_level,
+                parent: Some(t.id),
+                clone_of: None,
+                offset,
+                length: child_length,
+                radius,
+                position: pos.as_dvec3(),
+                orientation: orientation.normalize(),
+                key: t.start.key.child(KEY_CHILD).child(index as u64),
+                first_segment: 0,
+                curve_correction: 0.0,
+                split_error: 0.0,
+                share: 1.0,
+                parent_length: length,
+                parent_lmax: lmax,
+                z_min: (r_here as f64 / child_length).min(1.0),
+                rotate_start: 0.0,
+            };
+            self.grow_stem(child)?;
+        }
+        Ok(())
+    }
+
+    fn grow_leaves(&mut self, t: Traced) -> Result<(), GenerateError> {
+        let p = self.p();
+        let lp = p.level(p.levels as usize).clone();
+        let mut rng = t.start.key.child(KEY_LEAF).stream();
+        let quality = self.leaf_quality;
+        let leaf_length = (p.leaf_scale / quality.sqrt()) as f32;
+        let leaf_width = (p.leaf_scale * p.leaf_scale_x / quality.sqrt()) as f32;
+        let mut zs = Vec::new();
+        let fan = p.leaves < 0;
+        if fan {
+            zs.resize(p.leaves.unsigned_abs() as usize, 1.0);
+        } else {
+            let r = if t.start.parent_length > 0.0 {
+                t.start.offset / t.start.parent_length
+            } else {
+                1.0
+            };
+            let count = p.leaves as f64 * shape_ratio(p.leaf_distrib, r, &self.envelope) * quality;
+            self.place(&t, count, 1.0, &mut rng, &mut zs);
+        }
+        let per_leaf = leaf_triangles(self.leaf_shape) as u64;
+        self.spend(per_leaf * zs.len() as u64, t.start.level + 1)?;
+        let mut phi = 0.0;
+        let mut side = 1.0;
+        let fan_count = zs.len();
+        for (index, &z) in zs.iter().enumerate() {
+            let (pos, q_seg, _) = self.skeleton.sample(t.id, z as f32);
+            let q_seg = q_seg.as_dquat();
+            let q = if fan {
+                let spread = if fan_count > 1 {
+                    -lp.rotate / 2.0 + lp.rotate * index as f64 / (fan_count - 1) as f64
+                } else {
+                    0.0
+                };
+                q_seg * DQuat::from_rotation_y(deg(spread))
+            } else {
+                let azimuth = if lp.rotate >= 0.0 {
+                    phi += lp.rotate + rng.var(lp.rotate_v);
+                    phi
+                } else {
+                    side = -side;
+                    side * (180.0 + lp.rotate + rng.var(lp.rotate_v))
+                };
+                let down = lp.down_angle + rng.var(lp.down_angle_v.abs());
+                q_seg * DQuat::from_rotation_z(deg(azimuth)) * DQuat::from_rotation_x(deg(down))
+            };
+            let base =
+                pos.as_dvec3() + q * DVec3::new(0.0, 0.0, p.leaf_stem_len * leaf_length as f64);
+            let q = bend_leaf(q.normalize(), base, p.leaf_bend);
+            self.skeleton.leaves.push(Leaf {
+                position: base.as_vec3(),
+                orientation: q.as_quat(),
+                length: leaf_length,
+                width: leaf_width,
+                shape: self.leaf_shape,
+                stem: t.id,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Turns a leaf towards the light (spec section 9): first about the world vertical so that its
+/// normal faces away from the trunk, then tilts the normal up, each by the fraction `bend`.
+fn bend_leaf(q: DQuat, position: DVec3, bend: f64) -> DQuat {
+    if bend == 0.0 {
+        return q;
+    }
+    let n = q * DVec3::Y;
+    let mut turn = position.y.atan2(position.x) - n.y.atan2(n.x);
+    turn = (turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+    let q = if position.x.hypot(position.y) > 1e-9 && n.x.hypot(n.y) > 1e-9 {
+        DQuat::from_rotation_z(bend * turn) * q
+    } else {
+        q
+    };
+    let n = q * DVec3::Y;
+    let phi = n.x.hypot(n.y).atan2(n.z);
+    let axis = n.cross(DVec3::Z);
+    if axis.length_squared() < 1e-18 {
+        return q;
+    }
+    (DQuat::from_axis_angle(axis.normalize(), bend * phi) * q).normalize()
+}
+
+/// Applies `ZScale`: stretches heights and turns frames to follow the stretched axes.
+fn stretch_vertically(skeleton: &mut Skeleton, z: f32) {
+    let stretch = |q: glam::Quat| {
+        let axis = q * Vec3::Z;
+        let stretched = Vec3::new(axis.x, axis.y, axis.z * z).normalize_or(axis);
+        glam::Quat::from_rotation_arc(axis, stretched) * q
+    };
+    for c in &mut skeleton.sections {
+        c.position.z *= z;
+        c.orientation = stretch(c.orientation);
+    }
+    for leaf in &mut skeleton.leaves {
+        leaf.position.z *= z;
+    }
+}
+
+#[cfg(test)]
+mod tests;
