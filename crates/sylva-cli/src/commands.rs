@@ -45,6 +45,9 @@ fn output_format(path: &Path) -> Result<Format> {
 /// Loads the species and applies `--set` overrides.
 fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
     let mut params = sylva::species::load(species)?;
+    for note in &params.notes {
+        eprintln!("sylva: warning: {species}: {note}");
+    }
     for item in overrides {
         let (name, value) = item.split_once('=').with_context(|| {
             format!("--set {item}: expected NAME=VALUE, e.g. --set 1Branches=30")

@@ -167,17 +167,19 @@ fn build(shape: LeafShape) -> LeafTemplate {
             ],
         )]),
         LeafShape::Oak => flat(&[polar(
-            24,
+            36,
             lobed(
                 &[
                     (up, 0.55),
-                    (up + 1.0, 0.4),
-                    (up - 1.0, 0.4),
-                    (up + 2.0, 0.25),
-                    (up - 2.0, 0.25),
+                    (up + 0.7, 0.5),
+                    (up - 0.7, 0.5),
+                    (up + 1.4, 0.42),
+                    (up - 1.4, 0.42),
+                    (up + 2.1, 0.25),
+                    (up - 2.1, 0.25),
                 ],
-                0.3,
-                6,
+                0.15,
+                20,
             ),
         )]),
         LeafShape::Maple3 => flat(&[polar(
@@ -322,7 +324,7 @@ mod tests {
         let oval = area(LeafShape::Oval);
         assert!((oval - PI / 4.0).abs() < 0.12, "oval area {oval}");
         for s in [LeafShape::Maple5, LeafShape::Maple3, LeafShape::Oak] {
-            assert!(area(s) < oval, "{s:?}");
+            assert!(area(s) < oval, "{s:?}: {} vs oval {oval}", area(s));
         }
     }
 }

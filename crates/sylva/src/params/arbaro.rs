@@ -139,8 +139,31 @@ pub fn from_arbaro_xml(text: &str, source_name: &str) -> Result<TreeParams, Para
             message: "no <species> element: not an Arbaro species file".into(),
         });
     }
+    clamp_variations(&mut params);
     params.validate().map_err(|e| e.at(source_name))?;
     Ok(params)
+}
+
+/// Arbaro accepts a variation larger than its base value (its `shave-grass.xml` has Scale 0.5,
+/// ScaleV 0.7) and then fails on the trees whose size comes out negative. Sylva's own files
+/// reject that; on import the variation is clamped to the base value, with a note.
+fn clamp_variations(p: &mut TreeParams) {
+    let mut notes = Vec::new();
+    let pairs: [(f64, &mut f64, &str, &str); 4] = [
+        (p.scale, &mut p.scale_v, "ScaleV", "Scale"),
+        (p.z_scale, &mut p.z_scale_v, "ZScaleV", "ZScale"),
+        (p.trunk_scale, &mut p.trunk_scale_v, "0ScaleV", "0Scale"),
+        (p.level[0].length, &mut p.level[0].length_v, "0LengthV", "0Length"),
+    ];
+    for (base, v, v_name, base_name) in pairs {
+        if *v > base {
+            notes.push(format!(
+                "{v_name} {v} exceeds {base_name} {base} and could make a negative size; clamped to {base}"
+            ));
+            *v = base;
+        }
+    }
+    p.notes.extend(notes);
 }
 
 #[cfg(test)]

@@ -65,6 +65,8 @@ pub struct TreeParams {
     pub name: String,
     /// Free-text description (what the species is, where its values come from).
     pub description: String,
+    /// What loading changed and why (e.g. an Arbaro variation clamped); shown as warnings.
+    pub notes: Vec<String>,
     /// `Shape`: crown shape index 0..8 for the ShapeRatio function (8 = pruning envelope).
     pub shape: u32,
     /// `BaseSize`: fraction of the trunk without branches.
@@ -167,6 +169,7 @@ impl Default for TreeParams {
         Self {
             name: "default".into(),
             description: String::new(),
+            notes: Vec::new(),
             shape: 0,
             base_size: 0.25,
             scale: 10.0,

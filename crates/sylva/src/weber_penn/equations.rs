@@ -191,11 +191,11 @@ mod tests {
             (1.0f64 - 0.25).sqrt()
         ));
         // Periodic beads (taper 3): radius 0 at each joint (every 2 r) and r midway.
-        assert!(close(taper_radius(r, len, 3.0, 0.8), 0.0)); // z2 = 2
+        assert!(taper_radius(r, len, 3.0, 0.8).abs() < 1e-6); // z2 = 2
         assert!(close(taper_radius(r, len, 3.0, 0.9), 1.0)); // z2 = 1: bead centre
         // Taper 2.5: beads only half deep, never below half the radius.
         let shallow = taper_radius(r, len, 2.5, 0.8);
-        assert!(close(shallow, 0.5), "{shallow}");
+        assert!((shallow - 0.5).abs() < 1e-6, "{shallow}");
     }
 
     #[test]

@@ -23,6 +23,14 @@ const KEY_CLONE: u64 = 3;
 const KEY_LEAF: u64 = 4;
 const KEY_WIND: u64 = 5;
 
+/// One step of one-dimensional error diffusion (the paper's [FLOY76]): how many whole items
+/// to make where `expected` are due, carrying the rounding error to the next step.
+pub fn diffuse(expected: f64, error: &mut f64) -> usize {
+    let k = (expected + *error + 0.5).floor().max(0.0);
+    *error -= k - expected;
+    k as usize
+}
+
 /// Degrees to radians.
 fn deg(d: f64) -> f64 {
     d.to_radians()
@@ -387,11 +395,9 @@ impl<'a> Generator<'a> {
             if z1 <= z0 {
                 continue;
             }
-            let expected = rate * (z1 - z0) * t.shares[s];
-            let k = (expected + error + 0.5).floor().max(0.0);
-            error -= k - expected;
-            let d = (z1 - z0) / k;
-            for i in 0..k as usize {
+            let k = diffuse(rate * (z1 - z0) * t.shares[s], &mut error);
+            let d = (z1 - z0) / k as f64;
+            for i in 0..k {
                 let along = (i as f64 + 0.5) * d + rng.var(d / 4.0);
                 out.push((z0 + branch_dist * along).clamp(z0, z1));
             }
@@ -471,8 +477,15 @@ impl<'a> Generator<'a> {
             if child_length <= 1e-6 {
                 continue;
             }
-            let radius =
-                (t.start.radius * (child_length / length).powf(p.ratio_power)).min(r_here as f64);
+            // A fan sits on the tip, where a tapered parent has no radius left: limit it by
+            // the parent's radius where its last segment starts instead.
+            let limit = if fan {
+                let n = p.level(level).curve_res.max(1) as f32;
+                self.skeleton.sample(t.id, 1.0 - 1.0 / n).2
+            } else {
+                r_here
+            };
+            let radius = (t.start.radius * (child_length / length).powf(p.ratio_power)).min(limit as f64);
             let child = StemStart {
                 level: child_level,
                 parent: Some(t.id),

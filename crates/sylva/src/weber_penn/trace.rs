@@ -181,9 +181,7 @@ impl Tracer<'_> {
                 let k = if st.level == 0 && s == 0 && self.p.base_splits > 0 {
                     self.p.base_splits as usize
                 } else {
-                    let k = (lp.seg_splits + split_error + 0.5).floor().max(0.0);
-                    split_error -= k - lp.seg_splits;
-                    k as usize
+                    super::diffuse(lp.seg_splits, &mut split_error)
                 };
                 if k > 0 {
                     share /= (k + 1) as f64;
