@@ -212,4 +212,16 @@ mod tests {
             assert!(from_arbaro_xml(xml, "m.xml").is_err(), "{xml}");
         }
     }
+
+    #[test]
+    fn oversized_variation_is_clamped_with_a_note() {
+        let xml = "<arbaro><species name='grass'><param name='Scale' value='0.5'/>\
+                   <param name='ScaleV' value='0.7'/></species></arbaro>";
+        let p = from_arbaro_xml(xml, "g.xml").unwrap();
+        assert_eq!(p.scale_v, 0.5);
+        assert!(p.notes[0].contains("ScaleV 0.7"), "{:?}", p.notes);
+        // Sylva's own files stay strict.
+        let err = crate::params::from_toml("[params]\nScale = 0.5\nScaleV = 0.7\n", "g.toml").unwrap_err();
+        assert!(err.to_string().contains("ScaleV"), "{err}");
+    }
 }
