@@ -202,17 +202,19 @@ mod tests {
 
     #[test]
     fn a_square_fills_the_middle_and_leaves_corners_empty() {
-        let mut mesh = TreeMesh::default();
-        mesh.bark = Mesh {
-            positions: vec![
-                [-1.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 0.0, 2.0],
-                [-1.0, 0.0, 2.0],
-            ],
-            normals: vec![[0.0, -1.0, 0.0]; 4],
-            uvs: vec![[0.0, 0.0]; 4],
-            indices: vec![0, 1, 2, 0, 2, 3],
+        let mesh = TreeMesh {
+            bark: Mesh {
+                positions: vec![
+                    [-1.0, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 0.0, 2.0],
+                    [-1.0, 0.0, 2.0],
+                ],
+                normals: vec![[0.0, -1.0, 0.0]; 4],
+                uvs: vec![[0.0, 0.0]; 4],
+                indices: vec![0, 1, 2, 0, 2, 3],
+            },
+            leaves: Mesh::default(),
         };
         let pic = render_preview(
             &mesh,

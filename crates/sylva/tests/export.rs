@@ -6,7 +6,14 @@ use sylva::{GenerateOptions, generate, species::builtin};
 
 fn aspen() -> (sylva::Skeleton, sylva::mesh::TreeMesh) {
     let p = builtin("quaking_aspen").unwrap();
-    let sk = generate(&p, &GenerateOptions { seed: 1, ..Default::default() }).unwrap();
+    let sk = generate(
+        &p,
+        &GenerateOptions {
+            seed: 1,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let mesh = mesh_tree(&sk, &MeshOptions::default());
     (sk, mesh)
 }
@@ -16,12 +23,18 @@ fn glb_reads_back_with_two_primitives_materials_and_y_up() {
     let (sk, mesh) = aspen();
     let bytes = to_glb(&mesh, "Quaking Aspen", &Materials::default()).unwrap();
     assert_eq!(&bytes[..4], b"glTF");
-    assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize, bytes.len());
+    assert_eq!(
+        u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
+        bytes.len()
+    );
     let (doc, buffers, _) = gltf::import_slice(&bytes).expect("gltf reads the GLB");
     let gmesh = doc.meshes().next().unwrap();
     let prims: Vec<_> = gmesh.primitives().collect();
     assert_eq!(prims.len(), 2);
-    let names: Vec<_> = prims.iter().map(|p| p.material().name().unwrap().to_string()).collect();
+    let names: Vec<_> = prims
+        .iter()
+        .map(|p| p.material().name().unwrap().to_string())
+        .collect();
     assert_eq!(names, ["bark", "leaves"]);
     assert!(!prims[0].material().double_sided());
     assert!(prims[1].material().double_sided());
@@ -46,7 +59,11 @@ fn glb_reads_back_with_two_primitives_materials_and_y_up() {
     }
     assert_eq!(total_tris, mesh.triangle_count());
     // Y up in the file: the highest point is the tree's height.
-    assert!((max_y - sk.stats().height).abs() < 0.05, "{max_y} vs {}", sk.stats().height);
+    assert!(
+        (max_y - sk.stats().height).abs() < 0.05,
+        "{max_y} vs {}",
+        sk.stats().height
+    );
 }
 
 #[test]
@@ -58,7 +75,11 @@ fn obj_and_mtl_read_back() {
     assert_eq!(count("vt "), mesh.vertex_count());
     assert_eq!(count("vn "), mesh.vertex_count());
     assert_eq!(count("f "), mesh.triangle_count());
-    assert!(obj.contains("mtllib aspen.mtl") && obj.contains("usemtl bark") && obj.contains("usemtl leaves"));
+    assert!(
+        obj.contains("mtllib aspen.mtl")
+            && obj.contains("usemtl bark")
+            && obj.contains("usemtl leaves")
+    );
     assert!(mtl.contains("newmtl bark") && mtl.contains("newmtl leaves"));
     // Every face index refers to an existing vertex (1-based).
     let n = mesh.vertex_count();

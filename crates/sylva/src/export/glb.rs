@@ -41,7 +41,7 @@ impl Builder {
         bytes: &[u8],
         target: json::buffer::Target,
     ) -> json::Index<json::buffer::View> {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let offset = self.bin.len();
@@ -192,7 +192,7 @@ pub fn to_glb(mesh: &TreeMesh, name: &str, materials: &Materials) -> Result<Vec<
         let m = b.root.push(material("leaves", materials.leaves, true, 0.6));
         primitives.push(b.primitive(&mesh.leaves, m));
     }
-    while b.bin.len() % 4 != 0 {
+    while !b.bin.len().is_multiple_of(4) {
         b.bin.push(0);
     }
     b.root.buffers[0].byte_length = USize64::from(b.bin.len());

@@ -133,9 +133,8 @@ fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: 
         // Close the open end with a flat cap.
         let centre = mesh.push(tip.position, axis, [0.5, 0.5]);
         let rim = mesh.positions.len() as u32;
-        for i in 0..=n {
+        for (i, &(cos, sin)) in unit.iter().enumerate() {
             let p = mesh.positions[(last_ring + i as u32) as usize];
-            let (cos, sin) = unit[i];
             mesh.push(Vec3::from(p), axis, [0.5 + 0.5 * cos, 0.5 + 0.5 * sin]);
         }
         for i in 0..n as u32 {

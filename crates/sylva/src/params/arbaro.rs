@@ -61,9 +61,11 @@ fn attrs(e: &BytesStart, source: &str) -> Result<(Option<String>, Option<String>
 /// Reads an Arbaro XML species file's text; `source_name` goes into error messages.
 pub fn from_arbaro_xml(text: &str, source_name: &str) -> Result<TreeParams, ParamsError> {
     let mut reader = quick_xml::Reader::from_str(text);
-    let mut params = TreeParams::default();
-    params.name = source_name.to_string();
-    params.description = format!("imported from Arbaro file {source_name}");
+    let mut params = TreeParams {
+        name: source_name.to_string(),
+        description: format!("imported from Arbaro file {source_name}"),
+        ..TreeParams::default()
+    };
     let mut seen_species = false;
     let syntax = |line: usize, message: String| ParamsError::Syntax {
         source_name: format!("{source_name}, line {line}"),
@@ -153,7 +155,12 @@ fn clamp_variations(p: &mut TreeParams) {
         (p.scale, &mut p.scale_v, "ScaleV", "Scale"),
         (p.z_scale, &mut p.z_scale_v, "ZScaleV", "ZScale"),
         (p.trunk_scale, &mut p.trunk_scale_v, "0ScaleV", "0Scale"),
-        (p.level[0].length, &mut p.level[0].length_v, "0LengthV", "0Length"),
+        (
+            p.level[0].length,
+            &mut p.level[0].length_v,
+            "0LengthV",
+            "0Length",
+        ),
     ];
     for (base, v, v_name, base_name) in pairs {
         if *v > base {
@@ -221,7 +228,8 @@ mod tests {
         assert_eq!(p.scale_v, 0.5);
         assert!(p.notes[0].contains("ScaleV 0.7"), "{:?}", p.notes);
         // Sylva's own files stay strict.
-        let err = crate::params::from_toml("[params]\nScale = 0.5\nScaleV = 0.7\n", "g.toml").unwrap_err();
+        let err = crate::params::from_toml("[params]\nScale = 0.5\nScaleV = 0.7\n", "g.toml")
+            .unwrap_err();
         assert!(err.to_string().contains("ScaleV"), "{err}");
     }
 }

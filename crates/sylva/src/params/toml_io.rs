@@ -45,8 +45,10 @@ pub fn from_toml(text: &str, source_name: &str) -> Result<TreeParams, ParamsErro
         source_name: source_name.to_string(),
         message: format!("not valid TOML: {}", e.to_string().trim_end()),
     })?;
-    let mut params = TreeParams::default();
-    params.name = source_name.to_string();
+    let mut params = TreeParams {
+        name: source_name.to_string(),
+        ..TreeParams::default()
+    };
     for (key, value) in &table {
         match (key.as_str(), value) {
             ("species", toml::Value::Table(meta)) => {

@@ -485,7 +485,8 @@ impl<'a> Generator<'a> {
             } else {
                 r_here
             };
-            let radius = (t.start.radius * (child_length / length).powf(p.ratio_power)).min(limit as f64);
+            let radius =
+                (t.start.radius * (child_length / length).powf(p.ratio_power)).min(limit as f64);
             let child = StemStart {
                 level: child_level,
                 parent: Some(t.id),

@@ -3,8 +3,8 @@
 
 use super::equations::{Envelope, inside_envelope, shape_ratio};
 use super::*;
-use crate::species::builtin;
 use crate::skeleton::CrossSection;
+use crate::species::builtin;
 
 fn opts(seed: u64) -> GenerateOptions {
     GenerateOptions {
@@ -14,11 +14,16 @@ fn opts(seed: u64) -> GenerateOptions {
 }
 
 fn polyline_length(sk: &Skeleton, id: StemId) -> f32 {
-    sk.sections_of(id).windows(2).map(|w| w[0].position.distance(w[1].position)).sum()
+    sk.sections_of(id)
+        .windows(2)
+        .map(|w| w[0].position.distance(w[1].position))
+        .sum()
 }
 
 fn children_of(sk: &Skeleton, id: StemId) -> impl Iterator<Item = &Stem> {
-    sk.stems.iter().filter(move |s| s.parent == Some(id) && s.clone_of.is_none())
+    sk.stems
+        .iter()
+        .filter(move |s| s.parent == Some(id) && s.clone_of.is_none())
 }
 
 const NO_ENVELOPE: Envelope = Envelope {
@@ -49,14 +54,25 @@ fn quaking_aspen_structure() {
     let stats = sk.stats();
     assert_eq!(stats.stems_per_level[0], 1, "one trunk");
     let l1 = stats.stems_per_level[1];
-    assert!((49..=51).contains(&l1), "about 50 level-1 branches, got {l1}");
+    assert!(
+        (49..=51).contains(&l1),
+        "about 50 level-1 branches, got {l1}"
+    );
     let trunk = &sk.stems[0];
-    assert!((trunk.length - 13.0).abs() < 1e-4, "trunk length S * 0Length = 13, got {}", trunk.length);
+    assert!(
+        (trunk.length - 13.0).abs() < 1e-4,
+        "trunk length S * 0Length = 13, got {}",
+        trunk.length
+    );
     let along = polyline_length(&sk, StemId(0));
     assert!((along - 13.0).abs() < 1e-3, "trunk polyline length {along}");
     // Branches start above the bare base (BaseSize 0.4).
     for c in children_of(&sk, StemId(0)) {
-        assert!(c.offset >= 0.4 * 13.0 - 1e-4, "branch at {} below the base", c.offset);
+        assert!(
+            c.offset >= 0.4 * 13.0 - 1e-4,
+            "branch at {} below the base",
+            c.offset
+        );
     }
 }
 
@@ -75,18 +91,31 @@ fn child_lengths_and_counts_follow_the_formulas() {
         match s.level {
             1 => {
                 let o = s.offset as f64;
-                let want = l0 * lmax1 * shape_ratio(p.shape, (l0 - o) / (l0 - p.base_size * l0), &NO_ENVELOPE);
-                assert!((s.length as f64 - want).abs() < 1e-3, "level-1 length {} vs {want}", s.length);
+                let want = l0
+                    * lmax1
+                    * shape_ratio(p.shape, (l0 - o) / (l0 - p.base_size * l0), &NO_ENVELOPE);
+                assert!(
+                    (s.length as f64 - want).abs() < 1e-3,
+                    "level-1 length {} vs {want}",
+                    s.length
+                );
                 // Level-2 count: B (0.2 + 0.8 (L / L_parent) / lmax_parent), error-diffused.
                 let want = b2 * (0.2 + 0.8 * (s.length as f64 / l0) / lmax1);
                 let got = children_of(&sk, id).count() as f64;
-                assert!((got - want).abs() < 1.0 + 1e-9, "level-2 count {got} vs {want}");
+                assert!(
+                    (got - want).abs() < 1.0 + 1e-9,
+                    "level-2 count {got} vs {want}"
+                );
                 checked += 1;
             }
             2 => {
                 let parent = &sk.stems[s.parent.unwrap().0 as usize];
                 let want = lmax2 * (parent.length as f64 - 0.6 * s.offset as f64);
-                assert!((s.length as f64 - want).abs() < 1e-3, "level-2 length {} vs {want}", s.length);
+                assert!(
+                    (s.length as f64 - want).abs() < 1e-3,
+                    "level-2 length {} vs {want}",
+                    s.length
+                );
             }
             _ => {}
         }
@@ -100,17 +129,33 @@ fn black_tupelo_reaches_four_levels_and_level3_counts_follow_the_formula() {
     let sk = generate(&p, &opts(1)).unwrap();
     let stats = sk.stats();
     assert_eq!(stats.stems_per_level.len(), 4);
-    assert!(stats.stems_per_level.iter().all(|&n| n > 0), "{:?}", stats.stems_per_level);
+    assert!(
+        stats.stems_per_level.iter().all(|&n| n > 0),
+        "{:?}",
+        stats.stems_per_level
+    );
     assert!(stats.leaves > 1000);
     let b3 = p.level[3].branches as f64;
-    for (i, s) in sk.stems.iter().enumerate().filter(|(_, s)| s.level == 2 && s.clone_of.is_none()) {
+    for (i, s) in sk
+        .stems
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.level == 2 && s.clone_of.is_none())
+    {
         let parent = &sk.stems[s.parent.unwrap().0 as usize];
         let want = b3 * (1.0 - 0.5 * s.offset as f64 / parent.length as f64);
         let got = children_of(&sk, StemId(i as u32)).count() as f64;
-        assert!((got - want).abs() < 1.0 + 1e-9, "level-3 count {got} vs {want}");
+        assert!(
+            (got - want).abs() < 1.0 + 1e-9,
+            "level-3 count {got} vs {want}"
+        );
     }
     // Tupelo is 23 +- 5 m.
-    assert!((18.0..=29.0).contains(&sk.stems[0].length), "{}", sk.stems[0].length);
+    assert!(
+        (18.0..=29.0).contains(&sk.stems[0].length),
+        "{}",
+        sk.stems[0].length
+    );
 }
 
 #[test]
@@ -160,13 +205,20 @@ fn truncated_levels_show_the_same_stems() {
 fn children_start_inside_their_parent() {
     let p = builtin("black_tupelo").unwrap();
     let sk = generate(&p, &opts(9)).unwrap();
-    for s in sk.stems.iter().filter(|s| s.clone_of.is_none() && s.parent.is_some()) {
+    for s in sk
+        .stems
+        .iter()
+        .filter(|s| s.clone_of.is_none() && s.parent.is_some())
+    {
         let parent = s.parent.unwrap();
         let pl = sk.stems[parent.0 as usize].length;
         let (axis, _, r) = sk.sample(parent, s.offset / pl);
         let base = sk.sections[s.sections.start as usize];
         assert!(base.position.distance(axis) <= r + 1e-4);
-        assert!(base.radius <= r + 1e-5, "child thicker than its parent there");
+        assert!(
+            base.radius <= r + 1e-5,
+            "child thicker than its parent there"
+        );
     }
 }
 
@@ -182,7 +234,11 @@ fn trunk_has_flare_rings_near_the_ground() {
     // Flare 1: the ground radius is (1 + Flare * 0.99) times the tapered radius there.
     let taper = |z| super::equations::taper_radius(1.0, 10.0, p.level[0].taper, z);
     let want = (1.0 + p.flare * 0.99) * taper(0.0) / taper(0.125);
-    assert!((r0 / r_above - want).abs() < 1e-3, "{} vs {want}", r0 / r_above);
+    assert!(
+        (r0 / r_above - want).abs() < 1e-3,
+        "{} vs {want}",
+        r0 / r_above
+    );
 }
 
 #[test]
@@ -198,9 +254,16 @@ fn splits_make_clones_that_keep_the_level() {
     let sk = generate(&p, &opts(2)).unwrap();
     let clones: Vec<_> = sk.stems.iter().filter(|s| s.clone_of.is_some()).collect();
     assert!(!clones.is_empty());
-    assert!(clones.iter().all(|c| c.level == 0 && c.length == sk.stems[0].length));
+    assert!(
+        clones
+            .iter()
+            .all(|c| c.level == 0 && c.length == sk.stems[0].length)
+    );
     // The original splits about 0.5 per segment over its 10 testable segments.
-    let of_original = clones.iter().filter(|c| c.clone_of == Some(StemId(0))).count();
+    let of_original = clones
+        .iter()
+        .filter(|c| c.clone_of == Some(StemId(0)))
+        .count();
     assert!((4..=6).contains(&of_original), "{of_original}");
     // Base splits: exactly 0BaseSplits clones at the end of the first segment.
     let mut p = TreeParams {
@@ -243,7 +306,10 @@ fn full_pruning_keeps_every_stem_end_inside_the_envelope() {
     assert!(every_stem_end_inside(&p, &sk, p.scale));
     p.prune_ratio = 0.0;
     let unpruned = generate(&p, &opts(1)).unwrap();
-    assert!(!every_stem_end_inside(&p, &unpruned, p.scale), "without pruning some stems stick out");
+    assert!(
+        !every_stem_end_inside(&p, &unpruned, p.scale),
+        "without pruning some stems stick out"
+    );
 }
 
 #[test]
@@ -294,7 +360,10 @@ fn negative_modes_make_fans_helices_and_alternation() {
     let sk = generate(&h, &opts(0)).unwrap();
     let trunk = sk.sections_of(StemId(0));
     assert!(trunk.len() >= 3 * 10);
-    let off_axis = trunk.iter().map(|c| c.position.truncate().length()).fold(0.0, f32::max);
+    let off_axis = trunk
+        .iter()
+        .map(|c| c.position.truncate().length())
+        .fold(0.0, f32::max);
     assert!(off_axis > 0.05, "{off_axis}");
     // Branch fan: negative nBranches puts the children at the parent's tip.
     let mut f = TreeParams {
@@ -305,7 +374,10 @@ fn negative_modes_make_fans_helices_and_alternation() {
     let sk = generate(&f, &opts(0)).unwrap();
     let kids: Vec<_> = children_of(&sk, StemId(0)).collect();
     assert_eq!(kids.len(), 3);
-    assert!(kids.iter().all(|k| (k.offset - sk.stems[0].length).abs() < 1e-4));
+    assert!(
+        kids.iter()
+            .all(|k| (k.offset - sk.stems[0].length).abs() < 1e-4)
+    );
 }
 
 #[test]

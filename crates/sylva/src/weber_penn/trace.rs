@@ -130,6 +130,8 @@ impl Tracer<'_> {
         };
         shares.resize(n, 0.0);
         let mut samples: Vec<f64> = Vec::with_capacity(HELIX_SAMPLES + 8);
+        #[allow(clippy::needless_range_loop)]
+        // `s` is the segment index of the model, not just a position
         for s in st.first_segment..n {
             if s > 0 {
                 q = self.bend(st, q, s, n, correction, rng, wind_phase);
