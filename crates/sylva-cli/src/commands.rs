@@ -110,7 +110,7 @@ fn generate(args: &GenerateArgs) -> Result<()> {
             args.max_triangles
         );
     }
-    let materials = Materials::default();
+    let materials = Materials::from_srgb(params.bark_color, params.leaf_color);
     match format {
         Format::Glb => {
             let bytes = to_glb(&mesh, &params.name, &materials)?;
@@ -119,7 +119,7 @@ fn generate(args: &GenerateArgs) -> Result<()> {
         Format::Obj => write_obj(&args.output, &mesh, &params.name, &materials)?,
     }
     if let Some(png) = &args.preview {
-        write_preview(png, &mesh, args.view)?;
+        write_preview(png, &mesh, &params, args.view)?;
     }
     let stats = skeleton.stats();
     if args.json {
@@ -143,19 +143,19 @@ fn generate(args: &GenerateArgs) -> Result<()> {
     Ok(())
 }
 
-fn write_preview(path: &Path, mesh: &TreeMesh, view: ViewArg) -> Result<()> {
+fn write_preview(path: &Path, mesh: &TreeMesh, params: &TreeParams, view: ViewArg) -> Result<()> {
     let view = match view {
         ViewArg::Front => View::Front,
         ViewArg::Side => View::Side,
         ViewArg::Top => View::Top,
     };
-    let picture = render_preview(
-        mesh,
-        &PreviewOptions {
-            view,
-            ..Default::default()
-        },
-    );
+    let options = PreviewOptions {
+        view,
+        bark: params.bark_color,
+        leaves: params.leaf_color,
+        ..Default::default()
+    };
+    let picture = render_preview(mesh, &options);
     let mut bytes = Vec::new();
     image::codecs::png::PngEncoder::new(&mut bytes)
         .write_image(

@@ -19,6 +19,14 @@ builtin!(
     "black_tupelo",
     "weeping_willow",
     "ca_black_oak",
+    "balsam_fir",
+    "austrian_pine",
+    "queen_palm",
+    "saguaro",
+    "hazel",
+    "lombardy_poplar",
+    "golden_bamboo",
+    "weeping_birch",
 );
 
 /// Normalises a species name for lookup: case-insensitive, spaces and dashes as underscores.

@@ -16,6 +16,31 @@ pub use toml_io::{format_value, from_toml, to_toml};
 
 use crate::error::ParamsError;
 
+/// Default bark colour (sRGB): grey-brown.
+pub const DEFAULT_BARK: [f32; 3] = [112.0 / 255.0, 94.0 / 255.0, 79.0 / 255.0];
+/// Default leaf colour (sRGB): mid summer green.
+pub const DEFAULT_LEAVES: [f32; 3] = [84.0 / 255.0, 128.0 / 255.0, 51.0 / 255.0];
+
+/// Parses `#RRGGBB` into sRGB 0..1.
+pub fn parse_color(text: &str) -> Option<[f32; 3]> {
+    let hex = text.strip_prefix('#')?;
+    if hex.len() != 6 || !hex.is_ascii() {
+        return None;
+    }
+    let channel = |i: usize| {
+        u8::from_str_radix(&hex[i..i + 2], 16)
+            .ok()
+            .map(|v| v as f32 / 255.0)
+    };
+    Some([channel(0)?, channel(2)?, channel(4)?])
+}
+
+/// Formats sRGB 0..1 as `#RRGGBB`.
+pub fn format_color(c: [f32; 3]) -> String {
+    let b = c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+    format!("#{:02x}{:02x}{:02x}", b[0], b[1], b[2])
+}
+
 /// Number of per-level parameter sets stored; levels deeper than 3 reuse level 3, as in the paper.
 pub const LEVEL_SETS: usize = 4;
 
@@ -67,6 +92,10 @@ pub struct TreeParams {
     pub description: String,
     /// What loading changed and why (e.g. an Arbaro variation clamped); shown as warnings.
     pub notes: Vec<String>,
+    /// Bark colour, sRGB 0..1 (species file: `bark_color = "#RRGGBB"`).
+    pub bark_color: [f32; 3],
+    /// Leaf colour, sRGB 0..1 (species file: `leaf_color = "#RRGGBB"`).
+    pub leaf_color: [f32; 3],
     /// `Shape`: crown shape index 0..8 for the ShapeRatio function (8 = pruning envelope).
     pub shape: u32,
     /// `BaseSize`: fraction of the trunk without branches.
@@ -170,6 +199,8 @@ impl Default for TreeParams {
             name: "default".into(),
             description: String::new(),
             notes: Vec::new(),
+            bark_color: DEFAULT_BARK,
+            leaf_color: DEFAULT_LEAVES,
             shape: 0,
             base_size: 0.25,
             scale: 10.0,

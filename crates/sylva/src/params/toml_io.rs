@@ -56,11 +56,25 @@ pub fn from_toml(text: &str, source_name: &str) -> Result<TreeParams, ParamsErro
                     match (k.as_str(), v) {
                         ("name", toml::Value::String(s)) => params.name = s.clone(),
                         ("description", toml::Value::String(s)) => params.description = s.clone(),
+                        ("bark_color" | "leaf_color", toml::Value::String(s)) => {
+                            let colour =
+                                super::parse_color(s).ok_or_else(|| ParamsError::Syntax {
+                                    source_name: place(source_name, text, k),
+                                    message: format!(
+                                        "`{k}` is \"{s}\", expected a colour \"#RRGGBB\""
+                                    ),
+                                })?;
+                            if k == "bark_color" {
+                                params.bark_color = colour;
+                            } else {
+                                params.leaf_color = colour;
+                            }
+                        }
                         _ => {
                             return Err(ParamsError::Syntax {
                                 source_name: place(source_name, text, k),
                                 message: format!(
-                                    "unexpected `{k}` in [species]: expected `name` or `description`, as text"
+                                    "unexpected `{k}` in [species]: expected `name`, `description`, `bark_color` or `leaf_color`, as text"
                                 ),
                             });
                         }
@@ -106,6 +120,16 @@ pub fn to_toml(params: &TreeParams) -> String {
     if !params.description.is_empty() {
         let _ = writeln!(out, "description = {}", quote(&params.description));
     }
+    let _ = writeln!(
+        out,
+        "bark_color = {}",
+        quote(&super::format_color(params.bark_color))
+    );
+    let _ = writeln!(
+        out,
+        "leaf_color = {}",
+        quote(&super::format_color(params.leaf_color))
+    );
     out.push_str("\n[params]\n");
     let mut write_def = |def: &super::ParamDef, level: usize| {
         let value = (def.get)(params, level);
@@ -153,6 +177,7 @@ mod tests {
             ..TreeParams::default()
         };
         p.set("2CurveV", -12.5).unwrap();
+        p.bark_color = [1.0, 0.2, 0.0];
         p.set("Leaves", -7.0).unwrap();
         let text = to_toml(&p);
         let back = from_toml(&text, "rt.toml").unwrap();
