@@ -36,4 +36,4 @@ pub mod weber_penn;
 pub use error::{ExportError, GenerateError, ParamsError};
 pub use params::TreeParams;
 pub use skeleton::{CrossSection, Leaf, LeafShape, Skeleton, SkeletonStats, Stem, StemId};
-pub use weber_penn::{GenerateOptions, Wind, generate};
+pub use weber_penn::{GenerateOptions, Wind, generate, generate_into};

@@ -33,6 +33,14 @@ pub fn leaf_triangles(shape: LeafShape) -> usize {
     leaf_template(shape).indices.len() / 3
 }
 
+/// Vertices and indices that [`mesh_leaves`] will write.
+pub(super) fn count(skeleton: &Skeleton) -> (usize, usize) {
+    skeleton.leaves.iter().fold((0, 0), |(v, i), leaf| {
+        let t = leaf_template(leaf.shape);
+        (v + t.positions.len(), i + t.indices.len())
+    })
+}
+
 pub(super) fn mesh_leaves(skeleton: &Skeleton, mesh: &mut Mesh) {
     for leaf in &skeleton.leaves {
         let t = leaf_template(leaf.shape);

@@ -46,6 +46,14 @@ impl Mesh {
         }))
     }
 
+    /// Makes room for this many more vertices and indices (exactly, to keep memory tight).
+    fn reserve(&mut self, vertices: usize, indices: usize) {
+        self.positions.reserve_exact(vertices);
+        self.normals.reserve_exact(vertices);
+        self.uvs.reserve_exact(vertices);
+        self.indices.reserve_exact(indices);
+    }
+
     fn push(&mut self, position: glam::Vec3, normal: glam::Vec3, uv: [f32; 2]) -> u32 {
         let i = self.positions.len() as u32;
         self.positions.push(position.to_array());
@@ -92,7 +100,28 @@ impl Default for MeshOptions {
 /// Meshes every stem and leaf of a skeleton.
 pub fn mesh_tree(skeleton: &Skeleton, options: &MeshOptions) -> TreeMesh {
     let mut mesh = TreeMesh::default();
+    mesh_tree_into(skeleton, options, &mut mesh);
+    mesh
+}
+
+/// Like [`mesh_tree`], but reuses `mesh`'s buffers (cleared first), so re-meshing after an
+/// edit allocates nothing once warm.
+pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut TreeMesh) {
+    for part in [&mut mesh.bark, &mut mesh.leaves] {
+        part.positions.clear();
+        part.normals.clear();
+        part.uvs.clear();
+        part.indices.clear();
+    }
+    // Size every buffer exactly first: growing them by doubling costs more than filling them.
+    let (v, i) = stems::count(skeleton, options);
+    mesh.bark.reserve(v, i);
+    let (v, i) = leaves::count(skeleton);
+    mesh.leaves.reserve(v, i);
     stems::mesh_stems(skeleton, options, &mut mesh.bark);
     leaves::mesh_leaves(skeleton, &mut mesh.leaves);
-    mesh
+    debug_assert_eq!(
+        (mesh.bark.vertex_count(), mesh.bark.indices.len()),
+        stems::count(skeleton, options)
+    );
 }

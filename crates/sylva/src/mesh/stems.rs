@@ -26,6 +26,40 @@ fn circle(n: usize, out: &mut Vec<(f32, f32)>) {
     }));
 }
 
+/// Vertices and indices that [`mesh_stems`] will write.
+pub(super) fn count(skeleton: &Skeleton, options: &MeshOptions) -> (usize, usize) {
+    let (mut vertices, mut indices) = (0, 0);
+    for stem in &skeleton.stems {
+        let sections = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
+        if sections.len() < 2 {
+            continue;
+        }
+        let n = ring_vertices(stem.level as usize, options.quality, stem.lobes);
+        let (rings, tip_vertices) = if tip_is_point(sections) {
+            (sections.len() - 1, n)
+        } else {
+            (sections.len(), n + 2)
+        };
+        vertices += rings * (n + 1) + tip_vertices;
+        indices += (rings - 1) * n * 6 + n * 3;
+    }
+    (vertices, indices)
+}
+
+/// The largest radius of a stem (its base, or its flare).
+fn max_radius(sections: &[CrossSection]) -> f32 {
+    sections
+        .iter()
+        .map(|c| c.radius)
+        .fold(0.0f32, f32::max)
+        .max(1e-6)
+}
+
+/// Whether a stem ends in a point (a cone's tip) rather than an open ring to cap.
+fn tip_is_point(sections: &[CrossSection]) -> bool {
+    sections[sections.len() - 1].radius <= max_radius(sections) * 1e-4
+}
+
 pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) {
     let mut unit = Vec::new();
     let mut unit_n = 0;
@@ -58,15 +92,11 @@ fn ring_frame(sections: &[CrossSection], j: usize) -> Quat {
 fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: &mut Mesh) {
     let n = unit.len() - 1;
     let m = sections.len();
-    let base_radius = sections
-        .iter()
-        .map(|c| c.radius)
-        .fold(0.0f32, f32::max)
-        .max(1e-6);
+    let base_radius = max_radius(sections);
     let v_scale = 1.0 / (TAU * base_radius);
     let lobed = stem.lobes > 0 && stem.lobe_depth != 0.0;
     let (lobes, depth) = (stem.lobes as f32, stem.lobe_depth);
-    let tip_is_point = sections[m - 1].radius <= base_radius * 1e-4;
+    let tip_is_point = tip_is_point(sections);
     let rings = if tip_is_point { m - 1 } else { m };
     let mut distance = 0.0f32;
     let first_ring = mesh.positions.len() as u32;

@@ -14,7 +14,7 @@ use crate::params::TreeParams;
 use crate::rng::{Random, StreamKey};
 use crate::skeleton::{Leaf, LeafShape, Skeleton, Stem, StemId};
 use equations::{Envelope, inside_envelope, shape_ratio};
-use glam::{DQuat, DVec3, Vec3};
+use glam::{DQuat, DVec3, Quat, Vec3};
 use trace::{StemStart, Tracer};
 
 const KEY_TRUNK: u64 = 1;
@@ -88,6 +88,22 @@ impl Default for GenerateOptions {
 
 /// Generates the tree of `params` (validated first) with `options`.
 pub fn generate(params: &TreeParams, options: &GenerateOptions) -> Result<Skeleton, GenerateError> {
+    let mut skeleton = Skeleton::default();
+    generate_into(params, options, &mut skeleton)?;
+    Ok(skeleton)
+}
+
+/// Like [`generate`], but reuses `skeleton`'s buffers (cleared first): regenerating into the
+/// same skeleton, as an editor does on every change, allocates nothing once warm. On error the
+/// skeleton is left empty.
+pub fn generate_into(
+    params: &TreeParams,
+    options: &GenerateOptions,
+    skeleton: &mut Skeleton,
+) -> Result<(), GenerateError> {
+    skeleton.stems.clear();
+    skeleton.sections.clear();
+    skeleton.leaves.clear();
     params.validate()?;
     if !(options.quality > 0.0 && options.quality <= 16.0) {
         return Err(crate::error::ParamsError::OutOfRange {
@@ -121,16 +137,23 @@ pub fn generate(params: &TreeParams, options: &GenerateOptions) -> Result<Skelet
             power_low: params.prune_power_low,
             power_high: params.prune_power_high,
         },
-        skeleton: Skeleton::default(),
+        skeleton: std::mem::take(skeleton),
         triangles: 0,
         profile: Vec::new(),
         shares: Vec::new(),
     };
-    g.grow_trunks(root)?;
-    if (z_scale - 1.0).abs() > 1e-12 {
-        stretch_vertically(&mut g.skeleton, z_scale as f32);
+    let grown = g.grow_trunks(root);
+    *skeleton = std::mem::take(&mut g.skeleton);
+    if let Err(e) = grown {
+        skeleton.stems.clear();
+        skeleton.sections.clear();
+        skeleton.leaves.clear();
+        return Err(e);
     }
-    Ok(g.skeleton)
+    if (z_scale - 1.0).abs() > 1e-12 {
+        stretch_vertically(skeleton, z_scale as f32);
+    }
+    Ok(())
 }
 
 /// Per-stem facts needed to grow its children after its axis is traced.
@@ -518,6 +541,7 @@ impl<'a> Generator<'a> {
         let quality = self.leaf_quality;
         let leaf_length = (p.leaf_scale / quality.sqrt()) as f32;
         let leaf_width = (p.leaf_scale * p.leaf_scale_x / quality.sqrt()) as f32;
+        let stem_offset = (p.leaf_stem_len * leaf_length as f64) as f32;
         let mut zs = Vec::new();
         let fan = p.leaves < 0;
         if fan {
@@ -537,15 +561,15 @@ impl<'a> Generator<'a> {
         let mut side = 1.0;
         let fan_count = zs.len();
         for (index, &z) in zs.iter().enumerate() {
+            // Leaves are the bulk of a tree: their frames are computed in f32 (glam's SIMD types).
             let (pos, q_seg, _) = self.skeleton.sample(t.id, z as f32);
-            let q_seg = q_seg.as_dquat();
             let q = if fan {
                 let spread = if fan_count > 1 {
                     -lp.rotate / 2.0 + lp.rotate * index as f64 / (fan_count - 1) as f64
                 } else {
                     0.0
                 };
-                q_seg * DQuat::from_rotation_y(deg(spread))
+                q_seg * Quat::from_rotation_y(deg(spread) as f32)
             } else {
                 let azimuth = if lp.rotate >= 0.0 {
                     phi += lp.rotate + rng.var(lp.rotate_v);
@@ -555,14 +579,15 @@ impl<'a> Generator<'a> {
                     side * (180.0 + lp.rotate + rng.var(lp.rotate_v))
                 };
                 let down = lp.down_angle + rng.var(lp.down_angle_v.abs());
-                q_seg * DQuat::from_rotation_z(deg(azimuth)) * DQuat::from_rotation_x(deg(down))
+                q_seg
+                    * Quat::from_rotation_z(deg(azimuth) as f32)
+                    * Quat::from_rotation_x(deg(down) as f32)
             };
-            let base =
-                pos.as_dvec3() + q * DVec3::new(0.0, 0.0, p.leaf_stem_len * leaf_length as f64);
-            let q = bend_leaf(q.normalize(), base, p.leaf_bend);
+            let base = pos + q * Vec3::new(0.0, 0.0, stem_offset);
+            let q = bend_leaf(q.normalize(), base, p.leaf_bend as f32);
             self.skeleton.leaves.push(Leaf {
-                position: base.as_vec3(),
-                orientation: q.as_quat(),
+                position: base,
+                orientation: q,
                 length: leaf_length,
                 width: leaf_width,
                 shape: self.leaf_shape,
@@ -575,25 +600,28 @@ impl<'a> Generator<'a> {
 
 /// Turns a leaf towards the light (spec section 9): first about the world vertical so that its
 /// normal faces away from the trunk, then tilts the normal up, each by the fraction `bend`.
-fn bend_leaf(q: DQuat, position: DVec3, bend: f64) -> DQuat {
+fn bend_leaf(q: Quat, position: Vec3, bend: f32) -> Quat {
     if bend == 0.0 {
         return q;
     }
-    let n = q * DVec3::Y;
-    let mut turn = position.y.atan2(position.x) - n.y.atan2(n.x);
-    turn = (turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
-    let q = if position.x.hypot(position.y) > 1e-9 && n.x.hypot(n.y) > 1e-9 {
-        DQuat::from_rotation_z(bend * turn) * q
+    let n = q * Vec3::Y;
+    // The turn is the signed angle from the normal's heading to the leaf's heading from the
+    // trunk: atan2(cross, dot) of the two horizontal directions, already in (-pi, pi].
+    let cross = n.x * position.y - n.y * position.x;
+    let dot = n.x * position.x + n.y * position.y;
+    let q = if cross != 0.0 || dot != 0.0 {
+        Quat::from_rotation_z(bend * cross.atan2(dot)) * q
     } else {
         q
     };
-    let n = q * DVec3::Y;
-    let phi = n.x.hypot(n.y).atan2(n.z);
-    let axis = n.cross(DVec3::Z);
-    if axis.length_squared() < 1e-18 {
+    let n = q * Vec3::Y;
+    let horizontal = (n.x * n.x + n.y * n.y).sqrt();
+    if horizontal < 1e-9 {
         return q;
     }
-    (DQuat::from_axis_angle(axis.normalize(), bend * phi) * q).normalize()
+    // Tilt about n x Z (horizontal) by bend * the normal's angle from the vertical.
+    let axis = Vec3::new(n.y / horizontal, -n.x / horizontal, 0.0);
+    (Quat::from_axis_angle(axis, bend * horizontal.atan2(n.z)) * q).normalize()
 }
 
 /// Applies `ZScale`: stretches heights and turns frames to follow the stretched axes.
