@@ -99,6 +99,32 @@ fn flat(parts: &[(Option<Vec2>, Vec<Vec2>)]) -> LeafTemplate {
     t
 }
 
+/// A blade symmetric about its midrib with half-width `half_width(z)` at each of `steps + 1`
+/// heights, meshed as a strip of quads: any width profile, however lobed, without overlaps.
+fn ribbon(steps: usize, half_width: impl Fn(f32) -> f32) -> LeafTemplate {
+    let mut t = LeafTemplate {
+        positions: vec![],
+        normals: vec![],
+        uvs: vec![],
+        indices: vec![],
+    };
+    for i in 0..=steps {
+        let z = i as f32 / steps as f32;
+        let w = half_width(z).clamp(0.0, 0.5);
+        for x in [-w, w] {
+            t.positions.push(Vec3::new(x, 0.0, z));
+            t.normals.push(Vec3::Y);
+            t.uvs.push([x + 0.5, z]);
+        }
+    }
+    for i in 0..steps as u32 {
+        let (l0, r0, l1, r1) = (2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 3);
+        // Counter-clockwise seen from +y: (left, up-left, right), (right, up-left, up-right).
+        t.indices.extend_from_slice(&[l0, l1, r0, r0, l1, r1]);
+    }
+    t
+}
+
 /// Outline from a polar radius function about `(0, cz)`, `samples` points, counter-clockwise,
 /// then fitted to the unit box (x in -0.5..0.5, z in 0..1).
 fn polar(samples: usize, radius: impl Fn(f32) -> f32) -> (Option<Vec2>, Vec<Vec2>) {
@@ -174,25 +200,19 @@ fn build(shape: LeafShape) -> LeafTemplate {
                 Vec2::new(-0.5, 0.25),
             ],
         )]),
-        LeafShape::Oak => flat(&[polar(
-            36,
-            lobed(
-                &[
-                    (up, 0.55),
-                    (up + 0.7, 0.5),
-                    (up - 0.7, 0.5),
-                    (up + 1.4, 0.42),
-                    (up - 1.4, 0.42),
-                    (up + 2.1, 0.25),
-                    (up - 2.1, 0.25),
-                ],
-                0.15,
-                20,
-            ),
-        )]),
+        LeafShape::Oak => ribbon(16, |z| {
+            // Rounded lobes along both sides of an elongated blade, narrow at the base.
+            let envelope = (std::f32::consts::PI * z).sin().max(0.0).powf(0.7)
+                * (0.35 + 0.65 * z.min(0.75) / 0.75);
+            0.5 * envelope * (0.55 + 0.45 * (3.5 * std::f32::consts::PI * z).sin().abs())
+        }),
         LeafShape::Maple3 => flat(&[polar(
             30,
-            lobed(&[(up, 0.8), (up + 0.95, 0.65), (up - 0.95, 0.65)], 0.2, 12),
+            lobed(
+                &[(up, 0.78), (up + 1.05, 0.62), (up - 1.05, 0.62)],
+                0.22,
+                10,
+            ),
         )]),
         LeafShape::Maple5 => flat(&[polar(
             40,
@@ -212,7 +232,7 @@ fn build(shape: LeafShape) -> LeafTemplate {
             // Three small ovals from the petiole tip: one straight on, two at +-55 degrees.
             let leaflet = |angle: f32, length: f32| {
                 let (s, c) = angle.sin_cos();
-                let outline = ellipse(0.35)
+                let outline = ellipse(0.22)
                     .into_iter()
                     .map(|p| {
                         let p = p * length;
@@ -221,7 +241,7 @@ fn build(shape: LeafShape) -> LeafTemplate {
                     .collect();
                 (None, outline)
             };
-            let mut t = flat(&[leaflet(0.0, 0.6), leaflet(0.95, 0.5), leaflet(-0.95, 0.5)]);
+            let mut t = flat(&[leaflet(0.0, 0.6), leaflet(1.15, 0.5), leaflet(-1.15, 0.5)]);
             // Fit to the unit box.
             let lo = t
                 .positions
