@@ -409,3 +409,56 @@ fn every_builtin_species_generates_at_its_real_size() {
         assert!(h >= lo && h <= hi, "{id}: height {h} outside {lo}..{hi}");
     }
 }
+
+/// Angle (degrees) between a child's initial direction and its parent's axis where it attaches.
+fn down_angle_of(sk: &Skeleton, child: &Stem) -> f32 {
+    let parent = child.parent.unwrap();
+    let (_, q_parent, _) = sk.sample(parent, child.offset / sk.stems[parent.0 as usize].length);
+    let d = sk.sections[child.sections.start as usize].orientation * Vec3::Z;
+    (q_parent * Vec3::Z).dot(d).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+#[test]
+fn negative_down_angle_variation_spreads_along_the_parent() {
+    // Black Tupelo: 1DownAngle 60, 1DownAngleV -40: about 100 degrees at the crown base,
+    // 36 at the top (spec section 5), with no random term.
+    let p = builtin("black_tupelo").unwrap();
+    let sk = generate(&p, &opts(3)).unwrap();
+    let l0 = sk.stems[0].length as f64;
+    for child in children_of(&sk, StemId(0)) {
+        let r = ((l0 - child.offset as f64) / (l0 * (1.0 - p.base_size))).clamp(0.0, 1.0);
+        let want = 60.0 - 40.0 * (1.0 - 2.0 * shape_ratio(0, r, &NO_ENVELOPE));
+        let got = down_angle_of(&sk, child) as f64;
+        assert!((got - want).abs() < 0.5, "at {} m: {got} vs {want}", child.offset);
+    }
+}
+
+#[test]
+fn negative_rotate_alternates_sides() {
+    let mut p = TreeParams {
+        levels: 2,
+        ..TreeParams::default()
+    };
+    p.level[0].curve_v = 0.0;
+    p.level[1].rotate = -90.0; // azimuth +-90: children on alternating sides, in one plane
+    p.level[1].rotate_v = 0.0;
+    p.level[1].down_angle = 90.0;
+    let sk = generate(&p, &opts(0)).unwrap();
+    let dirs: Vec<Vec3> = children_of(&sk, StemId(0))
+        .map(|c| sk.sections[c.sections.start as usize].orientation * Vec3::Z)
+        .collect();
+    assert!(dirs.len() >= 5);
+    for w in dirs.windows(2) {
+        assert!(w[0].dot(w[1]) < -0.99, "consecutive children on opposite sides: {} {}", w[0], w[1]);
+    }
+    // A positive rotate spirals instead: 140 degrees between successive children.
+    p.level[1].rotate = 140.0;
+    let sk = generate(&p, &opts(0)).unwrap();
+    let dirs: Vec<Vec3> = children_of(&sk, StemId(0))
+        .map(|c| sk.sections[c.sections.start as usize].orientation * Vec3::Z)
+        .collect();
+    for w in dirs.windows(2) {
+        let angle = w[0].dot(w[1]).clamp(-1.0, 1.0).acos().to_degrees();
+        assert!((angle - 140.0).abs() < 0.5, "{angle}");
+    }
+}
