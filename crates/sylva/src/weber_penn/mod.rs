@@ -31,6 +31,39 @@ pub fn diffuse(expected: f64, error: &mut f64) -> usize {
     k as usize
 }
 
+/// Where successive children go around their parent (spec section 5): a spiral of `nRotate`
+/// steps, or, for a negative `nRotate`, alternating sides at 180 + nRotate degrees.
+struct Phyllotaxis {
+    phi: f64,
+    side: f64,
+}
+
+impl Phyllotaxis {
+    fn starting_at(phi: f64) -> Self {
+        Self { phi, side: 1.0 }
+    }
+
+    /// Azimuth of the next child, degrees.
+    fn next(&mut self, rotate: f64, rotate_v: f64, rng: &mut Random) -> f64 {
+        if rotate >= 0.0 {
+            self.phi += rotate + rng.var(rotate_v);
+            self.phi
+        } else {
+            self.side = -self.side;
+            self.side * (180.0 + rotate + rng.var(rotate_v))
+        }
+    }
+}
+
+/// Angle of item `index` of a fan of `count` spread evenly over `total` degrees.
+fn fan_angle(index: usize, count: usize, total: f64) -> f64 {
+    if count > 1 {
+        -total / 2.0 + total * index as f64 / (count - 1) as f64
+    } else {
+        0.0
+    }
+}
+
 /// Degrees to radians.
 fn deg(d: f64) -> f64 {
     d.to_radians()
@@ -451,29 +484,18 @@ impl<'a> Generator<'a> {
             };
             self.place(&t, count, cp.branch_dist, &mut rng, &mut zs);
         }
-        let mut phi = t.start.rotate_start;
-        let mut side = 1.0;
+        let mut around = Phyllotaxis::starting_at(t.start.rotate_start);
         let fan_count = zs.len();
         for (index, &z) in zs.iter().enumerate() {
             let (pos, q_seg, r_here) = self.skeleton.sample(t.id, z as f32);
             let offset = z * length;
             let orientation = if fan {
-                let spread = if fan_count > 1 {
-                    -cp.rotate / 2.0 + cp.rotate * index as f64 / (fan_count - 1) as f64
-                } else {
-                    0.0
-                };
+                let spread = fan_angle(index, fan_count, cp.rotate);
                 q_seg.as_dquat()
                     * DQuat::from_rotation_y(deg(spread))
                     * DQuat::from_rotation_x(deg(cp.down_angle))
             } else {
-                let azimuth = if cp.rotate >= 0.0 {
-                    phi += cp.rotate + rng.var(cp.rotate_v);
-                    phi
-                } else {
-                    side = -side;
-                    side * (180.0 + cp.rotate + rng.var(cp.rotate_v))
-                };
+                let azimuth = around.next(cp.rotate, cp.rotate_v, &mut rng);
                 let down = if cp.down_angle_v >= 0.0 {
                     cp.down_angle + rng.var(cp.down_angle_v)
                 } else {
@@ -557,27 +579,15 @@ impl<'a> Generator<'a> {
         }
         let per_leaf = leaf_triangles(self.leaf_shape) as u64;
         self.spend(per_leaf * zs.len() as u64, t.start.level + 1)?;
-        let mut phi = 0.0;
-        let mut side = 1.0;
+        let mut around = Phyllotaxis::starting_at(0.0);
         let fan_count = zs.len();
         for (index, &z) in zs.iter().enumerate() {
             // Leaves are the bulk of a tree: their frames are computed in f32 (glam's SIMD types).
             let (pos, q_seg, _) = self.skeleton.sample(t.id, z as f32);
             let q = if fan {
-                let spread = if fan_count > 1 {
-                    -lp.rotate / 2.0 + lp.rotate * index as f64 / (fan_count - 1) as f64
-                } else {
-                    0.0
-                };
-                q_seg * Quat::from_rotation_y(deg(spread) as f32)
+                q_seg * Quat::from_rotation_y(deg(fan_angle(index, fan_count, lp.rotate)) as f32)
             } else {
-                let azimuth = if lp.rotate >= 0.0 {
-                    phi += lp.rotate + rng.var(lp.rotate_v);
-                    phi
-                } else {
-                    side = -side;
-                    side * (180.0 + lp.rotate + rng.var(lp.rotate_v))
-                };
+                let azimuth = around.next(lp.rotate, lp.rotate_v, &mut rng);
                 let down = lp.down_angle + rng.var(lp.down_angle_v.abs());
                 q_seg
                     * Quat::from_rotation_z(deg(azimuth) as f32)

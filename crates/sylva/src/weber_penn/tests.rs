@@ -415,7 +415,11 @@ fn down_angle_of(sk: &Skeleton, child: &Stem) -> f32 {
     let parent = child.parent.unwrap();
     let (_, q_parent, _) = sk.sample(parent, child.offset / sk.stems[parent.0 as usize].length);
     let d = sk.sections[child.sections.start as usize].orientation * Vec3::Z;
-    (q_parent * Vec3::Z).dot(d).clamp(-1.0, 1.0).acos().to_degrees()
+    (q_parent * Vec3::Z)
+        .dot(d)
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
 }
 
 #[test]
@@ -429,7 +433,11 @@ fn negative_down_angle_variation_spreads_along_the_parent() {
         let r = ((l0 - child.offset as f64) / (l0 * (1.0 - p.base_size))).clamp(0.0, 1.0);
         let want = 60.0 - 40.0 * (1.0 - 2.0 * shape_ratio(0, r, &NO_ENVELOPE));
         let got = down_angle_of(&sk, child) as f64;
-        assert!((got - want).abs() < 0.5, "at {} m: {got} vs {want}", child.offset);
+        assert!(
+            (got - want).abs() < 0.5,
+            "at {} m: {got} vs {want}",
+            child.offset
+        );
     }
 }
 
@@ -449,7 +457,12 @@ fn negative_rotate_alternates_sides() {
         .collect();
     assert!(dirs.len() >= 5);
     for w in dirs.windows(2) {
-        assert!(w[0].dot(w[1]) < -0.99, "consecutive children on opposite sides: {} {}", w[0], w[1]);
+        assert!(
+            w[0].dot(w[1]) < -0.99,
+            "consecutive children on opposite sides: {} {}",
+            w[0],
+            w[1]
+        );
     }
     // A positive rotate spirals instead: 140 degrees between successive children.
     p.level[1].rotate = 140.0;
