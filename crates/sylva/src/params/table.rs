@@ -176,7 +176,7 @@ pub static PARAMS: &[ParamDef] = &[
         0.0,
         500.0,
         "m",
-        "random variation of Scale (must stay below Scale)"
+        "random variation of Scale (at most Scale)"
     ),
     general!(
         "ZScale",
