@@ -18,6 +18,8 @@ pub enum Command {
     /// List or describe the built-in species.
     #[command(subcommand)]
     Species(SpeciesCommand),
+    /// Render a tree (species, species file or GLB) to a PNG: lit, shadowed, with a 1.8 m person.
+    Render(RenderArgs),
     /// Time generation and meshing of the paper's four appendix species.
     Bench(BenchArgs),
 }
@@ -61,17 +63,97 @@ pub struct GenerateArgs {
     #[arg(short, long, value_name = "FILE", help_heading = "Output")]
     pub output: PathBuf,
 
-    /// Also draw a quick picture of the tree (PNG, CPU rasteriser, no GPU needed).
+    /// Also render a picture of the tree (PNG, 1024x768; a GPU or Mesa's software driver).
     #[arg(long, value_name = "FILE.png", help_heading = "Output")]
     pub preview: Option<PathBuf>,
 
     /// Camera of the preview picture.
-    #[arg(long, value_enum, default_value_t = ViewArg::Front, help_heading = "Output")]
-    pub view: ViewArg,
+    #[arg(long, value_enum, default_value_t = RenderView::Front, help_heading = "Output")]
+    pub view: RenderView,
 
     /// Print the summary as one JSON object instead of text.
     #[arg(long, help_heading = "Output")]
     pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Built-in species, a .toml or Arbaro .xml species file, or a .glb written by `sylva generate`.
+    #[arg(help_heading = "Input")]
+    pub input: String,
+
+    /// Override a parameter, e.g. `--set 1Branches=30` (repeatable; not for .glb input).
+    #[arg(long = "set", value_name = "NAME=VALUE", help_heading = "Input")]
+    pub set: Vec<String>,
+
+    /// Random seed.
+    #[arg(long, default_value_t = 0, help_heading = "Generation")]
+    pub seed: u64,
+
+    /// Show only stem levels below K (1 = trunk only): design a tree level by level.
+    #[arg(long, value_name = "K", help_heading = "Generation")]
+    pub levels: Option<u32>,
+
+    /// Detail: scales leaf count (1/size) and mesh ring resolution.
+    #[arg(long, default_value_t = 1.0, help_heading = "Generation")]
+    pub quality: f64,
+
+    /// Leave the leaves off.
+    #[arg(long, help_heading = "Generation")]
+    pub no_leaves: bool,
+
+    /// Wind speed (the paper's units: 50 doubles the base sway).
+    #[arg(long, default_value_t = 0.0, help_heading = "Wind")]
+    pub wind: f64,
+
+    /// Gust strength on top of the wind.
+    #[arg(long, default_value_t = 0.0, help_heading = "Wind")]
+    pub gust: f64,
+
+    /// Time in seconds (the tree sways with time; same seed and time = same picture).
+    #[arg(long, default_value_t = 0.0, help_heading = "Wind")]
+    pub time: f64,
+
+    /// Write an animation: N frames from --time on, as OUT-0000.png, OUT-0001.png, ...
+    #[arg(long, value_name = "N", help_heading = "Wind")]
+    pub frames: Option<u32>,
+
+    /// Frames per second of the animation.
+    #[arg(long, default_value_t = 12.0, help_heading = "Wind")]
+    pub fps: f64,
+
+    /// Camera.
+    #[arg(long, value_enum, default_value_t = RenderView::Front, help_heading = "Rendering")]
+    pub view: RenderView,
+
+    /// Picture size.
+    #[arg(
+        long,
+        default_value = "1024x768",
+        value_name = "WxH",
+        help_heading = "Rendering"
+    )]
+    pub size: String,
+
+    /// Render N views around the tree into one contact sheet.
+    #[arg(long, value_name = "N", help_heading = "Rendering")]
+    pub turntable: Option<u32>,
+
+    /// Leave out the ground and the 1.8 m person.
+    #[arg(long, help_heading = "Rendering")]
+    pub bare: bool,
+
+    /// Output PNG.
+    #[arg(short, long, value_name = "FILE.png", help_heading = "Output")]
+    pub output: PathBuf,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderView {
+    Front,
+    Side,
+    Top,
+    Iso,
 }
 
 #[derive(Subcommand, Debug)]
@@ -93,11 +175,4 @@ pub struct BenchArgs {
     /// Repetitions per species (the fastest is reported).
     #[arg(long, default_value_t = 10)]
     pub runs: u32,
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ViewArg {
-    Front,
-    Side,
-    Top,
 }

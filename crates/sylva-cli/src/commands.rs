@@ -1,8 +1,7 @@
 //! What each subcommand does: load and check inputs, call the library, write files, report.
 
-use crate::args::{BenchArgs, Cli, Command, GenerateArgs, SpeciesCommand, ViewArg};
+use crate::args::{BenchArgs, Cli, Command, GenerateArgs, RenderView, SpeciesCommand};
 use anyhow::{Context, Result, bail};
-use image::ImageEncoder;
 use std::path::Path;
 use std::time::Instant;
 use sylva::export::{Materials, to_glb, write_atomically, write_obj};
@@ -16,6 +15,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Generate(args) => generate(&args),
         Command::Species(SpeciesCommand::List) => species_list(),
         Command::Species(SpeciesCommand::Show { name, toml }) => species_show(&name, toml),
+        Command::Render(args) => crate::render::render(&args),
         Command::Bench(args) => bench(&args),
     }
 }
@@ -43,7 +43,7 @@ fn output_format(path: &Path) -> Result<Format> {
 }
 
 /// Loads the species and applies `--set` overrides.
-fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
+pub fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
     let mut params = sylva::species::load(species)?;
     for note in &params.notes {
         eprintln!("sylva: warning: {species}: {note}");
@@ -66,7 +66,7 @@ fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
     Ok(params)
 }
 
-fn mesh_options(params: &TreeParams, quality: f64) -> MeshOptions {
+pub fn mesh_options(params: &TreeParams, quality: f64) -> MeshOptions {
     // Arbaro's Smooth (0..1, default 0.5) scales the mesh resolution around the default.
     MeshOptions {
         quality: quality * (0.5 + params.smooth),
@@ -143,30 +143,39 @@ fn generate(args: &GenerateArgs) -> Result<()> {
     Ok(())
 }
 
-fn write_preview(path: &Path, mesh: &TreeMesh, params: &TreeParams, view: ViewArg) -> Result<()> {
-    let view = match view {
-        ViewArg::Front => View::Front,
-        ViewArg::Side => View::Side,
-        ViewArg::Top => View::Top,
-    };
-    let options = PreviewOptions {
-        view,
-        bark: params.bark_color,
-        leaves: params.leaf_color,
-        ..Default::default()
-    };
-    let picture = render_preview(mesh, &options);
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(
-            &picture.rgb,
-            picture.width,
-            picture.height,
-            image::ExtendedColorType::Rgb8,
-        )
-        .context("encoding the preview PNG")?;
-    write_atomically(path, &bytes)?;
-    Ok(())
+fn write_preview(
+    path: &Path,
+    mesh: &TreeMesh,
+    params: &TreeParams,
+    view: RenderView,
+) -> Result<()> {
+    match crate::render::picture(mesh, params.bark_color, params.leaf_color, view, 1024, 768) {
+        Ok(picture) => {
+            crate::render::encode_png(path, picture.width, picture.height, &picture.rgba)
+        }
+        Err(e) => {
+            // No adapter at all: the CPU rasteriser still shows the tree, without shadows.
+            eprintln!("sylva: warning: {e:#}; drawing the preview with the CPU rasteriser instead");
+            let view = match view {
+                RenderView::Side => View::Side,
+                RenderView::Top => View::Top,
+                RenderView::Front | RenderView::Iso => View::Front,
+            };
+            let options = PreviewOptions {
+                view,
+                bark: params.bark_color,
+                leaves: params.leaf_color,
+                ..Default::default()
+            };
+            let p = render_preview(mesh, &options);
+            let rgba: Vec<u8> = p
+                .rgb
+                .chunks(3)
+                .flat_map(|c| [c[0], c[1], c[2], 255])
+                .collect();
+            crate::render::encode_png(path, p.width, p.height, &rgba)
+        }
+    }
 }
 
 fn round3(x: f32) -> f64 {

@@ -2,10 +2,17 @@
 
 mod args;
 mod commands;
+mod render;
 
 use clap::Parser;
 
 fn main() {
+    // Mesa's drivers complain on stderr when XDG_RUNTIME_DIR is unset (root shells, CI) even
+    // though headless rendering never needs it; give them the temp directory instead.
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        // SAFETY: nothing else runs yet: no threads exist that could read the environment.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
+    }
     let cli = args::Cli::parse();
     if let Err(err) = commands::run(cli) {
         eprintln!("sylva: {err:#}");

@@ -287,3 +287,122 @@ fn bad_input_gives_clear_errors_and_no_file() {
     ]);
     assert!(!run.status.success() && text(&run.stderr).contains(".glb or .obj"));
 }
+
+fn png_size(path: &Path) -> (u32, u32) {
+    let img = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    (img.width(), img.height())
+}
+
+#[test]
+fn render_species_glb_turntable_and_wind_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n);
+    let s = |path: &PathBuf| path.to_str().unwrap().to_string();
+    let run = sylva(&[
+        "render",
+        "queen_palm",
+        "--size",
+        "320x240",
+        "--view",
+        "iso",
+        "-o",
+        &s(&p("palm.png")),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_eq!(png_size(&p("palm.png")), (320, 240));
+    // A GLB written by generate renders too.
+    assert!(
+        sylva(&["generate", "saguaro", "-o", &s(&p("cactus.glb"))])
+            .status
+            .success()
+    );
+    let run = sylva(&[
+        "render",
+        &s(&p("cactus.glb")),
+        "--size",
+        "200x200",
+        "-o",
+        &s(&p("cactus.png")),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    // Turntable: 4 views on one 2x2 sheet.
+    let run = sylva(&[
+        "render",
+        "hazel",
+        "--turntable",
+        "4",
+        "--size",
+        "100x80",
+        "-o",
+        &s(&p("sheet.png")),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_eq!(png_size(&p("sheet.png")), (200, 160));
+    // Wind animation: numbered frames that differ.
+    let run = sylva(&[
+        "render",
+        "weeping_birch",
+        "--wind",
+        "8",
+        "--gust",
+        "4",
+        "--frames",
+        "3",
+        "--fps",
+        "4",
+        "--size",
+        "120x120",
+        "--bare",
+        "-o",
+        &s(&p("sway.png")),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let frames: Vec<Vec<u8>> = (0..3)
+        .map(|i| std::fs::read(p(&format!("sway-{i:04}.png"))).unwrap())
+        .collect();
+    assert_ne!(frames[0], frames[2], "the tree moves between frames");
+    // Levels as a design aid: the trunk alone.
+    let run = sylva(&[
+        "render",
+        "black_tupelo",
+        "--levels",
+        "1",
+        "--size",
+        "100x100",
+        "-o",
+        &s(&p("trunk.png")),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+}
+
+#[test]
+fn render_rejects_bad_requests_without_writing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let o = out.to_str().unwrap();
+    for (args, needle) in [
+        (
+            vec!["render", "quaking_aspen", "--size", "9x9", "-o", o],
+            "16..8192",
+        ),
+        (
+            vec!["render", "quaking_aspen", "--size", "big", "-o", o],
+            "WIDTHxHEIGHT",
+        ),
+        (vec!["render", "quaking_aspen", "-o", "x.jpg"], "PNG"),
+        (
+            vec!["render", "quaking_aspen", "--turntable", "0", "-o", o],
+            "at least 1",
+        ),
+        (vec!["render", "missing.glb", "-o", o], "missing.glb"),
+    ] {
+        let run = sylva(&args);
+        let err = text(&run.stderr);
+        assert!(
+            !run.status.success() && err.contains(needle),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    assert!(!out.exists());
+}

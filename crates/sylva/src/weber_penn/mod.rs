@@ -69,10 +69,13 @@ fn deg(d: f64) -> f64 {
     d.to_radians()
 }
 
-/// Wind at one instant (spec section 12). The default is calm, which changes nothing.
+/// Wind at one instant (spec section 12): every stem bends about its x and y axes by
+/// sinusoids with random per-stem phases, more where it is long and thin. The default is calm,
+/// which changes nothing (the tree is bit-identical to one generated without wind).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Wind {
-    /// Steady wind speed (the paper's `wind_speed`; 50 doubles the base sway).
+    /// Steady wind speed in the paper's units: the sway amplitude is speed / 50 of a stem's
+    /// cantilever deflection; 2 to 10 is a breeze, 20 a strong wind.
     pub speed: f64,
     /// Gust strength on top of the steady wind.
     pub gust: f64,

@@ -1,0 +1,875 @@
+//! Renders Sylva trees with wgpu: a sun with a shadow map (the tree's shadow on the ground and
+//! inside its crown), a sky term, two-sided translucent leaves, 4x multisampling, a ground with
+//! a metre grid and a 1.8 m person for scale.
+//!
+//! Headless rendering works on machines without a GPU through Mesa (lavapipe Vulkan, or the GL
+//! software fallback). The viewer shares the same [`Renderer`] on its own device.
+//!
+//! ```no_run
+//! let params = sylva::species::builtin("quaking_aspen").unwrap();
+//! let skeleton = sylva::generate(&params, &Default::default()).unwrap();
+//! let mesh = sylva::mesh::mesh_tree(&skeleton, &Default::default());
+//! let renderer = sylva_render::Renderer::new_headless().unwrap();
+//! let tree = renderer.upload(&mesh);
+//! let scene = sylva_render::Scene::new(&tree, params.bark_color, params.leaf_color);
+//! let picture = renderer.render(&scene, &sylva_render::View::named(sylva_render::ViewKind::Front), 640, 480).unwrap();
+//! assert_eq!(picture.rgba.len(), 640 * 480 * 4);
+//! ```
+#![deny(missing_docs)]
+
+mod camera;
+mod props;
+
+pub use camera::{Camera, ViewKind};
+pub use props::{PERSON_HEIGHT, PropMesh, Vertex, ground, person};
+
+// WebGPU's clip space (y up, depth 0..1) is glam's `directx` convention.
+use glam::Vec3;
+use glam::camera::rh::proj::directx;
+use glam::camera::rh::view::look_at_mat4;
+use sylva::mesh::{Mesh, TreeMesh};
+use wgpu::util::DeviceExt;
+
+/// Rendering failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// No graphics adapter, not even a software one.
+    #[error(
+        "no graphics adapter found ({0}); on a machine without a GPU install Mesa's software drivers \
+         (Debian: mesa-vulkan-drivers, or libgl1-mesa-dri for the GL fallback)"
+    )]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("cannot open the graphics device: {0}")]
+    Device(String),
+    /// Reading the picture back failed.
+    #[error("cannot read the rendered picture back: {0}")]
+    Readback(String),
+    /// A picture size the device cannot make.
+    #[error("picture size {width}x{height} is not allowed: each side must be 16..={max}")]
+    Size {
+        /// Requested width.
+        width: u32,
+        /// Requested height.
+        height: u32,
+        /// Device limit.
+        max: u32,
+    },
+}
+
+/// A rendered picture: RGBA, 8 bits per channel (sRGB), rows from the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Picture {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// 4 bytes per pixel.
+    pub rgba: Vec<u8>,
+}
+
+impl Picture {
+    /// The RGB of one pixel.
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        let i = ((y * self.width + x) * 4) as usize;
+        [self.rgba[i], self.rgba[i + 1], self.rgba[i + 2]]
+    }
+}
+
+/// Where the camera is: a named view or an orbit, always framing the whole tree.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Degrees around the tree: 0 from the south, 90 from the east.
+    pub azimuth: f32,
+    /// Degrees above the horizon.
+    pub elevation: f32,
+    /// Vertical field of view, degrees.
+    pub fov_y: f32,
+    /// Zoom: 1 frames the tree; 2 is twice as close.
+    pub zoom: f32,
+    /// Pan of the look-at point, metres (viewer).
+    pub pan: Vec3,
+}
+
+impl View {
+    /// A named view with the default lens (30 degrees).
+    pub fn named(kind: ViewKind) -> Self {
+        let (azimuth, elevation) = kind.angles();
+        Self::orbit(azimuth, elevation)
+    }
+
+    /// An orbit view.
+    pub fn orbit(azimuth: f32, elevation: f32) -> Self {
+        Self {
+            azimuth,
+            elevation,
+            fov_y: 30.0,
+            zoom: 1.0,
+            pan: Vec3::ZERO,
+        }
+    }
+}
+
+/// A tree on the GPU: bark and leaves, with their bounds.
+#[derive(Debug)]
+pub struct GpuTree {
+    bark: GpuMesh,
+    leaves: GpuMesh,
+    /// Lowest corner of the tree's bounds (metres, Z up).
+    pub lo: Vec3,
+    /// Highest corner.
+    pub hi: Vec3,
+    /// Triangles uploaded (bark + leaves).
+    pub triangles: usize,
+}
+
+#[derive(Debug)]
+struct GpuMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    count: u32,
+}
+
+/// What to draw.
+#[derive(Clone, Copy, Debug)]
+pub struct Scene<'a> {
+    /// The tree.
+    pub tree: &'a GpuTree,
+    /// Bark colour, sRGB 0..1.
+    pub bark: [f32; 3],
+    /// Leaf colour, sRGB 0..1.
+    pub leaves: [f32; 3],
+    /// Draw the leaves.
+    pub show_leaves: bool,
+    /// Draw the ground and its grid.
+    pub show_ground: bool,
+    /// Draw the 1.8 m person beside the tree.
+    pub show_person: bool,
+    /// Unit vector towards the sun.
+    pub sun: Vec3,
+}
+
+impl<'a> Scene<'a> {
+    /// A scene with ground, person, leaves and an afternoon sun from the south-west.
+    pub fn new(tree: &'a GpuTree, bark: [f32; 3], leaves: [f32; 3]) -> Self {
+        Self {
+            tree,
+            bark,
+            leaves,
+            show_leaves: true,
+            show_ground: true,
+            show_person: true,
+            sun: Vec3::new(-0.45, -0.6, 0.66).normalize(),
+        }
+    }
+
+    /// Where the person stands for a camera at `azimuth` (degrees): just outside the crown, to
+    /// the camera's right and in the tree's picture plane, so it is never hidden behind it.
+    pub fn person_feet(&self, azimuth: f32) -> Vec3 {
+        let t = self.tree;
+        let a = azimuth.to_radians();
+        let right = Vec3::new(a.cos(), a.sin(), 0.0);
+        let centre = Vec3::new((t.lo.x + t.hi.x) / 2.0, (t.lo.y + t.hi.y) / 2.0, 0.0);
+        let half_width = (((t.hi.x - t.lo.x).abs() * right.x.abs()
+            + (t.hi.y - t.lo.y).abs() * right.y.abs())
+            / 2.0)
+            .max(0.5);
+        centre + right * (half_width + 0.6)
+    }
+
+    /// Bounds of what a camera at `azimuth` must frame: the tree and, when shown, the person.
+    pub fn bounds(&self, azimuth: f32) -> (Vec3, Vec3) {
+        let (mut lo, mut hi) = (self.tree.lo, self.tree.hi);
+        if self.show_person {
+            let f = self.person_feet(azimuth);
+            lo = lo.min(f - Vec3::new(0.3, 0.15, 0.0));
+            hi = hi.max(f + Vec3::new(0.3, 0.15, PERSON_HEIGHT));
+        }
+        (lo.min(Vec3::new(lo.x, lo.y, 0.0)), hi)
+    }
+
+    /// The camera for `view` in a picture of this aspect ratio.
+    pub fn camera(&self, view: &View, aspect: f32) -> Camera {
+        let (lo, hi) = self.bounds(view.azimuth);
+        let mut cam = Camera::framing(
+            lo,
+            hi,
+            view.azimuth,
+            view.elevation,
+            view.fov_y,
+            aspect,
+            0.05,
+        );
+        let zoom = view.zoom.max(0.01);
+        cam.eye = cam.target + (cam.eye - cam.target) / zoom + view.pan;
+        cam.target += view.pan;
+        cam
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct Globals {
+    view_proj: [[f32; 4]; 4],
+    light_view_proj: [[f32; 4]; 4],
+    sun_dir: [f32; 4],
+    sun_color: [f32; 4],
+    sky_color: [f32; 4],
+    ground_bounce: [f32; 4],
+    shadow: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct Material {
+    color: [f32; 4],
+    kind: [f32; 4],
+}
+
+const SAMPLES: u32 = 4;
+const SHADOW_SIZE: u32 = 2048;
+const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Colour format of headless pictures.
+pub const PICTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Background (sRGB): a pale sky.
+pub const SKY_SRGB: [f32; 3] = [0.80, 0.87, 0.94];
+const GROUND_SRGB: [f32; 3] = [0.55, 0.52, 0.45];
+const PERSON_SRGB: [f32; 3] = [0.35, 0.38, 0.45];
+
+fn linear(c: [f32; 3]) -> [f32; 4] {
+    let l = |c: f32| {
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    [l(c[0]), l(c[1]), l(c[2]), 1.0]
+}
+
+/// Draws trees. Holds the device, the pipelines and the shadow map; reusable across frames.
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    target_format: wgpu::TextureFormat,
+    pipeline: wgpu::RenderPipeline,
+    shadow_pipeline: wgpu::RenderPipeline,
+    globals: wgpu::Buffer,
+    globals_group: wgpu::BindGroup,
+    shadow_group: wgpu::BindGroup,
+    shadow_view: wgpu::TextureView,
+    material_layout: wgpu::BindGroupLayout,
+    /// Name of the adapter (e.g. "llvmpipe" on a machine without a GPU).
+    pub adapter_name: String,
+}
+
+impl std::fmt::Debug for Renderer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Renderer")
+            .field("adapter", &self.adapter_name)
+            .finish()
+    }
+}
+
+impl Renderer {
+    /// A renderer without a window, on the best adapter found (a GPU, else Mesa's software
+    /// rasterisers).
+    pub fn new_headless() -> Result<Self, RenderError> {
+        // Native APIs first; OpenGL (Mesa's llvmpipe on a machine without a GPU) only when
+        // nothing else answers, since probing it prints EGL warnings.
+        let find = |backends| {
+            let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+                backends,
+                ..wgpu::InstanceDescriptor::new_without_display_handle()
+            });
+            pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: None,
+                apply_limit_buckets: false,
+            }))
+        };
+        let adapter = find(wgpu::Backends::VULKAN | wgpu::Backends::METAL | wgpu::Backends::DX12)
+            .or_else(|_| find(wgpu::Backends::GL))
+            .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let name = adapter.get_info().name;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("sylva"),
+            required_features: wgpu::Features::empty(),
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ..Default::default()
+        }))
+        .map_err(|e| RenderError::Device(e.to_string()))?;
+        Ok(Self::from_device(device, queue, PICTURE_FORMAT, name))
+    }
+
+    /// A renderer on an existing device (the viewer's), drawing into `target_format`.
+    pub fn from_device(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        target_format: wgpu::TextureFormat,
+        adapter_name: String,
+    ) -> Self {
+        let shader = device.create_shader_module(wgpu::include_wgsl!("shader.wgsl"));
+        let globals_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("globals"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+            ],
+        });
+        let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("material"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        // The shadow pass writes the shadow map, so its bind group must not also bind it.
+        let shadow_globals_layout =
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("shadow globals"),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                }],
+            });
+        let shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shadow"),
+            bind_group_layouts: &[Some(&shadow_globals_layout)],
+            immediate_size: 0,
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("tree"),
+            bind_group_layouts: &[Some(&globals_layout), Some(&material_layout)],
+            immediate_size: 0,
+        });
+        let vertex_layout = wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+        };
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("tree"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(vertex_layout.clone())],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: SAMPLES,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(target_format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow"),
+            layout: Some(&shadow_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_shadow"),
+                compilation_options: Default::default(),
+                buffers: &[Some(vertex_layout)],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: wgpu::DepthBiasState {
+                    constant: 2,
+                    slope_scale: 2.0,
+                    clamp: 0.0,
+                },
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        });
+        let shadow_texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shadow map"),
+            size: wgpu::Extent3d {
+                width: SHADOW_SIZE,
+                height: SHADOW_SIZE,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let shadow_view = shadow_texture.create_view(&Default::default());
+        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("shadow"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::LessEqual),
+            ..Default::default()
+        });
+        let globals = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("globals"),
+            size: std::mem::size_of::<Globals>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let globals_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("globals"),
+            layout: &globals_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: globals.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&shadow_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&shadow_sampler),
+                },
+            ],
+        });
+        let shadow_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shadow globals"),
+            layout: &shadow_globals_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: globals.as_entire_binding(),
+            }],
+        });
+        Self {
+            device,
+            queue,
+            target_format,
+            shadow_group,
+            pipeline,
+            shadow_pipeline,
+            globals,
+            globals_group,
+            shadow_view,
+            material_layout,
+            adapter_name,
+        }
+    }
+
+    /// The device (for the viewer's own textures).
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    fn upload_vertices(&self, label: &str, vertices: &[Vertex], indices: &[u32]) -> GpuMesh {
+        // wgpu rejects zero-sized buffers: keep one dummy element for empty meshes.
+        let dummy_v = [Vertex {
+            position: [0.0; 3],
+            normal: [0.0, 0.0, 1.0],
+        }];
+        let v = if vertices.is_empty() {
+            &dummy_v[..]
+        } else {
+            vertices
+        };
+        let i = if indices.is_empty() {
+            &[0u32, 0, 0][..]
+        } else {
+            indices
+        };
+        GpuMesh {
+            vertices: self
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: bytemuck::cast_slice(v),
+                    usage: wgpu::BufferUsages::VERTEX,
+                }),
+            indices: self
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: bytemuck::cast_slice(i),
+                    usage: wgpu::BufferUsages::INDEX,
+                }),
+            count: indices.len() as u32,
+        }
+    }
+
+    fn upload_mesh(&self, label: &str, mesh: &Mesh) -> GpuMesh {
+        let vertices: Vec<Vertex> = mesh
+            .positions
+            .iter()
+            .zip(&mesh.normals)
+            .map(|(p, n)| Vertex {
+                position: *p,
+                normal: *n,
+            })
+            .collect();
+        self.upload_vertices(label, &vertices, &mesh.indices)
+    }
+
+    /// Uploads a tree mesh (Z up, metres, as the mesher makes it).
+    pub fn upload(&self, mesh: &TreeMesh) -> GpuTree {
+        let (lo, hi) = [&mesh.bark, &mesh.leaves]
+            .iter()
+            .filter_map(|m| m.bounds())
+            .fold(
+                (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+                |(lo, hi), (a, b)| (lo.min(Vec3::from(a)), hi.max(Vec3::from(b))),
+            );
+        let (lo, hi) = if lo.x <= hi.x {
+            (lo, hi)
+        } else {
+            (Vec3::ZERO, Vec3::ONE)
+        };
+        GpuTree {
+            bark: self.upload_mesh("bark", &mesh.bark),
+            leaves: self.upload_mesh("leaves", &mesh.leaves),
+            lo,
+            hi,
+            triangles: mesh.triangle_count(),
+        }
+    }
+
+    fn material(&self, colour: [f32; 3], kind: f32) -> wgpu::BindGroup {
+        let buffer = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("material"),
+                contents: bytemuck::bytes_of(&Material {
+                    color: linear(colour),
+                    kind: [kind, 0.0, 0.0, 0.0],
+                }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("material"),
+            layout: &self.material_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: buffer.as_entire_binding(),
+            }],
+        })
+    }
+
+    /// Records the shadow and main passes of `scene` into `encoder`, drawing into `target`
+    /// (a `SAMPLES`-sample view) resolved into `resolve`.
+    #[allow(clippy::too_many_arguments)]
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        camera: &Camera,
+        target: &wgpu::TextureView,
+        resolve: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        azimuth: f32,
+    ) {
+        let (lo, hi) = scene.bounds(azimuth);
+        let centre = (lo + hi) / 2.0;
+        let radius = ((hi - lo).length() / 2.0).max(0.5);
+        // The sun's view: orthographic over a disc of ground around the tree, where its shadow falls.
+        let reach = radius * 2.2;
+        let light_view = look_at_mat4(centre + scene.sun * radius * 4.0, centre, Vec3::Z);
+        let light_proj = directx::orthographic(-reach, reach, -reach, reach, 0.1, radius * 8.0);
+        let globals = Globals {
+            view_proj: camera.view_proj().to_cols_array_2d(),
+            light_view_proj: (light_proj * light_view).to_cols_array_2d(),
+            sun_dir: scene.sun.normalize().extend(0.0).to_array(),
+            sun_color: [2.6, 2.45, 2.2, 0.0],
+            sky_color: [0.42, 0.5, 0.62, 0.0],
+            ground_bounce: [0.18, 0.17, 0.14, 0.0],
+            shadow: [1.0 / SHADOW_SIZE as f32, 0.0015, 0.0, 0.0],
+        };
+        self.queue
+            .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        let ground_mesh = ground(centre, radius * 3.0);
+        let person_mesh = person(scene.person_feet(azimuth), azimuth);
+        let ground_gpu =
+            self.upload_vertices("ground", &ground_mesh.vertices, &ground_mesh.indices);
+        let person_gpu =
+            self.upload_vertices("person", &person_mesh.vertices, &person_mesh.indices);
+        let bark = self.material(scene.bark, 0.0);
+        let leaves = self.material(scene.leaves, 1.0);
+        let ground_mat = self.material(GROUND_SRGB, 2.0);
+        let person_mat = self.material(PERSON_SRGB, 0.0);
+        let mut draws: Vec<(&GpuMesh, &wgpu::BindGroup)> = vec![(&scene.tree.bark, &bark)];
+        if scene.show_leaves {
+            draws.push((&scene.tree.leaves, &leaves));
+        }
+        if scene.show_person {
+            draws.push((&person_gpu, &person_mat));
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.shadow_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.shadow_pipeline);
+            pass.set_bind_group(0, &self.shadow_group, &[]);
+            for (mesh, _) in &draws {
+                if mesh.count > 0 {
+                    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.count, 0, 0..1);
+                }
+            }
+        }
+        if scene.show_ground {
+            draws.push((&ground_gpu, &ground_mat));
+        }
+        let sky = linear(SKY_SRGB);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("main"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: Some(resolve),
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: sky[0] as f64,
+                        g: sky[1] as f64,
+                        b: sky[2] as f64,
+                        a: 1.0,
+                    }),
+                    store: wgpu::StoreOp::Discard,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.globals_group, &[]);
+        for (mesh, material) in &draws {
+            if mesh.count > 0 {
+                pass.set_bind_group(1, *material, &[]);
+                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.count, 0, 0..1);
+            }
+        }
+    }
+
+    /// Creates the multisampled colour and depth targets for a `width` x `height` picture.
+    fn targets(&self, width: u32, height: u32) -> (wgpu::TextureView, wgpu::TextureView) {
+        let make = |format, label| {
+            self.device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d {
+                        width,
+                        height,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: SAMPLES,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default())
+        };
+        (
+            make(self.target_format, "colour (msaa)"),
+            make(DEPTH, "depth"),
+        )
+    }
+
+    /// Draws `scene` into `resolve` (a single-sample view of this renderer's target format and
+    /// `width` x `height`), e.g. the viewer's texture.
+    pub fn render_into(
+        &self,
+        scene: &Scene,
+        view: &View,
+        resolve: &wgpu::TextureView,
+        width: u32,
+        height: u32,
+    ) {
+        let camera = scene.camera(view, width as f32 / height as f32);
+        let (colour, depth) = self.targets(width, height);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.encode(
+            &mut encoder,
+            scene,
+            &camera,
+            &colour,
+            resolve,
+            &depth,
+            view.azimuth,
+        );
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Draws `scene` from `view` into a new picture of `width` x `height` pixels.
+    pub fn render(
+        &self,
+        scene: &Scene,
+        view: &View,
+        width: u32,
+        height: u32,
+    ) -> Result<Picture, RenderError> {
+        let max = self.device.limits().max_texture_dimension_2d;
+        if !(16..=max).contains(&width) || !(16..=max).contains(&height) {
+            return Err(RenderError::Size { width, height, max });
+        }
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("picture"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: self.target_format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let resolve = texture.create_view(&Default::default());
+        let camera = scene.camera(view, width as f32 / height as f32);
+        let (colour, depth) = self.targets(width, height);
+        let row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let readback = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: (row * height) as u64,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.encode(
+            &mut encoder,
+            scene,
+            &camera,
+            &colour,
+            &resolve,
+            &depth,
+            view.azimuth,
+        );
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(row),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.queue.submit([encoder.finish()]);
+        let slice = readback.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| RenderError::Readback(e.to_string()))?
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let mut rgba = Vec::with_capacity((width * height * 4) as usize);
+        for y in 0..height {
+            let start = (y * row) as usize;
+            rgba.extend_from_slice(&data[start..start + (width * 4) as usize]);
+        }
+        drop(data);
+        readback.unmap();
+        Ok(Picture {
+            width,
+            height,
+            rgba,
+        })
+    }
+}

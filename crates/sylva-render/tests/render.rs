@@ -1,0 +1,184 @@
+//! Pictures measured, not eyeballed: these run on Mesa's software rasteriser in CI.
+
+use glam::Vec3;
+use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::{GenerateOptions, generate, species::builtin};
+use sylva_render::{Picture, Renderer, SKY_SRGB, Scene, View, ViewKind};
+
+fn renderer() -> Renderer {
+    Renderer::new_headless().expect(
+        "a graphics adapter (on a machine without a GPU: apt-get install mesa-vulkan-drivers)",
+    )
+}
+
+fn tree(id: &str, leaves: bool) -> (TreeMesh, sylva::TreeParams) {
+    let p = builtin(id).unwrap();
+    let options = GenerateOptions {
+        seed: 2,
+        leaves,
+        ..Default::default()
+    };
+    (
+        mesh_tree(&generate(&p, &options).unwrap(), &MeshOptions::default()),
+        p,
+    )
+}
+
+fn is_sky(px: [u8; 3]) -> bool {
+    let sky = SKY_SRGB.map(|c| (c * 255.0).round() as i32);
+    (0..3).all(|i| (px[i] as i32 - sky[i]).abs() <= 3)
+}
+
+/// Bounding box (x0, y0, x1, y1) of the non-sky pixels, and their count.
+fn silhouette(p: &Picture) -> ((u32, u32, u32, u32), usize) {
+    let (mut x0, mut y0, mut x1, mut y1, mut n) = (u32::MAX, u32::MAX, 0, 0, 0);
+    for y in 0..p.height {
+        for x in 0..p.width {
+            if !is_sky(p.pixel(x, y)) {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+                n += 1;
+            }
+        }
+    }
+    ((x0, y0, x1, y1), n)
+}
+
+fn bare<'a>(gpu: &'a sylva_render::GpuTree, p: &sylva::TreeParams) -> Scene<'a> {
+    let mut scene = Scene::new(gpu, p.bark_color, p.leaf_color);
+    scene.show_ground = false;
+    scene.show_person = false;
+    scene
+}
+
+#[test]
+fn silhouette_is_centred_and_as_tall_as_the_projected_tree() {
+    let r = renderer();
+    let (mesh, p) = tree("quaking_aspen", true);
+    let gpu = r.upload(&mesh);
+    let scene = bare(&gpu, &p);
+    let (w, h) = (480, 640);
+    let view = View::named(ViewKind::Front);
+    let pic = r.render(&scene, &view, w, h).unwrap();
+    let ((x0, y0, x1, y1), n) = silhouette(&pic);
+    assert!(n > 1000, "silhouette has {n} pixels");
+    // Where the camera puts the tree's vertices.
+    let cam = scene.camera(&view, w as f32 / h as f32);
+    let (mut top, mut bottom, mut left, mut right) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+    for v in mesh.bark.positions.iter().chain(&mesh.leaves.positions) {
+        let (x, y) = cam.project(Vec3::from(*v), w, h).unwrap();
+        (top, bottom, left, right) = (top.min(y), bottom.max(y), left.min(x), right.max(x));
+    }
+    let projected = bottom - top;
+    let measured = (y1 - y0 + 1) as f32;
+    assert!(
+        (measured - projected).abs() / projected < 0.02,
+        "height {measured} px vs projected {projected} px"
+    );
+    let centre = (x0 + x1) as f32 / 2.0;
+    assert!(
+        (centre - w as f32 / 2.0).abs() < 0.05 * w as f32,
+        "centre {centre} of {w}"
+    );
+    assert!(((x1 - x0 + 1) as f32 - (right - left)).abs() / (right - left) < 0.03);
+}
+
+#[test]
+fn top_view_of_a_symmetric_species_is_round() {
+    let r = renderer();
+    let (mesh, p) = tree("quaking_aspen", true);
+    let gpu = r.upload(&mesh);
+    let pic = r
+        .render(&bare(&gpu, &p), &View::named(ViewKind::Top), 400, 400)
+        .unwrap();
+    let ((x0, y0, x1, y1), n) = silhouette(&pic);
+    let (bw, bh) = ((x1 - x0 + 1) as f32, (y1 - y0 + 1) as f32);
+    assert!((0.75..=1.33).contains(&(bw / bh)), "{bw} x {bh}");
+    // A round crown fills most of the ellipse in its bounding box.
+    let ellipse = std::f32::consts::PI / 4.0 * bw * bh;
+    assert!(n as f32 / ellipse > 0.6, "fill {}", n as f32 / ellipse);
+}
+
+fn green_pixels(p: &Picture) -> usize {
+    (0..p.height)
+        .flat_map(|y| (0..p.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let [r, g, b] = p.pixel(x, y).map(|c| c as f32);
+            g > r * 1.15 && g > b * 1.1
+        })
+        .count()
+}
+
+#[test]
+fn leaves_off_has_far_fewer_green_pixels() {
+    let r = renderer();
+    let (with, p) = tree("black_tupelo", true);
+    let (without, _) = tree("black_tupelo", false);
+    let (a, b) = (r.upload(&with), r.upload(&without));
+    let view = View::named(ViewKind::Front);
+    let on = green_pixels(&r.render(&bare(&a, &p), &view, 400, 400).unwrap());
+    let off = green_pixels(&r.render(&bare(&b, &p), &view, 400, 400).unwrap());
+    assert!(on > 5000, "{on} green pixels with leaves");
+    assert!(
+        off * 20 < on,
+        "{off} green pixels without leaves vs {on} with"
+    );
+}
+
+fn luminance(p: &Picture, x: f32, y: f32) -> f32 {
+    let mut sum = 0.0;
+    for dy in -2..=2 {
+        for dx in -2..=2 {
+            let px = p.pixel((x as i32 + dx) as u32, (y as i32 + dy) as u32);
+            sum += 0.2126 * px[0] as f32 + 0.7152 * px[1] as f32 + 0.0722 * px[2] as f32;
+        }
+    }
+    sum / 25.0
+}
+
+#[test]
+fn the_tree_shadows_the_ground() {
+    let r = renderer();
+    let (mesh, p) = tree("quaking_aspen", true);
+    let gpu = r.upload(&mesh);
+    let mut scene = Scene::new(&gpu, p.bark_color, p.leaf_color);
+    scene.show_person = false;
+    let view = View::named(ViewKind::Top);
+    let (w, h) = (500, 500);
+    let pic = r.render(&scene, &view, w, h).unwrap();
+    // The crown's centre casts its shadow along the sun's rays onto the ground.
+    let crown = (gpu.lo + gpu.hi) / 2.0;
+    let along = Vec3::new(scene.sun.x, scene.sun.y, 0.0) / scene.sun.z * crown.z;
+    let cam = scene.camera(&view, 1.0);
+    let ground = Vec3::new(crown.x, crown.y, 0.0);
+    let (sx, sy) = cam.project(ground - along, w, h).unwrap();
+    let (lx, ly) = cam.project(ground + along, w, h).unwrap();
+    for (x, y) in [(sx, sy), (lx, ly)] {
+        assert!(
+            x > 3.0 && y > 3.0 && x < w as f32 - 3.0 && y < h as f32 - 3.0,
+            "point off the picture"
+        );
+    }
+    let (shade, sun) = (luminance(&pic, sx, sy), luminance(&pic, lx, ly));
+    assert!(
+        shade < 0.75 * sun,
+        "ground in shadow {shade} vs in sun {sun}"
+    );
+}
+
+#[test]
+fn rendering_is_repeatable_and_sizes_are_checked() {
+    let r = renderer();
+    let (mesh, p) = tree("saguaro", true);
+    let gpu = r.upload(&mesh);
+    let scene = Scene::new(&gpu, p.bark_color, p.leaf_color);
+    let view = View::named(ViewKind::Iso);
+    let a = r.render(&scene, &view, 200, 150).unwrap();
+    let b = r.render(&scene, &view, 200, 150).unwrap();
+    assert_eq!(a.rgba.len(), 200 * 150 * 4);
+    let differing = a.rgba.iter().zip(&b.rgba).filter(|(x, y)| x != y).count();
+    assert!(
+        differing < a.rgba.len() / 100,
+        "{differing} bytes differ between identical renders"
+    );
+    assert!(r.render(&scene, &view, 8, 150).is_err());
+}
