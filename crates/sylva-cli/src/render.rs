@@ -169,7 +169,7 @@ fn contact_sheet(pictures: &[Picture]) -> Picture {
 /// Where the pictured tree comes from.
 enum TreeSource {
     /// A finished model, drawn as it is.
-    Glb(GlbTree),
+    Glb(Box<GlbTree>),
     /// A species, generated (and re-formed by the wind) for each frame.
     Species(Box<sylva::TreeParams>),
 }
@@ -249,7 +249,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     // One tree per frame: a GLB as it is, a species regenerated for each moment of the wind.
     let frames = args.frames.unwrap_or(1);
     let source = if is_glb {
-        TreeSource::Glb(read_glb(Path::new(&args.input))?)
+        TreeSource::Glb(Box::new(read_glb(Path::new(&args.input))?))
     } else {
         TreeSource::Species(Box::new(load_params(&args.input, &args.set)?))
     };
