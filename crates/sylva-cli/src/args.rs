@@ -175,4 +175,8 @@ pub struct BenchArgs {
     /// Repetitions per species (the fastest is reported).
     #[arg(long, default_value_t = 10)]
     pub runs: u32,
+
+    /// Also time rendering (1280x720 frames) and regeneration after a parameter change.
+    #[arg(long)]
+    pub render: bool,
 }

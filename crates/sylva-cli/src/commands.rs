@@ -326,5 +326,92 @@ fn bench(args: &BenchArgs) -> Result<()> {
     if let Some(ms) = tupelo_ms {
         println!("black_tupelo warm generate + mesh: {ms:.2} ms (target: at most 20 ms)");
     }
+    if args.render {
+        bench_render(runs.min(5))?;
+    }
+    Ok(())
+}
+
+/// Frame times at 1280x720 and the cost of an edit: what the viewer feels.
+fn bench_render(runs: u32) -> Result<()> {
+    use sylva_render::{Renderer, Scene, View, ViewKind};
+    let renderer = Renderer::new_headless()?;
+    let view = View::named(ViewKind::Front);
+    let time = |f: &mut dyn FnMut() -> Result<()>| -> Result<f64> {
+        let mut best = f64::MAX;
+        for _ in 0..runs {
+            let t = Instant::now();
+            f()?;
+            best = best.min(t.elapsed().as_secs_f64());
+        }
+        Ok(best * 1e3)
+    };
+    // Baseline in the same run: a frame of an empty tree (ground, person, shadow pass, readback).
+    let empty = renderer.upload(&TreeMesh::default());
+    let empty_scene = Scene::new(&empty, [0.5; 3], [0.5; 3]);
+    let base = time(&mut || {
+        renderer.render(&empty_scene, &view, 1280, 720)?;
+        Ok(())
+    })?;
+    println!();
+    println!(
+        "rendering on {} at 1280x720 (fastest of {runs}; frame includes read-back)",
+        renderer.adapter_name
+    );
+    println!(
+        "{:<15} {:>9} {:>10} {:>9} {:>9}",
+        "species", "triangles", "upload ms", "frame ms", "x empty"
+    );
+    println!(
+        "{:<15} {:>9} {:>10} {:>9.1} {:>9.1}",
+        "(empty)", 0, "-", base, 1.0
+    );
+    for id in [
+        "quaking_aspen",
+        "black_tupelo",
+        "weeping_willow",
+        "ca_black_oak",
+    ] {
+        let params = sylva::species::builtin(id).context("built-in species")?;
+        let mesh = mesh_tree(
+            &sylva::generate(&params, &GenerateOptions::default())?,
+            &mesh_options(&params, 1.0),
+        );
+        let t = Instant::now();
+        let tree = renderer.upload(&mesh);
+        let upload = t.elapsed().as_secs_f64() * 1e3;
+        let scene = Scene::new(&tree, params.bark_color, params.leaf_color);
+        let frame = time(&mut || {
+            renderer.render(&scene, &view, 1280, 720)?;
+            Ok(())
+        })?;
+        println!(
+            "{:<15} {:>9} {:>10.1} {:>9.1} {:>9.1}",
+            id,
+            mesh.triangle_count(),
+            upload,
+            frame,
+            frame / base
+        );
+    }
+    // An edit in the editor: change one parameter, regenerate and re-mesh into warm buffers.
+    let mut params = sylva::species::builtin("black_tupelo").context("built-in species")?;
+    let options = GenerateOptions::default();
+    let mesh_opts = mesh_options(&params, 1.0);
+    let mut skeleton = sylva::Skeleton::default();
+    let mut mesh = TreeMesh::default();
+    sylva::generate_into(&params, &options, &mut skeleton)?;
+    sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh);
+    let mut angle = params.level[1].down_angle;
+    let edit = time(&mut || {
+        angle = if angle > 60.0 { 55.0 } else { angle + 1.0 };
+        params.level[1].down_angle = angle;
+        sylva::generate_into(&params, &options, &mut skeleton)?;
+        sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh);
+        Ok(())
+    })?;
+    println!(
+        "black_tupelo: 1DownAngle changed, regenerated and re-meshed in {edit:.1} ms (target: under 50 ms)"
+    );
     Ok(())
 }
