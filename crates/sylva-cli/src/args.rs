@@ -20,6 +20,8 @@ pub enum Command {
     Species(SpeciesCommand),
     /// Render a tree (species, species file or GLB) to a PNG: lit, shadowed, with a 1.8 m person.
     Render(RenderArgs),
+    /// Open the interactive editor: every parameter live, orbit camera, wind, load/save/export.
+    View(ViewArgs),
     /// Time generation and meshing of the paper's four appendix species.
     Bench(BenchArgs),
 }
@@ -146,6 +148,17 @@ pub struct RenderArgs {
     /// Output PNG.
     #[arg(short, long, value_name = "FILE.png", help_heading = "Output")]
     pub output: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// Built-in species or species file to start from.
+    #[arg(default_value = "quaking_aspen")]
+    pub species: String,
+
+    /// Scripted run for tests: screenshot, edit a parameter, screenshot, write a report into DIR, close.
+    #[arg(long, value_name = "DIR", hide = true)]
+    pub self_test: Option<PathBuf>,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

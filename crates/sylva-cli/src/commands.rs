@@ -16,6 +16,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Species(SpeciesCommand::List) => species_list(),
         Command::Species(SpeciesCommand::Show { name, toml }) => species_show(&name, toml),
         Command::Render(args) => crate::render::render(&args),
+        Command::View(args) => crate::viewer::run(&args),
         Command::Bench(args) => bench(&args),
     }
 }

@@ -406,3 +406,87 @@ fn render_rejects_bad_requests_without_writing() {
     }
     assert!(!out.exists());
 }
+
+/// An X server for the viewer's window, stopped when dropped.
+struct Xvfb(std::process::Child, String);
+
+impl Xvfb {
+    fn start() -> Option<Self> {
+        let display = format!(":{}", 90 + std::process::id() % 400);
+        let child = Command::new("Xvfb")
+            .args([
+                display.as_str(),
+                "-screen",
+                "0",
+                "1280x1024x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .ok()?;
+        let socket = format!("/tmp/.X11-unix/X{}", &display[1..]);
+        for _ in 0..100 {
+            if Path::new(&socket).exists() {
+                return Some(Self(child, display));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+        None
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+#[test]
+fn viewer_starts_shows_a_tree_and_regenerates_on_an_edit() {
+    let Some(x) = Xvfb::start() else {
+        // CI installs Xvfb (.ci/run), so there this test always runs.
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "Xvfb is needed for the viewer test in CI"
+        );
+        eprintln!("skipping the viewer test: no Xvfb here (apt-get install xvfb)");
+        return;
+    };
+    // Kept after the run so the screenshots can be looked at.
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("viewer-self-test");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_sylva"))
+        .args(["view", "black_tupelo", "--self-test", dir.to_str().unwrap()])
+        .env("DISPLAY", &x.1)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let report: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(dir.join("viewer.json")).expect("the viewer wrote its report"),
+    )
+    .unwrap();
+    assert!(report["generations"].as_u64().unwrap() >= 2, "{report}");
+    let tris = report["triangles"].as_array().unwrap();
+    assert_ne!(tris[0], tris[1], "the edit changed the tree: {report}");
+    for n in [1, 2] {
+        let img = image::open(dir.join(format!("viewer-{n}.png")))
+            .unwrap()
+            .to_rgb8();
+        // The 3-D view (right of the panel) shows a tree: plenty of leaf-green pixels.
+        let green = img
+            .enumerate_pixels()
+            .filter(|(x, _, p)| {
+                *x > img.width() / 2
+                    && p[1] as f32 > p[0] as f32 * 1.15
+                    && p[1] as f32 > p[2] as f32 * 1.1
+            })
+            .count();
+        assert!(green > 2000, "screenshot {n}: {green} green pixels");
+    }
+    println!("viewer screenshots: {}", dir.display());
+}
