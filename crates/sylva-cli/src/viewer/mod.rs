@@ -80,6 +80,8 @@ pub struct Viewer {
     texture: Option<ViewTexture>,
     view: View,
     needs_render: bool,
+    /// The camera is being dragged (draw drafts).
+    moving: bool,
     generations: u32,
     status: String,
     file: String,
@@ -147,6 +149,7 @@ impl Viewer {
             texture: None,
             view: View::orbit(-30.0, 12.0),
             needs_render: true,
+            moving: false,
             generations: 0,
             status: String::new(),
             self_test,
@@ -516,7 +519,19 @@ impl eframe::App for Viewer {
             let size = [(rect.width() * ppp) as u32, (rect.height() * ppp) as u32];
             let response = ui.allocate_rect(rect, egui::Sense::drag());
             self.camera_input(&response, ui);
-            self.draw_view(size);
+            // While the camera moves, draw at half resolution (a quarter of the pixels) so that
+            // orbiting stays smooth on a software driver; the full picture follows on release.
+            let moving = response.dragged();
+            if self.moving != moving {
+                self.moving = moving;
+                self.needs_render = true;
+            }
+            let draft = if moving {
+                [size[0] / 2, size[1] / 2]
+            } else {
+                size
+            };
+            self.draw_view(draft);
             match &self.texture {
                 Some(t) => {
                     let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
