@@ -473,6 +473,11 @@ fn viewer_starts_shows_a_tree_and_regenerates_on_an_edit() {
     assert!(report["generations"].as_u64().unwrap() >= 2, "{report}");
     let tris = report["triangles"].as_array().unwrap();
     assert_ne!(tris[0], tris[1], "the edit changed the tree: {report}");
+    // With the wind on, the tree is re-formed again and again (the animation is live).
+    assert!(
+        report["wind_generations"].as_u64().unwrap() >= 3,
+        "{report}"
+    );
     for n in [1, 2] {
         let img = image::open(dir.join(format!("viewer-{n}.png")))
             .unwrap()

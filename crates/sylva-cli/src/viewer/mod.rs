@@ -55,6 +55,8 @@ struct SelfTest {
     triangles: Vec<usize>,
     waiting_for_shot: bool,
     started: Instant,
+    /// When the wind was switched on, and the generation count then.
+    wind_start: Option<(Instant, u32)>,
 }
 
 pub struct Viewer {
@@ -118,6 +120,7 @@ impl Viewer {
                 triangles: Vec::new(),
                 waiting_for_shot: false,
                 started: Instant::now(),
+                wind_start: None,
             }
         });
         let stem = std::path::Path::new(&source)
@@ -388,10 +391,12 @@ impl Viewer {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             return;
         }
-        let ready = self.tree.is_some()
-            && !self.worker.busy()
-            && !self.needs_render
-            && !test.waiting_for_shot;
+        // While the wind blows the worker is never idle: step 4 only watches the clock.
+        let ready = test.step == 4
+            || self.tree.is_some()
+                && !self.worker.busy()
+                && !self.needs_render
+                && !test.waiting_for_shot;
         if !ready {
             ctx.request_repaint();
             return;
@@ -422,10 +427,27 @@ impl Viewer {
                 test.triangles.push(triangles);
                 shoot(test, 2);
             }
+            3 => {
+                // Wind on: the tree is re-formed continuously while it blows.
+                self.wind_on = true;
+                test.wind_start = Some((Instant::now(), self.generations));
+                test.step = 4;
+            }
+            4 => {
+                // Until the wind has re-formed the tree three times (a loaded machine may
+                // need a while); 20 s without that counts as a failure in the report.
+                let (since, at_start) = test.wind_start.expect("set in step 3");
+                if self.generations >= at_start + 3 || since.elapsed().as_secs() > 20 {
+                    self.wind_on = false;
+                    test.step = 5;
+                }
+            }
             _ => {
+                let wind_generations = test.wind_start.map_or(0, |(_, g)| self.generations - g);
                 let report = serde_json::json!({
                     "species": self.params.name,
                     "generations": self.generations,
+                    "wind_generations": wind_generations,
                     "triangles": test.triangles,
                     "adapter": self.renderer.adapter_name,
                 });
