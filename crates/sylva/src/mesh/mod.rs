@@ -6,7 +6,7 @@ mod leaves;
 mod stems;
 
 pub use leaves::{LeafTemplate, leaf_template, leaf_triangles};
-pub use stems::ring_vertices;
+pub use stems::{SegmentTriangles, mesh_stems_by_segment, ring_vertices};
 
 use crate::skeleton::Skeleton;
 
@@ -95,6 +95,13 @@ impl Default for MeshOptions {
     fn default() -> Self {
         Self { quality: 1.0 }
     }
+}
+
+/// Meshes only the leaves of a skeleton (appending to `mesh`).
+pub(crate) fn mesh_leaves_into(skeleton: &Skeleton, mesh: &mut Mesh) {
+    let (v, i) = leaves::count(skeleton);
+    mesh.reserve(v, i);
+    leaves::mesh_leaves(skeleton, mesh);
 }
 
 /// Meshes every stem and leaf of a skeleton.

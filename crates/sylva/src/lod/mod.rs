@@ -1,0 +1,263 @@
+//! Seamless degradation at range (Weber & Penn, section 5; spec section 13).
+//!
+//! One stored geometry per tree, reinterpreted by range, never rebuilt: four item lists (stem
+//! levels 0, 1, >= 2, and leaves), each stored rank-major ([`order`]) so that a level of detail
+//! is one contiguous range per list and primitive. With range, stem meshes become lines along
+//! their axes and leaf polygons become points; items drop out one at a time.
+
+pub mod order;
+
+use crate::mesh::{MeshOptions, TreeMesh, mesh_stems_by_segment};
+use crate::skeleton::Skeleton;
+use order::{LEAF_MASS, STEM_MASS, prefix_len, rank_major};
+use std::ops::Range;
+
+/// Which of the paper's four lists.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ListKind {
+    /// Stems of level 0 (trunks and their clones).
+    Trunk,
+    /// Stems of level 1.
+    Branches,
+    /// Stems of level 2 and deeper.
+    Twigs,
+    /// Leaves.
+    Leaves,
+}
+
+/// One list's geometry, rank-major by item.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LodList {
+    /// Items per mass (16 cross-sections for stems, 4 leaves).
+    pub mass: usize,
+    /// Number of items (stem segments, or leaves).
+    pub items: usize,
+    /// Triangle indices into the tree's bark (stems) or leaf (leaves) vertices, item after item
+    /// in rank-major order.
+    pub indices: Vec<u32>,
+    /// `indices` used by the first k items: `index_prefix[k]`, k = 0..=items.
+    pub index_prefix: Vec<u32>,
+    /// Stems: two points per item, the segment's axis. Leaves: one point per item, its centre.
+    pub points: Vec<[f32; 3]>,
+    /// Mean stem diameter of the items (0 for leaves), metres.
+    pub diameter: f32,
+    /// Mean item length: segment length, or leaf length, metres.
+    pub length: f32,
+}
+
+/// A tree stored for drawing at any range.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LodTree {
+    /// Vertices (and the full-detail indices) of bark and leaves.
+    pub mesh: TreeMesh,
+    /// Trunk, branches, twigs, leaves.
+    pub lists: [LodList; 4],
+}
+
+/// What to draw of one list: ranges into its buffers.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ListDraw {
+    /// Range of [`LodList::indices`] to draw as triangles.
+    pub triangles: Range<u32>,
+    /// Range of [`LodList::points`] to draw: as a line list for stems, as points for leaves.
+    pub points: Range<u32>,
+}
+
+impl ListDraw {
+    /// Primitives drawn: triangles + lines (or points).
+    pub fn primitives(&self, is_leaves: bool) -> usize {
+        let tris = (self.triangles.end - self.triangles.start) as usize / 3;
+        let pts = (self.points.end - self.points.start) as usize;
+        tris + if is_leaves { pts } else { pts / 2 }
+    }
+}
+
+/// How a camera sees: picture height in pixels and vertical field of view in degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Viewer {
+    /// Picture height, pixels.
+    pub image_height: f32,
+    /// Vertical field of view, degrees.
+    pub fov_y: f32,
+    /// The paper's quality factor: 1 normal; 2 keeps detail twice as far.
+    pub quality: f32,
+}
+
+impl Viewer {
+    /// The paper's calibrated range: `range * 1000 / image_height * fov_y / 60`, the range at
+    /// which a 1000-pixel, 60-degree picture would show the same detail.
+    pub fn calibrated_range(&self, range: f32) -> f32 {
+        range * 1000.0 / self.image_height * self.fov_y / 60.0
+    }
+
+    /// Pixels covered by one metre at `range` metres (times the quality factor).
+    pub fn pixels_per_metre(&self, range: f32) -> f32 {
+        self.quality * self.image_height
+            / (2.0 * range.max(1e-3) * (self.fov_y.to_radians() / 2.0).tan())
+    }
+}
+
+/// Below this projected diameter (pixels) no stem is drawn as a mesh; above `MESH_FULL` all are.
+const MESH_NONE: f32 = 0.5;
+const MESH_FULL: f32 = 1.5;
+/// A stem segment becomes a line as its projected area (diameter x length) grows from
+/// `LINE_NONE` to `LINE_FULL` square pixels: a sub-pixel stem drawn as a 1-pixel line covers far
+/// more than itself, so thin short segments drop out first (calibrated on the paper's figure:
+/// a 100,000-facet tree at 2 km as about 30 lines).
+const LINE_NONE: f32 = 0.001;
+const LINE_FULL: f32 = 0.02;
+/// Leaves are polygons from `POLY_NONE` pixels long, all of them from `POLY_FULL`.
+const POLY_NONE: f32 = 2.0;
+const POLY_FULL: f32 = 4.0;
+/// Leaves shown as points per pixel of leaf length below full size (calibrated on the paper's
+/// figure: a 100,000-facet tree at 2 km as about 1000 points).
+const POINTS_PER_PIXEL: f32 = 0.6;
+
+fn ramp(v: f32, lo: f32, hi: f32) -> f32 {
+    ((v - lo) / (hi - lo)).clamp(0.0, 1.0)
+}
+
+impl LodList {
+    /// The x (0..=mass) of meshes and of all drawn items at `range`, from projected sizes.
+    pub fn levels_of_detail(&self, leaves: bool, range: f32, viewer: &Viewer) -> (f64, f64) {
+        let px = viewer.pixels_per_metre(range);
+        let m = self.mass as f32;
+        let (mesh, drawn) = if leaves {
+            let len = self.length * px;
+            // Polygons while a leaf spans a few pixels; points for the rest, their number
+            // falling with the leaf's projected size so that the crown's density holds.
+            (
+                m * ramp(len, POLY_NONE, POLY_FULL),
+                m * (POINTS_PER_PIXEL * len).min(1.0),
+            )
+        } else {
+            // Meshes while a stem is wider than about a pixel, lines below, until the segment's
+            // projected area is too small to matter.
+            let (d, l) = (self.diameter * px, self.length * px);
+            (
+                m * ramp(d, MESH_NONE, MESH_FULL),
+                m * ramp(d * l, LINE_NONE, LINE_FULL),
+            )
+        };
+        (mesh as f64, mesh.max(drawn) as f64)
+    }
+
+    /// Draw ranges for a range.
+    pub fn select(&self, leaves: bool, range: f32, viewer: &Viewer) -> ListDraw {
+        let (x_mesh, x_drawn) = self.levels_of_detail(leaves, range, viewer);
+        let meshed = prefix_len(self.items, self.mass, x_mesh);
+        let drawn = prefix_len(self.items, self.mass, x_drawn).max(meshed);
+        let per_item = if leaves { 1 } else { 2 };
+        ListDraw {
+            triangles: 0..self.index_prefix[meshed],
+            points: (meshed * per_item) as u32..(drawn * per_item) as u32,
+        }
+    }
+}
+
+impl LodTree {
+    /// Builds the rank-major lists of a tree.
+    pub fn build(skeleton: &Skeleton, options: &MeshOptions) -> Self {
+        let mut mesh = TreeMesh::default();
+        crate::mesh::mesh_leaves_into(skeleton, &mut mesh.leaves);
+        let mut segments = Vec::new();
+        mesh_stems_by_segment(skeleton, options, &mut mesh.bark, &mut segments);
+        let mut lists: [LodList; 4] = Default::default();
+        for (kind, list) in lists.iter_mut().enumerate().take(3) {
+            let items: Vec<_> = segments
+                .iter()
+                .filter(|s| {
+                    let level = skeleton.stems[s.stem as usize].level as usize;
+                    level.min(2) == kind
+                })
+                .collect();
+            list.mass = STEM_MASS;
+            list.items = items.len();
+            let (mut dsum, mut lsum) = (0.0f64, 0.0f64);
+            for s in &items {
+                let secs = skeleton.sections_of(crate::StemId(s.stem));
+                let (a, b) = (secs[s.section as usize], secs[s.section as usize + 1]);
+                dsum += (a.radius + b.radius) as f64;
+                lsum += a.position.distance(b.position) as f64;
+            }
+            let n = items.len().max(1) as f64;
+            list.diameter = (dsum / n) as f32;
+            list.length = (lsum / n) as f32;
+            list.index_prefix.push(0);
+            for &i in &rank_major(items.len(), STEM_MASS) {
+                let s = items[i as usize];
+                list.indices.extend_from_slice(
+                    &mesh.bark.indices[s.indices.start as usize..s.indices.end as usize],
+                );
+                list.index_prefix.push(list.indices.len() as u32);
+                let secs = skeleton.sections_of(crate::StemId(s.stem));
+                list.points
+                    .push(secs[s.section as usize].position.to_array());
+                list.points
+                    .push(secs[s.section as usize + 1].position.to_array());
+            }
+        }
+        let leaves = &mut lists[3];
+        leaves.mass = LEAF_MASS;
+        leaves.items = skeleton.leaves.len();
+        let per_leaf: Vec<usize> = skeleton
+            .leaves
+            .iter()
+            .map(|l| crate::mesh::leaf_template(l.shape).indices.len())
+            .collect();
+        let mut starts = Vec::with_capacity(per_leaf.len() + 1);
+        starts.push(0usize);
+        for n in &per_leaf {
+            starts.push(starts.last().copied().unwrap_or(0) + n);
+        }
+        leaves.length = skeleton.leaves.iter().map(|l| l.length).sum::<f32>()
+            / skeleton.leaves.len().max(1) as f32;
+        leaves.index_prefix.push(0);
+        for &i in &rank_major(skeleton.leaves.len(), LEAF_MASS) {
+            let i = i as usize;
+            leaves
+                .indices
+                .extend_from_slice(&mesh.leaves.indices[starts[i]..starts[i + 1]]);
+            leaves.index_prefix.push(leaves.indices.len() as u32);
+            let l = &skeleton.leaves[i];
+            let centre = l.position + l.orientation * glam::Vec3::new(0.0, 0.0, l.length / 2.0);
+            leaves.points.push(centre.to_array());
+        }
+        Self { mesh, lists }
+    }
+
+    /// Draw ranges of the four lists at `range` metres.
+    pub fn select(&self, range: f32, viewer: &Viewer) -> [ListDraw; 4] {
+        std::array::from_fn(|i| self.lists[i].select(i == 3, range, viewer))
+    }
+
+    /// Triangles, lines and points drawn at `range`.
+    pub fn counts(&self, range: f32, viewer: &Viewer) -> LodCounts {
+        let draws = self.select(range, viewer);
+        let mut c = LodCounts::default();
+        for (i, d) in draws.iter().enumerate() {
+            c.triangles += (d.triangles.end - d.triangles.start) as usize / 3;
+            let n = (d.points.end - d.points.start) as usize;
+            if i == 3 {
+                c.points += n;
+            } else {
+                c.lines += n / 2;
+            }
+        }
+        c
+    }
+}
+
+/// Primitives drawn at one range.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LodCounts {
+    /// Triangles (stem meshes and leaf polygons).
+    pub triangles: usize,
+    /// Lines (stem axes).
+    pub lines: usize,
+    /// Points (leaves).
+    pub points: usize,
+}
+
+#[cfg(test)]
+mod tests;

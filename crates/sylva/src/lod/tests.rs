@@ -1,0 +1,157 @@
+use super::order::paper_loop;
+use super::*;
+use crate::{GenerateOptions, generate, species::builtin};
+
+const PAPER: Viewer = Viewer {
+    image_height: 1000.0,
+    fov_y: 60.0,
+    quality: 1.0,
+};
+
+fn lod(id: &str, quality: f64) -> LodTree {
+    let p = builtin(id).unwrap();
+    let sk = generate(
+        &p,
+        &GenerateOptions {
+            seed: 1,
+            quality,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    LodTree::build(&sk, &MeshOptions { quality })
+}
+
+#[test]
+fn calibrated_range_matches_the_paper() {
+    assert_eq!(PAPER.calibrated_range(2000.0), 2000.0);
+    let tele = Viewer {
+        image_height: 500.0,
+        fov_y: 15.0,
+        quality: 1.0,
+    };
+    assert!((tele.calibrated_range(2000.0) - 1000.0).abs() < 1e-3);
+}
+
+#[test]
+fn near_trees_draw_everything_as_meshes() {
+    let t = lod("quaking_aspen", 1.0);
+    let full = t.mesh.bark.indices.len() + t.mesh.leaves.indices.len();
+    let draws = t.select(5.0, &PAPER);
+    let drawn: u32 = draws.iter().map(|d| d.triangles.end).sum();
+    assert_eq!(drawn as usize, full, "all triangles at 5 m");
+    assert!(draws.iter().all(|d| d.points.is_empty()));
+    // Lists hold exactly the mesh's triangles, reordered.
+    for (i, list) in t.lists.iter().enumerate() {
+        let source = if i == 3 {
+            &t.mesh.leaves.indices
+        } else {
+            &t.mesh.bark.indices
+        };
+        assert_eq!(
+            *list.index_prefix.last().unwrap() as usize,
+            list.indices.len()
+        );
+        let mut a = list.indices.clone();
+        a.sort_unstable();
+        assert!(a.iter().all(|&v| (v as usize)
+            < if i == 3 {
+                t.mesh.leaves.vertex_count()
+            } else {
+                t.mesh.bark.vertex_count()
+            }));
+        let _ = source;
+    }
+    let total: usize = t.lists[..3].iter().map(|l| l.indices.len()).sum();
+    assert_eq!(total, t.mesh.bark.indices.len());
+}
+
+#[test]
+fn each_level_of_detail_is_the_papers_set_of_items() {
+    let t = lod("black_tupelo", 0.5);
+    for range in [20.0, 80.0, 300.0, 1000.0, 3000.0] {
+        for (i, list) in t.lists.iter().enumerate() {
+            let leaves = i == 3;
+            let (x_mesh, _) = list.levels_of_detail(leaves, range, &PAPER);
+            let d = list.select(leaves, range, &PAPER);
+            // The meshed items (a prefix of the rank-major list) are the paper's loop's items.
+            let meshed = list
+                .index_prefix
+                .iter()
+                .position(|&p| p == d.triangles.end)
+                .unwrap();
+            let mut from_prefix: Vec<usize> = order::rank_major(list.items, list.mass)[..meshed]
+                .iter()
+                .map(|&v| v as usize)
+                .collect();
+            from_prefix.sort_unstable();
+            let mut loop_items = paper_loop(list.items, list.mass, x_mesh);
+            loop_items.sort_unstable();
+            assert_eq!(from_prefix.len(), loop_items.len(), "list {i} at {range} m");
+            assert_eq!(from_prefix, loop_items, "list {i} at {range} m");
+        }
+    }
+}
+
+#[test]
+fn receding_changes_counts_one_item_per_mass_at_most() {
+    let t = lod("quaking_aspen", 1.0);
+    let mut previous: Option<[ListDraw; 4]> = None;
+    let mut range = 10.0f32;
+    while range < 3000.0 {
+        let now = t.select(range, &PAPER);
+        if let Some(prev) = &previous {
+            for (i, (a, b)) in prev.iter().zip(&now).enumerate() {
+                let list = &t.lists[i];
+                let masses = list.items.div_ceil(list.mass) as i64;
+                let items = |d: &ListDraw| {
+                    list.index_prefix
+                        .iter()
+                        .position(|&p| p == d.triangles.end)
+                        .unwrap() as i64
+                };
+                assert!(items(b) <= items(a), "meshes grow as the camera recedes");
+                assert!(
+                    items(a) - items(b) <= masses,
+                    "list {i}: mesh count jumped at {range} m"
+                );
+                let per = if i == 3 { 1 } else { 2 };
+                let drawn = |d: &ListDraw| (d.points.end / per) as i64;
+                assert!(
+                    drawn(a) - drawn(b) <= masses && drawn(b) <= drawn(a),
+                    "list {i}: drawn count jumped at {range} m"
+                );
+            }
+        }
+        previous = Some(now);
+        range *= 1.01;
+    }
+}
+
+#[test]
+fn a_100k_facet_tree_at_2_km_is_about_30_lines_and_1000_points() {
+    // The quaking aspen at quality 0.6 is about 100,000 facets.
+    let t = lod("quaking_aspen", 0.6);
+    let facets = t.mesh.triangle_count();
+    assert!((70_000..=140_000).contains(&facets), "{facets} facets");
+    let c = t.counts(2000.0, &PAPER);
+    assert!((15..=60).contains(&c.lines), "{c:?}");
+    assert!((500..=2000).contains(&c.points), "{c:?}");
+    assert!(c.triangles < 100, "{c:?}");
+}
+
+#[test]
+fn counts_fall_with_range() {
+    let t = lod("quaking_aspen", 0.6);
+    let mut previous = usize::MAX;
+    for range in [10.0, 30.0, 100.0, 300.0, 1000.0, 2000.0, 3000.0] {
+        let c = t.counts(range, &PAPER);
+        let total = c.triangles + c.lines + c.points;
+        eprintln!("{range:>6} m: {c:?}");
+        assert!(
+            total <= previous,
+            "{range} m: {total} primitives, more than nearer"
+        );
+        previous = total;
+    }
+}
