@@ -192,4 +192,8 @@ pub struct BenchArgs {
     /// Also time rendering (1280x720 frames) and regeneration after a parameter change.
     #[arg(long)]
     pub render: bool,
+
+    /// Also report range degradation: primitives per frame from 10 m to 3 km, selection cost.
+    #[arg(long)]
+    pub lod: bool,
 }
