@@ -115,12 +115,66 @@ impl View {
 pub struct GpuTree {
     bark: GpuMesh,
     leaves: GpuMesh,
+    /// Rank-major lists for drawing at range (trees uploaded with [`Renderer::upload_lod`]).
+    lod: Option<GpuLod>,
     /// Lowest corner of the tree's bounds (metres, Z up).
     pub lo: Vec3,
     /// Highest corner.
     pub hi: Vec3,
     /// Triangles uploaded (bark + leaves).
     pub triangles: usize,
+}
+
+/// The GPU side of a [`sylva::lod::LodTree`]: per list, rank-major triangle indices (into the
+/// bark or leaf vertices) and line/point positions; the CPU keeps only what choosing needs.
+#[derive(Debug)]
+struct GpuLod {
+    indices: [wgpu::Buffer; 4],
+    points: [wgpu::Buffer; 4],
+    /// The lists without their big buffers: enough to choose draw ranges.
+    choice: [sylva::lod::LodList; 4],
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Primitive {
+    Triangles,
+    Lines,
+    Points,
+}
+
+/// One draw call: a range of indexed triangles, or of line/point vertices.
+struct Draw<'a> {
+    primitive: Primitive,
+    vertices: &'a wgpu::Buffer,
+    indices: Option<&'a wgpu::Buffer>,
+    range: std::ops::Range<u32>,
+    material: &'a wgpu::BindGroup,
+}
+
+impl<'a> Draw<'a> {
+    fn mesh(mesh: &'a GpuMesh, range: std::ops::Range<u32>, material: &'a wgpu::BindGroup) -> Self {
+        Self {
+            primitive: Primitive::Triangles,
+            vertices: &mesh.vertices,
+            indices: Some(&mesh.indices),
+            range,
+            material,
+        }
+    }
+
+    fn record(&self, pass: &mut wgpu::RenderPass<'_>) {
+        if self.range.is_empty() {
+            return;
+        }
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        match self.indices {
+            Some(indices) => {
+                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(self.range.clone(), 0, 0..1);
+            }
+            None => pass.draw(self.range.clone(), 0..1),
+        }
+    }
 }
 
 #[derive(Debug)]
@@ -147,6 +201,9 @@ pub struct Scene<'a> {
     pub show_person: bool,
     /// Unit vector towards the sun.
     pub sun: Vec3,
+    /// Degrade the tree with range (Weber & Penn section 5) when it was uploaded with
+    /// [`Renderer::upload_lod`]: meshes become lines and points as it recedes.
+    pub use_lod: bool,
 }
 
 impl<'a> Scene<'a> {
@@ -160,6 +217,7 @@ impl<'a> Scene<'a> {
             show_ground: true,
             show_person: true,
             sun: Vec3::new(-0.45, -0.6, 0.66).normalize(),
+            use_lod: true,
         }
     }
 
@@ -253,6 +311,8 @@ pub struct Renderer {
     queue: wgpu::Queue,
     target_format: wgpu::TextureFormat,
     pipeline: wgpu::RenderPipeline,
+    line_pipeline: wgpu::RenderPipeline,
+    point_pipeline: wgpu::RenderPipeline,
     shadow_pipeline: wgpu::RenderPipeline,
     globals: wgpu::Buffer,
     globals_group: wgpu::BindGroup,
@@ -418,6 +478,47 @@ impl Renderer {
             multiview_mask: None,
             cache: None,
         });
+        let flat = |topology, label| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some("vs_flat"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(wgpu::VertexBufferLayout {
+                        array_stride: 12,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+                    })],
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: SAMPLES,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some("fs_flat"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(target_format.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let line_pipeline = flat(wgpu::PrimitiveTopology::LineList, "lines");
+        let point_pipeline = flat(wgpu::PrimitiveTopology::PointList, "points");
         let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("shadow"),
             layout: Some(&shadow_layout),
@@ -507,6 +608,8 @@ impl Renderer {
             target_format,
             shadow_group,
             pipeline,
+            line_pipeline,
+            point_pipeline,
             shadow_pipeline,
             globals,
             globals_group,
@@ -586,10 +689,53 @@ impl Renderer {
         GpuTree {
             bark: self.upload_mesh("bark", &mesh.bark),
             leaves: self.upload_mesh("leaves", &mesh.leaves),
+            lod: None,
             lo,
             hi,
             triangles: mesh.triangle_count(),
         }
+    }
+
+    /// Uploads a tree stored for range degradation: drawn whole up close, and as fewer
+    /// meshes, lines and points as it recedes (when the scene's `use_lod` is on).
+    pub fn upload_lod(&self, lod: &sylva::lod::LodTree) -> GpuTree {
+        let mut tree = self.upload(&lod.mesh);
+        let buffer = |label, contents: &[u8], usage| {
+            // wgpu refuses empty buffers: keep 12 zero bytes for an empty list.
+            let contents = if contents.is_empty() {
+                &[0u8; 12][..]
+            } else {
+                contents
+            };
+            self.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage,
+                })
+        };
+        tree.lod = Some(GpuLod {
+            indices: std::array::from_fn(|i| {
+                buffer(
+                    "lod indices",
+                    bytemuck::cast_slice(&lod.lists[i].indices),
+                    wgpu::BufferUsages::INDEX,
+                )
+            }),
+            points: std::array::from_fn(|i| {
+                buffer(
+                    "lod points",
+                    bytemuck::cast_slice(&lod.lists[i].points),
+                    wgpu::BufferUsages::VERTEX,
+                )
+            }),
+            choice: std::array::from_fn(|i| sylva::lod::LodList {
+                indices: Vec::new(),
+                points: Vec::new(),
+                ..lod.lists[i].clone()
+            }),
+        });
+        tree
     }
 
     fn material(&self, colour: [f32; 3], kind: f32) -> wgpu::BindGroup {
@@ -625,6 +771,7 @@ impl Renderer {
         resolve: &wgpu::TextureView,
         depth: &wgpu::TextureView,
         azimuth: f32,
+        height: u32,
     ) {
         let (lo, hi) = scene.bounds(azimuth);
         let centre = (lo + hi) / 2.0;
@@ -654,12 +801,59 @@ impl Renderer {
         let leaves = self.material(scene.leaves, 1.0);
         let ground_mat = self.material(GROUND_SRGB, 2.0);
         let person_mat = self.material(PERSON_SRGB, 0.0);
-        let mut draws: Vec<(&GpuMesh, &wgpu::BindGroup)> = vec![(&scene.tree.bark, &bark)];
-        if scene.show_leaves {
-            draws.push((&scene.tree.leaves, &leaves));
+        let tree = scene.tree;
+        let whole = |mesh: &'_ GpuMesh| 0..mesh.count;
+        let mut draws: Vec<Draw> = Vec::new();
+        match (&tree.lod, scene.use_lod) {
+            (Some(lod), true) => {
+                // The tree's range from the camera, and the picture it lands in, choose what of
+                // each list is drawn (Weber & Penn section 5).
+                let range = camera.eye.distance((tree.lo + tree.hi) / 2.0);
+                let viewer = sylva::lod::Viewer {
+                    image_height: height as f32,
+                    fov_y: camera.fov_y.to_degrees(),
+                    quality: 1.0,
+                };
+                for (i, list) in lod.choice.iter().enumerate() {
+                    let is_leaves = i == 3;
+                    if is_leaves && !scene.show_leaves {
+                        continue;
+                    }
+                    let pick = list.select(is_leaves, range, &viewer);
+                    let (vertices, material) = if is_leaves {
+                        (&tree.leaves, &leaves)
+                    } else {
+                        (&tree.bark, &bark)
+                    };
+                    draws.push(Draw {
+                        primitive: Primitive::Triangles,
+                        vertices: &vertices.vertices,
+                        indices: Some(&lod.indices[i]),
+                        range: pick.triangles,
+                        material,
+                    });
+                    draws.push(Draw {
+                        primitive: if is_leaves {
+                            Primitive::Points
+                        } else {
+                            Primitive::Lines
+                        },
+                        vertices: &lod.points[i],
+                        indices: None,
+                        range: pick.points,
+                        material,
+                    });
+                }
+            }
+            _ => {
+                draws.push(Draw::mesh(&tree.bark, whole(&tree.bark), &bark));
+                if scene.show_leaves {
+                    draws.push(Draw::mesh(&tree.leaves, whole(&tree.leaves), &leaves));
+                }
+            }
         }
         if scene.show_person {
-            draws.push((&person_gpu, &person_mat));
+            draws.push(Draw::mesh(&person_gpu, whole(&person_gpu), &person_mat));
         }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -679,16 +873,13 @@ impl Renderer {
             });
             pass.set_pipeline(&self.shadow_pipeline);
             pass.set_bind_group(0, &self.shadow_group, &[]);
-            for (mesh, _) in &draws {
-                if mesh.count > 0 {
-                    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                    pass.draw_indexed(0..mesh.count, 0, 0..1);
-                }
+            // Lines and points are too thin to cast a visible shadow.
+            for d in draws.iter().filter(|d| d.primitive == Primitive::Triangles) {
+                d.record(&mut pass);
             }
         }
         if scene.show_ground {
-            draws.push((&ground_gpu, &ground_mat));
+            draws.push(Draw::mesh(&ground_gpu, whole(&ground_gpu), &ground_mat));
         }
         let sky = linear(SKY_SRGB);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -719,15 +910,15 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.globals_group, &[]);
-        for (mesh, material) in &draws {
-            if mesh.count > 0 {
-                pass.set_bind_group(1, *material, &[]);
-                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..mesh.count, 0, 0..1);
-            }
+        for d in &draws {
+            pass.set_pipeline(match d.primitive {
+                Primitive::Triangles => &self.pipeline,
+                Primitive::Lines => &self.line_pipeline,
+                Primitive::Points => &self.point_pipeline,
+            });
+            pass.set_bind_group(1, d.material, &[]);
+            d.record(&mut pass);
         }
     }
 
@@ -778,6 +969,7 @@ impl Renderer {
             resolve,
             &depth,
             view.azimuth,
+            height,
         );
         self.queue.submit([encoder.finish()]);
     }
@@ -827,6 +1019,7 @@ impl Renderer {
             &resolve,
             &depth,
             view.azimuth,
+            height,
         );
         encoder.copy_texture_to_buffer(
             texture.as_image_copy(),

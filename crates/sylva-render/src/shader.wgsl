@@ -103,3 +103,25 @@ fn fs_main(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f
     }
     return vec4<f32>(lit, 1.0);
 }
+
+// Lines (stem axes) and points (leaves) for trees seen from afar: no normals, so they take the
+// sky light and an average share of the sun.
+struct FlatOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) light_clip: vec4<f32>,
+};
+
+@vertex
+fn vs_flat(@location(0) position: vec3<f32>) -> FlatOut {
+    var out: FlatOut;
+    out.clip = g.view_proj * vec4<f32>(position, 1.0);
+    out.light_clip = g.light_view_proj * vec4<f32>(position, 1.0);
+    return out;
+}
+
+@fragment
+fn fs_flat(in: FlatOut) -> @location(0) vec4<f32> {
+    let sun = g.sun_color.rgb * sunlit(in.light_clip) * 0.45;
+    let lit = m.color.rgb * (g.sky_color.rgb * 0.7 + sun);
+    return vec4<f32>(lit, 1.0);
+}

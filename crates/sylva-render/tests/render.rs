@@ -182,3 +182,93 @@ fn rendering_is_repeatable_and_sizes_are_checked() {
     );
     assert!(r.render(&scene, &view, 8, 150).is_err());
 }
+
+#[test]
+fn a_far_tree_with_lod_looks_like_the_full_tree() {
+    let r = renderer();
+    let p = builtin("black_tupelo").unwrap();
+    let sk = generate(
+        &p,
+        &GenerateOptions {
+            seed: 2,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let lod = sylva::lod::LodTree::build(&sk, &MeshOptions::default());
+    let gpu = r.upload_lod(&lod);
+    let mut scene = bare(&gpu, &p);
+    // Far away: the camera eight times the framing distance back, the tree about 60 px tall.
+    let mut view = View::named(ViewKind::Front);
+    view.zoom = 0.125;
+    let (w, h) = (240, 480);
+    scene.use_lod = true;
+    let with = r.render(&scene, &view, w, h).unwrap();
+    scene.use_lod = false;
+    let without = r.render(&scene, &view, w, h).unwrap();
+    // What the LOD drew at that range.
+    let cam = scene.camera(&view, w as f32 / h as f32);
+    let range = cam.eye.distance((gpu.lo + gpu.hi) / 2.0);
+    let viewer = sylva::lod::Viewer {
+        image_height: h as f32,
+        fov_y: view.fov_y,
+        quality: 1.0,
+    };
+    let c = lod.counts(range, &viewer);
+    let drawn = c.triangles + c.lines + c.points;
+    assert!(
+        drawn * 5 < lod.mesh.triangle_count(),
+        "{c:?} of {} triangles",
+        lod.mesh.triangle_count()
+    );
+    // Same silhouette size and colour within a small tolerance.
+    let ((_, _, _, _), n_with) = silhouette(&with);
+    let ((_, _, _, _), n_without) = silhouette(&without);
+    let ratio = n_with as f32 / n_without as f32;
+    assert!(
+        (0.6..=1.6).contains(&ratio),
+        "silhouette {n_with} vs {n_without} pixels"
+    );
+    // The tree's own pixels: same mean colour within a small tolerance.
+    let tree_colour = |p: &Picture| {
+        let mut sum = [0f64; 3];
+        let mut n = 0f64;
+        for y in 0..p.height {
+            for x in 0..p.width {
+                let px = p.pixel(x, y);
+                if !is_sky(px) {
+                    (0..3).for_each(|i| sum[i] += px[i] as f64);
+                    n += 1.0;
+                }
+            }
+        }
+        sum.map(|c| c / n)
+    };
+    let (a, b) = (tree_colour(&with), tree_colour(&without));
+    let lum = |c: [f64; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    assert!(
+        (lum(a) / lum(b) - 1.0).abs() < 0.12,
+        "mean tree colour {a:?} with LOD vs {b:?}"
+    );
+    assert!(
+        (0..3).all(|i| (a[i] - b[i]).abs() < 20.0),
+        "mean tree colour {a:?} with LOD vs {b:?}"
+    );
+    let mean = lum(a) - lum(b);
+    // Side by side, for looking at.
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let mut sheet = vec![0u8; (w * 2 * h * 4) as usize];
+    for y in 0..h as usize {
+        let row = w as usize * 4;
+        sheet[y * 2 * row..y * 2 * row + row].copy_from_slice(&with.rgba[y * row..(y + 1) * row]);
+        sheet[y * 2 * row + row..(y + 1) * 2 * row]
+            .copy_from_slice(&without.rgba[y * row..(y + 1) * row]);
+    }
+    let path = dir.join("lod-side-by-side.rgba");
+    std::fs::write(&path, &sheet).unwrap();
+    eprintln!(
+        "LOD {c:?} vs {} triangles; luminance difference {mean:.1}; {}",
+        lod.mesh.triangle_count(),
+        path.display()
+    );
+}
