@@ -20,6 +20,8 @@ pub enum Command {
     Species(SpeciesCommand),
     /// Render a tree (species, species file or GLB) to a PNG: lit, shadowed, with a 1.8 m person.
     Render(RenderArgs),
+    /// Plant a forest: many trees of several species, generated in parallel, as one GLB.
+    Forest(ForestArgs),
     /// Open the interactive editor: every parameter live, orbit camera, wind, load/save/export.
     View(ViewArgs),
     /// Time generation and meshing of the paper's four appendix species.
@@ -148,6 +150,42 @@ pub struct RenderArgs {
     /// Output PNG.
     #[arg(short, long, value_name = "FILE.png", help_heading = "Output")]
     pub output: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct ForestArgs {
+    /// Species, comma-separated (built-in names or species files).
+    #[arg(long, value_delimiter = ',', required = true)]
+    pub species: Vec<String>,
+
+    /// Number of trees.
+    #[arg(long, default_value_t = 100)]
+    pub count: u32,
+
+    /// Size of the plot, metres (width along X, depth along Y), centred on the origin.
+    #[arg(long, default_value = "100x100", value_name = "WxD")]
+    pub area: String,
+
+    /// Random seed of the whole forest.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+
+    /// Distinct trees per species, shared by instances turned and scaled at random; 0 makes
+    /// every tree unique.
+    #[arg(long, default_value_t = 4)]
+    pub variants: u32,
+
+    /// Detail of each tree (leaf count and mesh resolution); forests usually need less than 1.
+    #[arg(long, default_value_t = 0.5)]
+    pub quality: f64,
+
+    /// Output GLB.
+    #[arg(short, long, value_name = "FILE.glb")]
+    pub output: PathBuf,
+
+    /// Print the summary as one JSON object.
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(Args, Debug)]

@@ -17,6 +17,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Species(SpeciesCommand::Show { name, toml }) => species_show(&name, toml),
         Command::Render(args) => crate::render::render(&args),
         Command::View(args) => crate::viewer::run(&args),
+        Command::Forest(args) => crate::forest::forest(&args),
         Command::Bench(args) => bench(&args),
     }
 }

@@ -2,6 +2,7 @@
 
 mod args;
 mod commands;
+mod forest;
 mod render;
 mod viewer;
 

@@ -184,10 +184,50 @@ fn material(name: &str, colour: [f32; 4], double_sided: bool, roughness: f32) ->
     }
 }
 
+/// One placed copy of a mesh in a scene: where it stands (metres, Z up), its turn about the
+/// vertical (radians) and its uniform scale.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance {
+    /// Index into the scene's meshes.
+    pub mesh: usize,
+    /// Base of the tree, metres, Z up.
+    pub position: [f32; 3],
+    /// Turn about the vertical, radians.
+    pub turn: f32,
+    /// Uniform scale.
+    pub scale: f32,
+}
+
 /// Encodes a tree mesh as GLB bytes. `name` names the node and mesh.
 pub fn to_glb(mesh: &TreeMesh, name: &str, materials: &Materials) -> Result<Vec<u8>, ExportError> {
-    if mesh.bark.indices.is_empty() && mesh.leaves.indices.is_empty() {
+    let instance = Instance {
+        mesh: 0,
+        position: [0.0; 3],
+        turn: 0.0,
+        scale: 1.0,
+    };
+    to_glb_scene(&[(name, mesh, *materials)], &[instance])
+}
+
+/// Encodes a scene: each mesh once (bark and leaf primitives with their materials), and one
+/// node per instance referring to it, so a forest of K variants stores K meshes however many
+/// trees it has. Instance nodes get Y-up translations and rotations about Y.
+pub fn to_glb_scene(
+    meshes: &[(&str, &TreeMesh, Materials)],
+    instances: &[Instance],
+) -> Result<Vec<u8>, ExportError> {
+    if meshes
+        .iter()
+        .all(|(_, m, _)| m.bark.indices.is_empty() && m.leaves.indices.is_empty())
+    {
         return Err(ExportError::Format("the mesh is empty".into()));
+    }
+    if let Some(bad) = instances.iter().find(|i| i.mesh >= meshes.len()) {
+        return Err(ExportError::Format(format!(
+            "instance of mesh {} but the scene has {}",
+            bad.mesh,
+            meshes.len()
+        )));
     }
     let mut b = Builder {
         root: json::Root::default(),
@@ -206,43 +246,61 @@ pub fn to_glb(mesh: &TreeMesh, name: &str, materials: &Materials) -> Result<Vec<
         extensions: None,
         extras: Default::default(),
     });
-    let mut primitives = Vec::new();
-    if !mesh.bark.indices.is_empty() {
-        let m = b.root.push(material("bark", materials.bark, false, 0.95));
-        primitives.push(b.primitive(&mesh.bark, m));
-    }
-    if !mesh.leaves.indices.is_empty() {
-        let m = b.root.push(material("leaves", materials.leaves, true, 0.6));
-        primitives.push(b.primitive(&mesh.leaves, m));
+    let mut gltf_meshes = Vec::with_capacity(meshes.len());
+    for (name, mesh, materials) in meshes {
+        let mut primitives = Vec::new();
+        if !mesh.bark.indices.is_empty() {
+            let m = b.root.push(material("bark", materials.bark, false, 0.95));
+            primitives.push(b.primitive(&mesh.bark, m));
+        }
+        if !mesh.leaves.indices.is_empty() {
+            let m = b.root.push(material("leaves", materials.leaves, true, 0.6));
+            primitives.push(b.primitive(&mesh.leaves, m));
+        }
+        gltf_meshes.push(b.root.push(json::Mesh {
+            extensions: None,
+            extras: Default::default(),
+            name: Some((*name).into()),
+            primitives,
+            weights: None,
+        }));
     }
     while !b.bin.len().is_multiple_of(4) {
         b.bin.push(0);
     }
     b.root.buffers[0].byte_length = USize64::from(b.bin.len());
-    let gltf_mesh = b.root.push(json::Mesh {
-        extensions: None,
-        extras: Default::default(),
-        name: Some(name.into()),
-        primitives,
-        weights: None,
-    });
-    let node = b.root.push(json::Node {
-        mesh: Some(gltf_mesh),
-        name: Some(name.into()),
-        ..Default::default()
-    });
+    let mut nodes = Vec::with_capacity(instances.len());
+    for inst in instances {
+        let identity = inst.position == [0.0; 3] && inst.turn == 0.0 && inst.scale == 1.0;
+        let (s, c) = (inst.turn / 2.0).sin_cos();
+        let p = inst.position;
+        nodes.push(b.root.push(json::Node {
+            mesh: Some(gltf_meshes[inst.mesh]),
+            name: Some(meshes[inst.mesh].0.into()),
+            translation: (!identity).then(|| super::y_up(p)),
+            // A turn about Z (up) in the model is a turn about Y (up) in the file.
+            rotation: (!identity).then_some(json::scene::UnitQuaternion([0.0, s, 0.0, c])),
+            scale: (!identity).then_some([inst.scale; 3]),
+            ..Default::default()
+        }));
+    }
     let scene = b.root.push(json::Scene {
         extensions: None,
         extras: Default::default(),
         name: Some("scene".into()),
-        nodes: vec![node],
+        nodes,
     });
     b.root.scene = Some(scene);
+    finish(b)
+}
+
+/// Packs the JSON and binary chunks into a GLB file.
+fn finish(b: Builder) -> Result<Vec<u8>, ExportError> {
     let mut json_bytes = b
         .root
         .to_vec()
         .map_err(|e| ExportError::Format(e.to_string()))?;
-    while json_bytes.len() % 4 != 0 {
+    while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');
     }
     let total = 12 + 8 + json_bytes.len() + 8 + b.bin.len();
