@@ -28,12 +28,9 @@ pub enum Command {
     Bench(BenchArgs),
 }
 
+/// How to grow the tree: flags shared by `generate` and `render`.
 #[derive(Args, Debug)]
-pub struct GenerateArgs {
-    /// Built-in species name (see `sylva species list`), a Sylva .toml file or an Arbaro .xml file.
-    #[arg(help_heading = "Input")]
-    pub species: String,
-
+pub struct TreeArgs {
     /// Override a parameter, e.g. `--set 1Branches=30` (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE", help_heading = "Input")]
     pub set: Vec<String>,
@@ -53,6 +50,29 @@ pub struct GenerateArgs {
     /// Leave the leaves off.
     #[arg(long, help_heading = "Generation")]
     pub no_leaves: bool,
+}
+
+impl TreeArgs {
+    /// The generation options these flags ask for (calm air, default budget).
+    pub fn options(&self) -> sylva::GenerateOptions {
+        sylva::GenerateOptions {
+            seed: self.seed,
+            max_levels: self.levels,
+            quality: self.quality,
+            leaves: !self.no_leaves,
+            ..Default::default()
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct GenerateArgs {
+    /// Built-in species name (see `sylva species list`), a Sylva .toml file or an Arbaro .xml file.
+    #[arg(help_heading = "Input")]
+    pub species: String,
+
+    #[command(flatten)]
+    pub tree: TreeArgs,
 
     /// Stop with an error if the mesh would exceed this many triangles.
     #[arg(
@@ -86,25 +106,9 @@ pub struct RenderArgs {
     #[arg(help_heading = "Input")]
     pub input: String,
 
-    /// Override a parameter, e.g. `--set 1Branches=30` (repeatable; not for .glb input).
-    #[arg(long = "set", value_name = "NAME=VALUE", help_heading = "Input")]
-    pub set: Vec<String>,
-
-    /// Random seed.
-    #[arg(long, default_value_t = 0, help_heading = "Generation")]
-    pub seed: u64,
-
-    /// Show only stem levels below K (1 = trunk only): design a tree level by level.
-    #[arg(long, value_name = "K", help_heading = "Generation")]
-    pub levels: Option<u32>,
-
-    /// Detail: scales leaf count (1/size) and mesh ring resolution.
-    #[arg(long, default_value_t = 1.0, help_heading = "Generation")]
-    pub quality: f64,
-
-    /// Leave the leaves off.
-    #[arg(long, help_heading = "Generation")]
-    pub no_leaves: bool,
+    /// Generation flags (ignored for .glb input).
+    #[command(flatten)]
+    pub tree: TreeArgs,
 
     /// Wind speed (the paper's units: 50 doubles the base sway).
     #[arg(long, default_value_t = 0.0, help_heading = "Wind")]

@@ -10,6 +10,25 @@ use sylva::params::{PARAMS, format_value};
 use sylva::preview::{PreviewOptions, View, render_preview};
 use sylva::{GenerateOptions, TreeParams};
 
+/// The paper's four appendix species: the benchmark set.
+const APPENDIX_SPECIES: [&str; 4] = [
+    "quaking_aspen",
+    "black_tupelo",
+    "weeping_willow",
+    "ca_black_oak",
+];
+
+/// Fastest of `runs` timings of `f`, milliseconds (the least disturbed by a shared machine).
+fn fastest_ms(runs: u32, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
+    let mut best = f64::MAX;
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        f()?;
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    Ok(best * 1e3)
+}
+
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Generate(args) => generate(&args),
@@ -87,23 +106,19 @@ fn generate(args: &GenerateArgs) -> Result<()> {
             png.display()
         );
     }
-    let params = load_params(&args.species, &args.set)?;
+    let params = load_params(&args.species, &args.tree.set)?;
     let options = GenerateOptions {
-        seed: args.seed,
-        max_levels: args.levels,
-        quality: args.quality,
-        leaves: !args.no_leaves,
         max_triangles: args.max_triangles,
-        ..Default::default()
+        ..args.tree.options()
     };
-    if args.levels == Some(0) {
+    if args.tree.levels == Some(0) {
         bail!("--levels 0: expected 1 (trunk only) or more");
     }
     let t0 = Instant::now();
     let skeleton = sylva::generate(&params, &options)?;
     let generate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let t1 = Instant::now();
-    let mesh = mesh_tree(&skeleton, &mesh_options(&params, args.quality));
+    let mesh = mesh_tree(&skeleton, &mesh_options(&params, args.tree.quality));
     let mesh_ms = t1.elapsed().as_secs_f64() * 1e3;
     if mesh.triangle_count() as u64 > args.max_triangles {
         bail!(
@@ -127,7 +142,7 @@ fn generate(args: &GenerateArgs) -> Result<()> {
     if args.json {
         let summary = serde_json::json!({
             "species": params.name,
-            "seed": args.seed,
+            "seed": args.tree.seed,
             "stems_per_level": stats.stems_per_level,
             "leaves": stats.leaves,
             "vertices": mesh.vertex_count(),
@@ -197,7 +212,7 @@ fn print_summary(
         .iter()
         .map(|n| n.to_string())
         .collect();
-    println!("{} (seed {})", params.name, args.seed);
+    println!("{} (seed {})", params.name, args.tree.seed);
     println!("  stems per level  {}", levels.join(" / "));
     println!("  leaves           {}", stats.leaves);
     println!("  height           {:.2} m", stats.height);
@@ -270,55 +285,47 @@ fn bench(args: &BenchArgs) -> Result<()> {
         "species", "triangles", "cold ms", "gen ms", "mesh ms", "warm ms", "Mtri/s", "x copy"
     );
     let mut tupelo_ms = None;
-    for id in [
-        "quaking_aspen",
-        "black_tupelo",
-        "weeping_willow",
-        "ca_black_oak",
-    ] {
+    for id in APPENDIX_SPECIES {
         let params = sylva::species::builtin(id).context("built-in species")?;
         let options = GenerateOptions::default();
         let mesh_opts = mesh_options(&params, 1.0);
-        let best = |f: &mut dyn FnMut()| {
-            (0..runs)
-                .map(|_| {
-                    let t = Instant::now();
-                    f();
-                    t.elapsed().as_secs_f64()
-                })
-                .fold(f64::MAX, f64::min)
-        };
         // Cold: fresh buffers every time, as a one-shot command line run.
-        let cold = best(&mut || {
-            let skeleton = sylva::generate(&params, &options).expect("built-in species generate");
+        let cold = fastest_ms(runs, || {
+            let skeleton = sylva::generate(&params, &options)?;
             std::hint::black_box(mesh_tree(&skeleton, &mesh_opts));
-        });
+            Ok(())
+        })?;
         // Warm: buffers reused across runs, as an editor regenerating on every change.
         let mut skeleton = sylva::Skeleton::default();
         let mut mesh = TreeMesh::default();
-        let gen_s = best(&mut || {
-            sylva::generate_into(&params, &options, &mut skeleton)
-                .expect("built-in species generate");
-        });
-        let mesh_s = best(&mut || sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh));
+        let gen_ms = fastest_ms(runs, || {
+            Ok(sylva::generate_into(&params, &options, &mut skeleton)?)
+        })?;
+        let mesh_ms = fastest_ms(runs, || {
+            sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh);
+            Ok(())
+        })?;
         // Baseline, same run: copying the finished mesh's buffers into warm buffers.
         let mut copy = TreeMesh::default();
-        let copy_s = best(&mut || copy.clone_from(&mesh));
-        let warm = gen_s + mesh_s;
+        let copy_ms = fastest_ms(runs, || {
+            copy.clone_from(&mesh);
+            Ok(())
+        })?;
+        let warm = gen_ms + mesh_ms;
         let triangles = mesh.triangle_count();
         if id == "black_tupelo" {
-            tupelo_ms = Some(warm * 1e3);
+            tupelo_ms = Some(warm);
         }
         println!(
             "{:<15} {:>9} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>8.1} {:>7.1}",
             id,
             triangles,
-            cold * 1e3,
-            gen_s * 1e3,
-            mesh_s * 1e3,
-            warm * 1e3,
-            triangles as f64 / warm / 1e6,
-            warm / copy_s
+            cold,
+            gen_ms,
+            mesh_ms,
+            warm,
+            triangles as f64 / warm / 1e3,
+            warm / copy_ms
         );
     }
     println!(
@@ -407,19 +414,10 @@ fn bench_render(runs: u32) -> Result<()> {
     use sylva_render::{Renderer, Scene, View, ViewKind};
     let renderer = Renderer::new_headless()?;
     let view = View::named(ViewKind::Front);
-    let time = |f: &mut dyn FnMut() -> Result<()>| -> Result<f64> {
-        let mut best = f64::MAX;
-        for _ in 0..runs {
-            let t = Instant::now();
-            f()?;
-            best = best.min(t.elapsed().as_secs_f64());
-        }
-        Ok(best * 1e3)
-    };
     // Baseline in the same run: a frame of an empty tree (ground, person, shadow pass, readback).
     let empty = renderer.upload(&TreeMesh::default());
     let empty_scene = Scene::new(&empty, [0.5; 3], [0.5; 3]);
-    let base = time(&mut || {
+    let base = fastest_ms(runs, || {
         renderer.render(&empty_scene, &view, 1280, 720)?;
         Ok(())
     })?;
@@ -436,12 +434,7 @@ fn bench_render(runs: u32) -> Result<()> {
         "{:<15} {:>9} {:>10} {:>9.1} {:>9.1}",
         "(empty)", 0, "-", base, 1.0
     );
-    for id in [
-        "quaking_aspen",
-        "black_tupelo",
-        "weeping_willow",
-        "ca_black_oak",
-    ] {
+    for id in APPENDIX_SPECIES {
         let params = sylva::species::builtin(id).context("built-in species")?;
         let mesh = mesh_tree(
             &sylva::generate(&params, &GenerateOptions::default())?,
@@ -451,7 +444,7 @@ fn bench_render(runs: u32) -> Result<()> {
         let tree = renderer.upload(&mesh);
         let upload = t.elapsed().as_secs_f64() * 1e3;
         let scene = Scene::new(&tree, params.bark_color, params.leaf_color);
-        let frame = time(&mut || {
+        let frame = fastest_ms(runs, || {
             renderer.render(&scene, &view, 1280, 720)?;
             Ok(())
         })?;
@@ -473,7 +466,7 @@ fn bench_render(runs: u32) -> Result<()> {
     sylva::generate_into(&params, &options, &mut skeleton)?;
     sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh);
     let mut angle = params.level[1].down_angle;
-    let edit = time(&mut || {
+    let edit = fastest_ms(runs, || {
         angle = if angle > 60.0 { 55.0 } else { angle + 1.0 };
         params.level[1].down_angle = angle;
         sylva::generate_into(&params, &options, &mut skeleton)?;

@@ -187,19 +187,18 @@ impl TreeSource {
             TreeSource::Glb(g) => Ok(g.mesh.clone()),
             TreeSource::Species(params) => {
                 let options = GenerateOptions {
-                    seed: args.seed,
-                    max_levels: args.levels,
-                    quality: args.quality,
-                    leaves: !args.no_leaves,
                     wind: Wind {
                         speed: args.wind,
                         gust: args.gust,
                         time,
                     },
-                    ..Default::default()
+                    ..args.tree.options()
                 };
                 let skeleton = sylva::generate(params, &options)?;
-                Ok(mesh_tree(&skeleton, &mesh_options(params, args.quality)))
+                Ok(mesh_tree(
+                    &skeleton,
+                    &mesh_options(params, args.tree.quality),
+                ))
             }
         }
     }
@@ -251,7 +250,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let source = if is_glb {
         TreeSource::Glb(Box::new(read_glb(Path::new(&args.input))?))
     } else {
-        TreeSource::Species(Box::new(load_params(&args.input, &args.set)?))
+        TreeSource::Species(Box::new(load_params(&args.input, &args.tree.set)?))
     };
     let colours = source.colours();
     for frame in 0..frames {
@@ -259,7 +258,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         let mesh = source.mesh_at(args, time)?;
         let tree = renderer.upload(&mesh);
         let mut scene = Scene::new(&tree, colours.0, colours.1);
-        scene.show_leaves = !args.no_leaves;
+        scene.show_leaves = !args.tree.no_leaves;
         scene.show_ground = !args.bare;
         scene.show_person = !args.bare;
         let base = view_of(args.view);

@@ -294,6 +294,24 @@ pub const SKY_SRGB: [f32; 3] = [0.80, 0.87, 0.94];
 const GROUND_SRGB: [f32; 3] = [0.55, 0.52, 0.45];
 const PERSON_SRGB: [f32; 3] = [0.35, 0.38, 0.45];
 
+/// Depth test and write shared by every pipeline (the shadow pass adds a slope bias).
+fn depth_test(bias: wgpu::DepthBiasState) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Less),
+        stencil: Default::default(),
+        bias,
+    }
+}
+
+/// Multisampling of every colour pass.
+const MSAA: wgpu::MultisampleState = wgpu::MultisampleState {
+    count: SAMPLES,
+    mask: !0,
+    alpha_to_coverage_enabled: false,
+};
+
 fn linear(c: [f32; 3]) -> [f32; 4] {
     let l = |c: f32| {
         if c <= 0.04045 {
@@ -458,17 +476,8 @@ impl Renderer {
                 cull_mode: None,
                 ..Default::default()
             },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: SAMPLES,
-                ..Default::default()
-            },
+            depth_stencil: Some(depth_test(Default::default())),
+            multisample: MSAA,
             fragment: Some(wgpu::FragmentState {
                 module: &shader,
                 entry_point: Some("fs_main"),
@@ -496,17 +505,8 @@ impl Renderer {
                     topology,
                     ..Default::default()
                 },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: SAMPLES,
-                    ..Default::default()
-                },
+                depth_stencil: Some(depth_test(Default::default())),
+                multisample: MSAA,
                 fragment: Some(wgpu::FragmentState {
                     module: &shader,
                     entry_point: Some("fs_flat"),
@@ -532,17 +532,11 @@ impl Renderer {
                 cull_mode: None,
                 ..Default::default()
             },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: wgpu::DepthBiasState {
-                    constant: 2,
-                    slope_scale: 2.0,
-                    clamp: 0.0,
-                },
-            }),
+            depth_stencil: Some(depth_test(wgpu::DepthBiasState {
+                constant: 2,
+                slope_scale: 2.0,
+                clamp: 0.0,
+            })),
             multisample: Default::default(),
             fragment: None,
             multiview_mask: None,
