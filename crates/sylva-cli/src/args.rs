@@ -102,7 +102,8 @@ pub struct GenerateArgs {
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Built-in species, a .toml or Arbaro .xml species file, or a .glb written by `sylva generate`.
+    /// Built-in species, a .toml or Arbaro .xml species file, a .glb written by `sylva generate`
+    /// or `sylva forest`, or a forest file (.toml with a `[forest]` table).
     #[arg(help_heading = "Input")]
     pub input: String,
 
@@ -151,6 +152,41 @@ pub struct RenderArgs {
     #[arg(long, help_heading = "Rendering")]
     pub bare: bool,
 
+    /// Forests: camera distance from the forest's centre, metres, along the --view direction
+    /// (default: frame the whole forest).
+    #[arg(long, value_name = "METRES", help_heading = "Forest")]
+    pub range: Option<f32>,
+
+    /// Forests: camera position X,Y,Z in metres (Z up), with --target.
+    #[arg(
+        long,
+        value_name = "X,Y,Z",
+        value_delimiter = ',',
+        num_args = 3,
+        requires = "target",
+        help_heading = "Forest"
+    )]
+    pub eye: Option<Vec<f32>>,
+
+    /// Forests: the point the camera looks at, X,Y,Z in metres.
+    #[arg(
+        long,
+        value_name = "X,Y,Z",
+        value_delimiter = ',',
+        num_args = 3,
+        requires = "eye",
+        help_heading = "Forest"
+    )]
+    pub target: Option<Vec<f32>>,
+
+    /// Forests: range degradation on, off, or both side by side with their primitive counts.
+    #[arg(long, value_enum, default_value_t = LodMode::On, help_heading = "Forest")]
+    pub lod: LodMode,
+
+    /// Vertical field of view, degrees.
+    #[arg(long, default_value_t = 30.0, help_heading = "Rendering")]
+    pub fov: f32,
+
     /// Output PNG.
     #[arg(short, long, value_name = "FILE.png", help_heading = "Output")]
     pub output: PathBuf,
@@ -158,8 +194,13 @@ pub struct RenderArgs {
 
 #[derive(Args, Debug)]
 pub struct ForestArgs {
+    /// A forest file (a `[forest]` table of species, count, area, seed, variants, quality)
+    /// instead of the flags below.
+    #[arg(value_name = "FOREST.toml")]
+    pub file: Option<PathBuf>,
+
     /// Species, comma-separated (built-in names or species files).
-    #[arg(long, value_delimiter = ',', required = true)]
+    #[arg(long, value_delimiter = ',', required_unless_present = "file")]
     pub species: Vec<String>,
 
     /// Number of trees.
@@ -201,6 +242,16 @@ pub struct ViewArgs {
     /// Scripted run for tests: screenshot, edit a parameter, screenshot, write a report into DIR, close.
     #[arg(long, value_name = "DIR", hide = true)]
     pub self_test: Option<PathBuf>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LodMode {
+    /// Trees degrade with range (Weber & Penn section 5).
+    On,
+    /// Every tree at full detail.
+    Off,
+    /// Both, side by side, from the same camera.
+    Compare,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

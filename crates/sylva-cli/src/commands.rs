@@ -358,7 +358,7 @@ fn bench_lod() -> Result<()> {
         fov_y: 60.0,
         quality: 1.0,
     };
-    let full = lod.mesh.triangle_count();
+    let full = lod.triangle_count();
     println!();
     println!(
         "range degradation, black_tupelo ({full} triangles), 1000-pixel picture, 60 degree lens"

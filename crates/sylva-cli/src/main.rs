@@ -1,9 +1,11 @@
 //! The `sylva` command: generate, export and inspect trees.
 
 mod args;
+mod caption;
 mod commands;
 mod forest;
 mod render;
+mod render_forest;
 mod viewer;
 
 use clap::Parser;

@@ -163,6 +163,7 @@ fn contact_sheet(pictures: &[Picture]) -> Picture {
         width: cols * w,
         height: rows * h,
         rgba,
+        stats: Default::default(),
     }
 }
 
@@ -245,6 +246,14 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         bail!("wind needs the species, not a finished .glb: render the species instead");
     }
     let renderer = Renderer::new_headless()?;
+    if crate::forest::is_forest_file(Path::new(&args.input)) {
+        return crate::render_forest::render_forest(
+            args,
+            &renderer,
+            view_of(args.view),
+            (width, height),
+        );
+    }
     // One tree per frame: a GLB as it is, a species regenerated for each moment of the wind.
     let frames = args.frames.unwrap_or(1);
     let source = if is_glb {
@@ -261,13 +270,16 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         scene.show_leaves = !args.tree.no_leaves;
         scene.show_ground = !args.bare;
         scene.show_person = !args.bare;
-        let base = view_of(args.view);
+        let mut base = view_of(args.view);
+        base.fov_y = args.fov;
         let picture = match args.turntable {
             Some(n) => {
                 let views: Result<Vec<Picture>> = (0..n)
                     .map(|i| {
-                        let view =
-                            View::orbit(base.azimuth + 360.0 * i as f32 / n as f32, base.elevation);
+                        let view = View {
+                            azimuth: base.azimuth + 360.0 * i as f32 / n as f32,
+                            ..base
+                        };
                         Ok(renderer.render(&scene, &view, width, height)?)
                     })
                     .collect();

@@ -42,6 +42,9 @@ pub struct Camera {
     pub fov_y: f32,
     /// Width / height of the picture.
     pub aspect: f32,
+    /// Distance to the far clipping plane, metres; `None`: from the eye-target distance, for
+    /// cameras framing one tree.
+    pub far: Option<f32>,
 }
 
 impl Camera {
@@ -92,6 +95,7 @@ impl Camera {
             target: centre,
             fov_y,
             aspect,
+            far: None,
         }
     }
 
@@ -105,12 +109,12 @@ impl Camera {
         };
         let view = look_at_mat4(self.eye, self.target, up);
         let distance = self.eye.distance(self.target);
-        let proj = directx::perspective(
-            self.fov_y,
-            self.aspect,
-            (distance * 0.01).max(0.01),
-            distance * 20.0 + 100.0,
-        );
+        let (near, far) = match self.far {
+            // A 32-bit float depth buffer keeps a 1:100,000 near:far ratio free of fighting.
+            Some(far) => ((far * 1e-5).max(0.02), far),
+            None => ((distance * 0.01).max(0.01), distance * 20.0 + 100.0),
+        };
+        let proj = directx::perspective(self.fov_y, self.aspect, near, far);
         proj * view
     }
 

@@ -19,9 +19,11 @@
 
 mod camera;
 mod props;
+mod scene;
 
 pub use camera::{Camera, ViewKind};
 pub use props::{PERSON_HEIGHT, PropMesh, Vertex, ground, person};
+pub use scene::{FrameStats, Placement, Scene, Stand, View};
 
 // WebGPU's clip space (y up, depth 0..1) is glam's `directx` convention.
 use glam::Vec3;
@@ -66,6 +68,8 @@ pub struct Picture {
     pub height: u32,
     /// 4 bytes per pixel.
     pub rgba: Vec<u8>,
+    /// What was drawn.
+    pub stats: FrameStats,
 }
 
 impl Picture {
@@ -73,40 +77,6 @@ impl Picture {
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
         let i = ((y * self.width + x) * 4) as usize;
         [self.rgba[i], self.rgba[i + 1], self.rgba[i + 2]]
-    }
-}
-
-/// Where the camera is: a named view or an orbit, always framing the whole tree.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct View {
-    /// Degrees around the tree: 0 from the south, 90 from the east.
-    pub azimuth: f32,
-    /// Degrees above the horizon.
-    pub elevation: f32,
-    /// Vertical field of view, degrees.
-    pub fov_y: f32,
-    /// Zoom: 1 frames the tree; 2 is twice as close.
-    pub zoom: f32,
-    /// Pan of the look-at point, metres (viewer).
-    pub pan: Vec3,
-}
-
-impl View {
-    /// A named view with the default lens (30 degrees).
-    pub fn named(kind: ViewKind) -> Self {
-        let (azimuth, elevation) = kind.angles();
-        Self::orbit(azimuth, elevation)
-    }
-
-    /// An orbit view.
-    pub fn orbit(azimuth: f32, elevation: f32) -> Self {
-        Self {
-            azimuth,
-            elevation,
-            fov_y: 30.0,
-            zoom: 1.0,
-            pan: Vec3::ZERO,
-        }
     }
 }
 
@@ -142,39 +112,141 @@ enum Primitive {
     Points,
 }
 
-/// One draw call: a range of indexed triangles, or of line/point vertices.
+/// One draw call: a range of indexed triangles, or of line/point vertices, for a range of
+/// instances (tree copies; the props use instance 0, which stands at the origin).
 struct Draw<'a> {
     primitive: Primitive,
     vertices: &'a wgpu::Buffer,
     indices: Option<&'a wgpu::Buffer>,
     range: std::ops::Range<u32>,
+    /// What the shadow pass draws of the same buffers.
+    shadow: std::ops::Range<u32>,
+    instances: std::ops::Range<u32>,
     material: &'a wgpu::BindGroup,
 }
 
 impl<'a> Draw<'a> {
-    fn mesh(mesh: &'a GpuMesh, range: std::ops::Range<u32>, material: &'a wgpu::BindGroup) -> Self {
+    fn mesh(
+        mesh: &'a GpuMesh,
+        material: &'a wgpu::BindGroup,
+        instances: std::ops::Range<u32>,
+    ) -> Self {
         Self {
             primitive: Primitive::Triangles,
             vertices: &mesh.vertices,
             indices: Some(&mesh.indices),
-            range,
+            range: 0..mesh.count,
+            shadow: 0..mesh.count,
+            instances,
             material,
         }
     }
 
-    fn record(&self, pass: &mut wgpu::RenderPass<'_>) {
-        if self.range.is_empty() {
+    fn record(&self, pass: &mut wgpu::RenderPass<'_>, instances: &wgpu::Buffer) {
+        self.record_range(pass, instances, self.range.clone());
+    }
+
+    fn record_shadow(&self, pass: &mut wgpu::RenderPass<'_>, instances: &wgpu::Buffer) {
+        self.record_range(pass, instances, self.shadow.clone());
+    }
+
+    fn record_range(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        instances: &wgpu::Buffer,
+        range: std::ops::Range<u32>,
+    ) {
+        if range.is_empty() || self.instances.is_empty() {
             return;
         }
         pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_vertex_buffer(1, instances.slice(..));
         match self.indices {
             Some(indices) => {
                 pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(self.range.clone(), 0, 0..1);
+                pass.draw_indexed(range, 0, self.instances.clone());
             }
-            None => pass.draw(self.range.clone(), 0..1),
+            None => pass.draw(range, self.instances.clone()),
         }
     }
+
+    /// Primitives this draw makes.
+    fn primitives(&self) -> usize {
+        let n = self.range.len() * self.instances.len();
+        match self.primitive {
+            Primitive::Triangles => n / 3,
+            Primitive::Lines => n / 2,
+            Primitive::Points => n,
+        }
+    }
+}
+
+/// A copy of a tree as the vertex shader reads it: offset and scale, cos and sin of the turn.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct InstanceData {
+    place: [f32; 4],
+    turn: [f32; 2],
+    /// Lines and points: how many items each drawn one stands for (items not meshed / items
+    /// drawn flat), so that together they cover what the whole list would.
+    stands_for: [f32; 2],
+}
+
+impl From<&Placement> for InstanceData {
+    fn from(p: &Placement) -> Self {
+        let (s, c) = p.turn.sin_cos();
+        Self {
+            place: [p.position.x, p.position.y, p.position.z, p.scale],
+            turn: [c, s],
+            stands_for: [1.0, 0.0],
+        }
+    }
+}
+
+/// A line or point vertex: position, the size of what it stands for (stem diameter or blade
+/// area) and a unit direction for lighting (stem axis or blade normal).
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct FlatVertex {
+    position: [f32; 3],
+    size: f32,
+    normal: [i8; 4],
+}
+
+const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 3] = [
+    wgpu::VertexAttribute {
+        format: wgpu::VertexFormat::Float32x4,
+        offset: 0,
+        shader_location: 4,
+    },
+    wgpu::VertexAttribute {
+        format: wgpu::VertexFormat::Float32x2,
+        offset: 16,
+        shader_location: 5,
+    },
+    wgpu::VertexAttribute {
+        format: wgpu::VertexFormat::Float32x2,
+        offset: 24,
+        shader_location: 6,
+    },
+];
+
+const INSTANCE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<InstanceData>() as u64,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &INSTANCE_ATTRIBUTES,
+};
+
+/// The six planes of a view-projection's frustum (WebGPU depth 0..1), as `n.p + d >= 0` inside.
+fn frustum_planes(m: glam::Mat4) -> [glam::Vec4; 6] {
+    let (r0, r1, r2, r3) = (m.row(0), m.row(1), m.row(2), m.row(3));
+    [r3 + r0, r3 - r0, r3 + r1, r3 - r1, r2, r3 - r2].map(|p| p / p.truncate().length())
+}
+
+fn sphere_visible(planes: &[glam::Vec4; 6], centre: Vec3, radius: f32) -> bool {
+    planes
+        .iter()
+        .all(|p| p.truncate().dot(centre) + p.w >= -radius)
 }
 
 #[derive(Debug)]
@@ -182,87 +254,6 @@ struct GpuMesh {
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     count: u32,
-}
-
-/// What to draw.
-#[derive(Clone, Copy, Debug)]
-pub struct Scene<'a> {
-    /// The tree.
-    pub tree: &'a GpuTree,
-    /// Bark colour, sRGB 0..1.
-    pub bark: [f32; 3],
-    /// Leaf colour, sRGB 0..1.
-    pub leaves: [f32; 3],
-    /// Draw the leaves.
-    pub show_leaves: bool,
-    /// Draw the ground and its grid.
-    pub show_ground: bool,
-    /// Draw the 1.8 m person beside the tree.
-    pub show_person: bool,
-    /// Unit vector towards the sun.
-    pub sun: Vec3,
-    /// Degrade the tree with range (Weber & Penn section 5) when it was uploaded with
-    /// [`Renderer::upload_lod`]: meshes become lines and points as it recedes.
-    pub use_lod: bool,
-}
-
-impl<'a> Scene<'a> {
-    /// A scene with ground, person, leaves and an afternoon sun from the south-west.
-    pub fn new(tree: &'a GpuTree, bark: [f32; 3], leaves: [f32; 3]) -> Self {
-        Self {
-            tree,
-            bark,
-            leaves,
-            show_leaves: true,
-            show_ground: true,
-            show_person: true,
-            sun: Vec3::new(-0.45, -0.6, 0.66).normalize(),
-            use_lod: true,
-        }
-    }
-
-    /// Where the person stands for a camera at `azimuth` (degrees): just outside the crown, to
-    /// the camera's right and in the tree's picture plane, so it is never hidden behind it.
-    pub fn person_feet(&self, azimuth: f32) -> Vec3 {
-        let t = self.tree;
-        let a = azimuth.to_radians();
-        let right = Vec3::new(a.cos(), a.sin(), 0.0);
-        let centre = Vec3::new((t.lo.x + t.hi.x) / 2.0, (t.lo.y + t.hi.y) / 2.0, 0.0);
-        let half_width = (((t.hi.x - t.lo.x).abs() * right.x.abs()
-            + (t.hi.y - t.lo.y).abs() * right.y.abs())
-            / 2.0)
-            .max(0.5);
-        centre + right * (half_width + 0.6)
-    }
-
-    /// Bounds of what a camera at `azimuth` must frame: the tree and, when shown, the person.
-    pub fn bounds(&self, azimuth: f32) -> (Vec3, Vec3) {
-        let (mut lo, mut hi) = (self.tree.lo, self.tree.hi);
-        if self.show_person {
-            let f = self.person_feet(azimuth);
-            lo = lo.min(f - Vec3::new(0.3, 0.15, 0.0));
-            hi = hi.max(f + Vec3::new(0.3, 0.15, PERSON_HEIGHT));
-        }
-        (lo.min(Vec3::new(lo.x, lo.y, 0.0)), hi)
-    }
-
-    /// The camera for `view` in a picture of this aspect ratio.
-    pub fn camera(&self, view: &View, aspect: f32) -> Camera {
-        let (lo, hi) = self.bounds(view.azimuth);
-        let mut cam = Camera::framing(
-            lo,
-            hi,
-            view.azimuth,
-            view.elevation,
-            view.fov_y,
-            aspect,
-            0.05,
-        );
-        let zoom = view.zoom.max(0.01);
-        cam.eye = cam.target + (cam.eye - cam.target) / zoom + view.pan;
-        cam.target += view.pan;
-        cam
-    }
 }
 
 #[repr(C)]
@@ -275,6 +266,8 @@ struct Globals {
     sky_color: [f32; 4],
     ground_bounce: [f32; 4],
     shadow: [f32; 4],
+    /// xyz: the eye; w: pixels per metre at 1 m from it.
+    eye: [f32; 4],
 }
 
 #[repr(C)]
@@ -332,6 +325,8 @@ pub struct Renderer {
     line_pipeline: wgpu::RenderPipeline,
     point_pipeline: wgpu::RenderPipeline,
     shadow_pipeline: wgpu::RenderPipeline,
+    shadow_line_pipeline: wgpu::RenderPipeline,
+    shadow_point_pipeline: wgpu::RenderPipeline,
     globals: wgpu::Buffer,
     globals_group: wgpu::BindGroup,
     shadow_group: wgpu::BindGroup,
@@ -470,7 +465,7 @@ impl Renderer {
                 module: &shader,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
-                buffers: &[Some(vertex_layout.clone())],
+                buffers: &[Some(vertex_layout.clone()), Some(INSTANCE_LAYOUT)],
             },
             primitive: wgpu::PrimitiveState {
                 cull_mode: None,
@@ -487,6 +482,11 @@ impl Renderer {
             multiview_mask: None,
             cache: None,
         });
+        let flat_layout = wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<FlatVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32, 2 => Snorm8x4],
+        };
         let flat = |topology, label| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
@@ -495,17 +495,15 @@ impl Renderer {
                     module: &shader,
                     entry_point: Some("vs_flat"),
                     compilation_options: Default::default(),
-                    buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: 12,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-                    })],
+                    buffers: &[Some(flat_layout.clone()), Some(INSTANCE_LAYOUT)],
                 },
                 primitive: wgpu::PrimitiveState {
                     topology,
                     ..Default::default()
                 },
                 depth_stencil: Some(depth_test(Default::default())),
+                // A line or point covers as many of a pixel's samples as the stems or leaves it
+                // stands for would (the fragment shader writes the sample mask).
                 multisample: MSAA,
                 fragment: Some(wgpu::FragmentState {
                     module: &shader,
@@ -519,29 +517,55 @@ impl Renderer {
         };
         let line_pipeline = flat(wgpu::PrimitiveTopology::LineList, "lines");
         let point_pipeline = flat(wgpu::PrimitiveTopology::PointList, "points");
-        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shadow"),
-            layout: Some(&shadow_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_shadow"),
-                compilation_options: Default::default(),
-                buffers: &[Some(vertex_layout)],
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(depth_test(wgpu::DepthBiasState {
-                constant: 2,
-                slope_scale: 2.0,
-                clamp: 0.0,
-            })),
-            multisample: Default::default(),
-            fragment: None,
-            multiview_mask: None,
-            cache: None,
-        });
+        // Shadows of meshes, and of the lines and points that stand in for far stems and leaves.
+        let shadow = |entry, layout: &wgpu::VertexBufferLayout, topology| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("shadow"),
+                layout: Some(&shadow_layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(layout.clone()), Some(INSTANCE_LAYOUT)],
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology,
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                // Slope bias is for triangles only (WebGPU refuses it for lines and points).
+                depth_stencil: Some(depth_test(
+                    if topology == wgpu::PrimitiveTopology::TriangleList {
+                        wgpu::DepthBiasState {
+                            constant: 2,
+                            slope_scale: 2.0,
+                            clamp: 0.0,
+                        }
+                    } else {
+                        Default::default()
+                    },
+                )),
+                multisample: Default::default(),
+                fragment: None,
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let shadow_pipeline = shadow(
+            "vs_shadow",
+            &vertex_layout,
+            wgpu::PrimitiveTopology::TriangleList,
+        );
+        let shadow_line_pipeline = shadow(
+            "vs_shadow_flat",
+            &flat_layout,
+            wgpu::PrimitiveTopology::LineList,
+        );
+        let shadow_point_pipeline = shadow(
+            "vs_shadow_flat",
+            &flat_layout,
+            wgpu::PrimitiveTopology::PointList,
+        );
         let shadow_texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shadow map"),
             size: wgpu::Extent3d {
@@ -605,6 +629,8 @@ impl Renderer {
             line_pipeline,
             point_pipeline,
             shadow_pipeline,
+            shadow_line_pipeline,
+            shadow_point_pipeline,
             globals,
             globals_group,
             shadow_view,
@@ -694,6 +720,7 @@ impl Renderer {
     /// meshes, lines and points as it recedes (when the scene's `use_lod` is on).
     pub fn upload_lod(&self, lod: &sylva::lod::LodTree) -> GpuTree {
         let mut tree = self.upload(&lod.mesh);
+        tree.triangles = lod.triangle_count();
         let buffer = |label, contents: &[u8], usage| {
             // wgpu refuses empty buffers: keep 12 zero bytes for an empty list.
             let contents = if contents.is_empty() {
@@ -717,16 +744,38 @@ impl Renderer {
                 )
             }),
             points: std::array::from_fn(|i| {
+                let l = &lod.lists[i];
+                let snorm = |v: f32| (v.clamp(-1.0, 1.0) * 127.0).round() as i8;
+                let flat: Vec<FlatVertex> = l
+                    .points
+                    .iter()
+                    .zip(&l.sizes)
+                    .zip(&l.normals)
+                    .map(|((p, &size), n)| FlatVertex {
+                        position: *p,
+                        size,
+                        normal: [snorm(n[0]), snorm(n[1]), snorm(n[2]), 0],
+                    })
+                    .collect();
                 buffer(
                     "lod points",
-                    bytemuck::cast_slice(&lod.lists[i].points),
+                    bytemuck::cast_slice(&flat),
                     wgpu::BufferUsages::VERTEX,
                 )
             }),
-            choice: std::array::from_fn(|i| sylva::lod::LodList {
-                indices: Vec::new(),
-                points: Vec::new(),
-                ..lod.lists[i].clone()
+            choice: std::array::from_fn(|i| {
+                let l = &lod.lists[i];
+                sylva::lod::LodList {
+                    mass: l.mass,
+                    items: l.items,
+                    indices: Vec::new(),
+                    index_prefix: l.index_prefix.clone(),
+                    points: Vec::new(),
+                    sizes: Vec::new(),
+                    normals: Vec::new(),
+                    diameter: l.diameter,
+                    length: l.length,
+                }
             }),
         });
         tree
@@ -766,22 +815,28 @@ impl Renderer {
         depth: &wgpu::TextureView,
         azimuth: f32,
         height: u32,
-    ) {
+    ) -> FrameStats {
         let (lo, hi) = scene.bounds(azimuth);
         let centre = (lo + hi) / 2.0;
         let radius = ((hi - lo).length() / 2.0).max(0.5);
-        // The sun's view: orthographic over a disc of ground around the tree, where its shadow falls.
+        // The sun's view: orthographic over a disc of ground around the trees, where their
+        // shadows fall.
         let reach = radius * 2.2;
         let light_view = look_at_mat4(centre + scene.sun * radius * 4.0, centre, Vec3::Z);
         let light_proj = directx::orthographic(-reach, reach, -reach, reach, 0.1, radius * 8.0);
+        let view_proj = camera.view_proj();
         let globals = Globals {
-            view_proj: camera.view_proj().to_cols_array_2d(),
+            view_proj: view_proj.to_cols_array_2d(),
             light_view_proj: (light_proj * light_view).to_cols_array_2d(),
             sun_dir: scene.sun.normalize().extend(0.0).to_array(),
             sun_color: [2.6, 2.45, 2.2, 0.0],
             sky_color: [0.42, 0.5, 0.62, 0.0],
             ground_bounce: [0.18, 0.17, 0.14, 0.0],
             shadow: [1.0 / SHADOW_SIZE as f32, 0.0015, 0.0, 0.0],
+            eye: camera
+                .eye
+                .extend(height as f32 / (2.0 * (camera.fov_y / 2.0).tan()))
+                .to_array(),
         };
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
@@ -791,39 +846,67 @@ impl Renderer {
             self.upload_vertices("ground", &ground_mesh.vertices, &ground_mesh.indices);
         let person_gpu =
             self.upload_vertices("person", &person_mesh.vertices, &person_mesh.indices);
-        let bark = self.material(scene.bark, 0.0);
-        let leaves = self.material(scene.leaves, 1.0);
+        let materials: Vec<_> = scene
+            .stands
+            .iter()
+            .map(|s| (self.material(s.bark, 0.0), self.material(s.leaves, 1.0)))
+            .collect();
         let ground_mat = self.material(GROUND_SRGB, 2.0);
         let person_mat = self.material(PERSON_SRGB, 0.0);
-        let tree = scene.tree;
-        let whole = |mesh: &'_ GpuMesh| 0..mesh.count;
+        let planes = frustum_planes(view_proj);
+        let viewer = sylva::lod::Viewer {
+            image_height: height as f32,
+            fov_y: camera.fov_y.to_degrees(),
+            quality: scene.lod_quality,
+        };
+        // Instance 0 stands at the origin for the props; the trees' copies follow.
+        let mut instances = vec![InstanceData::from(&Placement::ORIGIN)];
+        let mut stats = FrameStats::default();
         let mut draws: Vec<Draw> = Vec::new();
-        match (&tree.lod, scene.use_lod) {
-            (Some(lod), true) => {
-                // The tree's range from the camera, and the picture it lands in, choose what of
-                // each list is drawn (Weber & Penn section 5).
-                let range = camera.eye.distance((tree.lo + tree.hi) / 2.0);
-                let viewer = sylva::lod::Viewer {
-                    image_height: height as f32,
-                    fov_y: camera.fov_y.to_degrees(),
-                    quality: 1.0,
+        for (stand, (bark, leaves)) in scene.stands.iter().zip(&materials) {
+            let tree = stand.tree;
+            stats.trees += stand.placements.len();
+            let first = instances.len() as u32;
+            for p in stand.placements.iter() {
+                let (c, r) = stand.sphere(p);
+                if !sphere_visible(&planes, c, r) {
+                    continue;
+                }
+                stats.trees_drawn += 1;
+                let Some(lod) = tree.lod.as_ref().filter(|_| scene.use_lod) else {
+                    instances.push(p.into());
+                    continue;
                 };
+                // Each copy's range, and the picture it lands in, choose what of each list is
+                // drawn (Weber & Penn section 5); a copy scaled up looks as the original nearer.
+                let range = camera.eye.distance(c) / p.scale.max(1e-3);
                 for (i, list) in lod.choice.iter().enumerate() {
                     let is_leaves = i == 3;
                     if is_leaves && !scene.show_leaves {
                         continue;
                     }
                     let pick = list.select(is_leaves, range, &viewer);
-                    let (vertices, material) = if is_leaves {
-                        (&tree.leaves, &leaves)
+                    // One instance entry per list: its lines or points stand for its items
+                    // that are neither meshed nor drawn.
+                    let index = instances.len() as u32;
+                    let per_item = if is_leaves { 1 } else { 2 };
+                    let flat = (list.items * per_item) as f32 - pick.points.start as f32;
+                    instances.push(InstanceData {
+                        stands_for: [flat / pick.points.len().max(1) as f32, 0.0],
+                        ..p.into()
+                    });
+                    let (mesh, material) = if is_leaves {
+                        (&tree.leaves, leaves)
                     } else {
-                        (&tree.bark, &bark)
+                        (&tree.bark, bark)
                     };
                     draws.push(Draw {
                         primitive: Primitive::Triangles,
-                        vertices: &vertices.vertices,
+                        vertices: &mesh.vertices,
                         indices: Some(&lod.indices[i]),
+                        shadow: pick.triangles.clone(),
                         range: pick.triangles,
+                        instances: index..index + 1,
                         material,
                     });
                     draws.push(Draw {
@@ -834,20 +917,71 @@ impl Renderer {
                         },
                         vertices: &lod.points[i],
                         indices: None,
+                        // Shadows of every leaf not meshed: points are cheap, and a crown
+                        // shading itself with only the drawn few would look too bright.
+                        shadow: if is_leaves {
+                            pick.points.start..list.items as u32
+                        } else {
+                            pick.points.clone()
+                        },
                         range: pick.points,
+                        instances: index..index + 1,
                         material,
                     });
                 }
             }
-            _ => {
-                draws.push(Draw::mesh(&tree.bark, whole(&tree.bark), &bark));
-                if scene.show_leaves {
-                    draws.push(Draw::mesh(&tree.leaves, whole(&tree.leaves), &leaves));
+            let copies = first..instances.len() as u32;
+            match (&tree.lod, scene.use_lod) {
+                (Some(_), true) => {}
+                (Some(lod), false) => {
+                    // Every list whole: one instanced draw per list for every visible copy.
+                    for (i, list) in lod.choice.iter().enumerate() {
+                        if i == 3 && !scene.show_leaves {
+                            continue;
+                        }
+                        let (mesh, material) = if i == 3 {
+                            (&tree.leaves, leaves)
+                        } else {
+                            (&tree.bark, bark)
+                        };
+                        draws.push(Draw {
+                            primitive: Primitive::Triangles,
+                            vertices: &mesh.vertices,
+                            indices: Some(&lod.indices[i]),
+                            range: 0..list.index_prefix.last().copied().unwrap_or(0),
+                            shadow: 0..list.index_prefix.last().copied().unwrap_or(0),
+                            instances: copies.clone(),
+                            material,
+                        });
+                    }
+                }
+                (None, _) => {
+                    // Whole meshes: one instanced draw per mesh for every visible copy.
+                    draws.push(Draw::mesh(&tree.bark, bark, copies.clone()));
+                    if scene.show_leaves {
+                        draws.push(Draw::mesh(&tree.leaves, leaves, copies));
+                    }
                 }
             }
         }
+        draws.retain(|d| !(d.instances.is_empty() || d.range.is_empty() && d.shadow.is_empty()));
+        for d in &draws {
+            stats.draw_calls += 1;
+            match d.primitive {
+                Primitive::Triangles => stats.triangles += d.primitives(),
+                Primitive::Lines => stats.lines += d.primitives(),
+                Primitive::Points => stats.points += d.primitives(),
+            }
+        }
+        let instance_buffer = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("instances"),
+                contents: bytemuck::cast_slice(&instances),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
         if scene.show_person {
-            draws.push(Draw::mesh(&person_gpu, whole(&person_gpu), &person_mat));
+            draws.push(Draw::mesh(&person_gpu, &person_mat, 0..1));
         }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -865,15 +999,20 @@ impl Renderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.shadow_pipeline);
             pass.set_bind_group(0, &self.shadow_group, &[]);
-            // Lines and points are too thin to cast a visible shadow.
-            for d in draws.iter().filter(|d| d.primitive == Primitive::Triangles) {
-                d.record(&mut pass);
+            // Far trees' lines and points cast shadows too, or a forest's shade would thin
+            // out with the camera's range.
+            for d in &draws {
+                pass.set_pipeline(match d.primitive {
+                    Primitive::Triangles => &self.shadow_pipeline,
+                    Primitive::Lines => &self.shadow_line_pipeline,
+                    Primitive::Points => &self.shadow_point_pipeline,
+                });
+                d.record_shadow(&mut pass, &instance_buffer);
             }
         }
         if scene.show_ground {
-            draws.push(Draw::mesh(&ground_gpu, whole(&ground_gpu), &ground_mat));
+            draws.push(Draw::mesh(&ground_gpu, &ground_mat, 0..1));
         }
         let sky = linear(SKY_SRGB);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -912,8 +1051,9 @@ impl Renderer {
                 Primitive::Points => &self.point_pipeline,
             });
             pass.set_bind_group(1, d.material, &[]);
-            d.record(&mut pass);
+            d.record(&mut pass, &instance_buffer);
         }
+        stats
     }
 
     /// Creates the multisampled colour and depth targets for a `width` x `height` picture.
@@ -951,11 +1091,11 @@ impl Renderer {
         resolve: &wgpu::TextureView,
         width: u32,
         height: u32,
-    ) {
+    ) -> FrameStats {
         let camera = scene.camera(view, width as f32 / height as f32);
         let (colour, depth) = self.targets(width, height);
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.encode(
+        let stats = self.encode(
             &mut encoder,
             scene,
             &camera,
@@ -966,6 +1106,7 @@ impl Renderer {
             height,
         );
         self.queue.submit([encoder.finish()]);
+        stats
     }
 
     /// Draws `scene` from `view` into a new picture of `width` x `height` pixels.
@@ -1005,7 +1146,7 @@ impl Renderer {
             mapped_at_creation: false,
         });
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.encode(
+        let stats = self.encode(
             &mut encoder,
             scene,
             &camera,
@@ -1057,6 +1198,7 @@ impl Renderer {
             width,
             height,
             rgba,
+            stats,
         })
     }
 }

@@ -11,6 +11,8 @@ struct Globals {
     ground_bounce: vec4<f32>,
     // x: shadow map texel size, y: depth bias
     shadow: vec4<f32>,
+    // xyz: the eye; w: pixels per metre at 1 m from it
+    eye: vec4<f32>,
 };
 
 struct Material {
@@ -29,6 +31,22 @@ struct VsIn {
     @location(1) normal: vec3<f32>,
 };
 
+// Where a copy of a tree stands: xyz offset and scale, then cos and sin of its turn about Z.
+struct Instance {
+    @location(4) place: vec4<f32>,
+    @location(5) turn: vec2<f32>,
+    // x: how many stems or leaves each line or point stands for
+    @location(6) stands_for: vec2<f32>,
+};
+
+fn turned(i: Instance, v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(i.turn.x * v.x - i.turn.y * v.y, i.turn.y * v.x + i.turn.x * v.y, v.z);
+}
+
+fn placed(i: Instance, p: vec3<f32>) -> vec3<f32> {
+    return i.place.xyz + i.place.w * turned(i, p);
+}
+
 struct VsOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
@@ -37,18 +55,19 @@ struct VsOut {
 };
 
 @vertex
-fn vs_main(v: VsIn) -> VsOut {
+fn vs_main(v: VsIn, i: Instance) -> VsOut {
     var out: VsOut;
-    out.clip = g.view_proj * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    out.normal = v.normal;
-    out.light_clip = g.light_view_proj * vec4<f32>(v.position, 1.0);
+    let world = placed(i, v.position);
+    out.clip = g.view_proj * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.normal = turned(i, v.normal);
+    out.light_clip = g.light_view_proj * vec4<f32>(world, 1.0);
     return out;
 }
 
 @vertex
-fn vs_shadow(v: VsIn) -> @builtin(position) vec4<f32> {
-    return g.light_view_proj * vec4<f32>(v.position, 1.0);
+fn vs_shadow(v: VsIn, i: Instance) -> @builtin(position) vec4<f32> {
+    return g.light_view_proj * vec4<f32>(placed(i, v.position), 1.0);
 }
 
 // Fraction of sunlight reaching a point: 3x3 percentage-closer filtering.
@@ -104,24 +123,93 @@ fn fs_main(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f
     return vec4<f32>(lit, 1.0);
 }
 
-// Lines (stem axes) and points (leaves) for trees seen from afar: no normals, so they take the
-// sky light and an average share of the sun.
+// Lines (stem axes) and points (leaves) for trees seen from afar. Each is lit like what it
+// replaces (a leaf by its normal, two-sided and translucent; a stem as a cylinder about its
+// axis) and covers, through alpha-to-coverage, the share of a pixel that its stems or leaves
+// would: a 1-pixel line for a 0.3-pixel twig lights about one sample in four.
 struct FlatOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) light_clip: vec4<f32>,
+    @location(1) world: vec3<f32>,
+    @location(2) direction: vec3<f32>,
+    // x: metres of size, y: items stood for, z: the copy's scale
+    @location(3) size: vec3<f32>,
 };
 
 @vertex
-fn vs_flat(@location(0) position: vec3<f32>) -> FlatOut {
+fn vs_flat(
+    @location(0) position: vec3<f32>,
+    @location(1) size: f32,
+    @location(2) direction: vec4<f32>,
+    i: Instance,
+) -> FlatOut {
     var out: FlatOut;
-    out.clip = g.view_proj * vec4<f32>(position, 1.0);
-    out.light_clip = g.light_view_proj * vec4<f32>(position, 1.0);
+    let world = placed(i, position);
+    out.clip = g.view_proj * vec4<f32>(world, 1.0);
+    out.light_clip = g.light_view_proj * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.direction = turned(i, direction.xyz);
+    out.size = vec3<f32>(size, i.stands_for.x, i.place.w);
     return out;
 }
 
+@vertex
+fn vs_shadow_flat(
+    @location(0) position: vec3<f32>,
+    i: Instance,
+) -> @builtin(position) vec4<f32> {
+    return g.light_view_proj * vec4<f32>(placed(i, position), 1.0);
+}
+
+struct FlatColour {
+    @location(0) colour: vec4<f32>,
+    @builtin(sample_mask) mask: u32,
+};
+
+// A well-mixed 32-bit hash (PCG output permutation).
+fn hash(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
 @fragment
-fn fs_flat(in: FlatOut) -> @location(0) vec4<f32> {
-    let sun = g.sun_color.rgb * sunlit(in.light_clip) * 0.45;
-    let lit = m.color.rgb * (g.sky_color.rgb * 0.7 + sun);
-    return vec4<f32>(lit, 1.0);
+fn fs_flat(in: FlatOut) -> FlatColour {
+    let l = g.sun_dir.xyz;
+    let sun = g.sun_color.rgb * sunlit(in.light_clip);
+    let base = m.color.rgb;
+    let to_eye = g.eye.xyz - in.world;
+    let pixels_per_metre = g.eye.w * in.size.z / max(length(to_eye), 1e-3);
+    var lit: vec3<f32>;
+    var cover: f32;
+    if (m.kind.x > 0.5) {
+        // A leaf: two-sided, facing the eye.
+        var n = normalize(in.direction);
+        if (dot(n, to_eye) < 0.0) {
+            n = -n;
+        }
+        let ndl = dot(n, l);
+        let hemi = mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.5 + 0.5 * n.z);
+        lit = base * (hemi + sun * max(ndl, 0.0) + sun * max(-ndl, 0.0) * 0.45);
+        cover = in.size.x * pixels_per_metre * pixels_per_metre * in.size.y;
+    } else {
+        // A stem: a cylinder about its axis, half of it towards the sun.
+        let t = normalize(in.direction);
+        let across = sqrt(max(1.0 - dot(t, l) * dot(t, l), 0.0));
+        lit = base * (mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.6) + sun * across * 0.5);
+        cover = in.size.x * pixels_per_metre * in.size.y;
+    }
+    // Cover that share of the pixel's 4 samples, chosen afresh for each line or point so that
+    // overlapping ones fill a pixel as the leaves they stand for would (one fixed pattern per
+    // share would let them all land on the same samples); the share is rounded up or down at
+    // random, so that on average it is exact.
+    let seed = hash(bitcast<u32>(in.world.x) ^ hash(bitcast<u32>(in.world.y) ^ hash(bitcast<u32>(in.world.z))));
+    let jitter = f32(seed & 0xffffu) / 65536.0;
+    let samples = u32(clamp(floor(cover * 4.0 + jitter), 0.0, 4.0));
+    let first = (seed >> 16u) & 3u;
+    let run = (1u << samples) - 1u;
+    var out: FlatColour;
+    out.colour = vec4<f32>(lit, 1.0);
+    out.mask = ((run << first) | (run >> (4u - first))) & 15u;
+    return out;
 }

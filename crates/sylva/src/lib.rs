@@ -25,6 +25,7 @@
 
 pub mod error;
 pub mod export;
+pub mod forest;
 pub mod lod;
 pub mod mesh;
 pub mod params;

@@ -39,6 +39,11 @@ pub struct LodList {
     pub index_prefix: Vec<u32>,
     /// Stems: two points per item, the segment's axis. Leaves: one point per item, its centre.
     pub points: Vec<[f32; 3]>,
+    /// Per point, what it stands for: the stem's diameter (metres) or the blade's area (square
+    /// metres), so that a renderer can give a line or point the coverage of what it replaces.
+    pub sizes: Vec<f32>,
+    /// Per point, a unit direction for lighting: the stem's axis, or the blade's normal.
+    pub normals: Vec<[f32; 3]>,
     /// Mean stem diameter of the items (0 for leaves), metres.
     pub diameter: f32,
     /// Mean item length: segment length, or leaf length, metres.
@@ -48,7 +53,8 @@ pub struct LodList {
 /// A tree stored for drawing at any range.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LodTree {
-    /// Vertices (and the full-detail indices) of bark and leaves.
+    /// Vertices of bark and leaves. Their index lists are left empty: the four rank-major
+    /// lists hold every triangle once ([`LodTree::full_mesh`] puts them back together).
     pub mesh: TreeMesh,
     /// Trunk, branches, twigs, leaves.
     pub lists: [LodList; 4],
@@ -158,6 +164,16 @@ impl LodList {
 impl LodTree {
     /// Builds the rank-major lists of a tree.
     pub fn build(skeleton: &Skeleton, options: &MeshOptions) -> Self {
+        let mut tree = Self::build_keeping_indices(skeleton, options);
+        // The lists hold the same triangles: keeping the mesh's own order too would double
+        // the biggest buffers of every tree.
+        tree.mesh.bark.indices = Vec::new();
+        tree.mesh.leaves.indices = Vec::new();
+        tree
+    }
+
+    /// [`LodTree::build`], keeping the mesh's own triangle order too (for tests).
+    pub(crate) fn build_keeping_indices(skeleton: &Skeleton, options: &MeshOptions) -> Self {
         let mut mesh = TreeMesh::default();
         crate::mesh::mesh_leaves_into(skeleton, &mut mesh.leaves);
         let mut segments = Vec::new();
@@ -191,10 +207,12 @@ impl LodTree {
                 );
                 list.index_prefix.push(list.indices.len() as u32);
                 let secs = skeleton.sections_of(crate::StemId(s.stem));
-                list.points
-                    .push(secs[s.section as usize].position.to_array());
-                list.points
-                    .push(secs[s.section as usize + 1].position.to_array());
+                let (a, b) = (secs[s.section as usize], secs[s.section as usize + 1]);
+                let axis = (b.position - a.position).normalize_or(glam::Vec3::Z);
+                list.points.push(a.position.to_array());
+                list.points.push(b.position.to_array());
+                list.sizes.extend([a.radius * 2.0, b.radius * 2.0]);
+                list.normals.extend([axis.to_array(); 2]);
             }
         }
         let leaves = &mut lists[3];
@@ -213,6 +231,10 @@ impl LodTree {
         leaves.length = skeleton.leaves.iter().map(|l| l.length).sum::<f32>()
             / skeleton.leaves.len().max(1) as f32;
         leaves.index_prefix.push(0);
+        let areas: Vec<f32> = crate::LeafShape::ALL
+            .iter()
+            .map(|&s| crate::mesh::leaf_template(s).area())
+            .collect();
         for &i in &rank_major(skeleton.leaves.len(), LEAF_MASS) {
             let i = i as usize;
             leaves
@@ -222,8 +244,78 @@ impl LodTree {
             let l = &skeleton.leaves[i];
             let centre = l.position + l.orientation * glam::Vec3::new(0.0, 0.0, l.length / 2.0);
             leaves.points.push(centre.to_array());
+            let shape = crate::LeafShape::ALL
+                .iter()
+                .position(|&s| s == l.shape)
+                .unwrap_or(0);
+            leaves.sizes.push(l.length * l.width * areas[shape]);
+            leaves
+                .normals
+                .push((l.orientation * glam::Vec3::Y).to_array());
         }
         Self { mesh, lists }
+    }
+
+    /// Triangles at full detail.
+    pub fn triangle_count(&self) -> usize {
+        self.lists.iter().map(|l| l.indices.len() / 3).sum()
+    }
+
+    /// Bytes this tree holds: vertices (position, normal, texture coordinate), the lists'
+    /// triangles, prefix table and line/point positions.
+    pub fn heap_bytes(&self) -> usize {
+        let vertices = self.mesh.vertex_count() * (12 + 12 + 8);
+        let lists: usize = self
+            .lists
+            .iter()
+            .map(|l| {
+                l.indices.len() * 4
+                    + l.index_prefix.len() * 4
+                    + l.points.len() * 12
+                    + l.sizes.len() * 4
+                    + l.normals.len() * 12
+            })
+            .sum();
+        vertices + lists + (self.mesh.bark.indices.len() + self.mesh.leaves.indices.len()) * 4
+    }
+
+    /// The tree as an ordinary mesh with the first `x[i]` items of every mass of list `i`
+    /// (meshes only: lines and points have no place in a triangle mesh). `[16, 16, 16, 4]`
+    /// (or more) gives the whole tree. Vertices no triangle uses are dropped.
+    pub fn mesh_at(&self, x: [f64; 4]) -> TreeMesh {
+        let mut out = TreeMesh::default();
+        for (i, list) in self.lists.iter().enumerate() {
+            let n = prefix_len(list.items, list.mass, x[i]);
+            let part = if i == 3 {
+                &mut out.leaves
+            } else {
+                &mut out.bark
+            };
+            part.indices
+                .extend_from_slice(&list.indices[..list.index_prefix[n] as usize]);
+        }
+        for (part, source) in [
+            (&mut out.bark, &self.mesh.bark),
+            (&mut out.leaves, &self.mesh.leaves),
+        ] {
+            let mut remap = vec![u32::MAX; source.positions.len()];
+            for index in part.indices.iter_mut() {
+                let old = *index as usize;
+                if remap[old] == u32::MAX {
+                    remap[old] = part.positions.len() as u32;
+                    part.positions.push(source.positions[old]);
+                    part.normals.push(source.normals[old]);
+                    part.uvs.push(source.uvs[old]);
+                }
+                *index = remap[old];
+            }
+        }
+        out
+    }
+
+    /// The whole tree as an ordinary mesh (triangles in rank-major order).
+    pub fn full_mesh(&self) -> TreeMesh {
+        self.mesh_at([f64::INFINITY; 4])
     }
 
     /// Draw ranges of the four lists at `range` metres.

@@ -19,7 +19,7 @@ fn lod(id: &str, quality: f64) -> LodTree {
         },
     )
     .unwrap();
-    LodTree::build(&sk, &MeshOptions { quality })
+    LodTree::build_keeping_indices(&sk, &MeshOptions { quality })
 }
 
 #[test]
@@ -154,4 +154,56 @@ fn counts_fall_with_range() {
         );
         previous = total;
     }
+}
+
+#[test]
+fn stored_trees_drop_the_duplicate_order_and_rebuild_whole_meshes() {
+    let kept = lod("quaking_aspen", 0.5);
+    let p = builtin("quaking_aspen").unwrap();
+    let sk = generate(
+        &p,
+        &GenerateOptions {
+            seed: 1,
+            quality: 0.5,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let stored = LodTree::build(&sk, &MeshOptions { quality: 0.5 });
+    assert!(stored.mesh.bark.indices.is_empty() && stored.mesh.leaves.indices.is_empty());
+    assert_eq!(stored.lists, kept.lists);
+    assert!(stored.heap_bytes() < kept.heap_bytes());
+    let full = stored.full_mesh();
+    assert_eq!(full.triangle_count(), kept.mesh.triangle_count());
+    assert_eq!(stored.triangle_count(), kept.mesh.triangle_count());
+    // Same triangles as the mesh, as sets of corner positions.
+    let corners = |m: &crate::mesh::Mesh| {
+        let mut t: Vec<[u32; 9]> = m
+            .indices
+            .chunks(3)
+            .map(|c| {
+                let mut k = [0u32; 9];
+                for (j, &i) in c.iter().enumerate() {
+                    for a in 0..3 {
+                        k[j * 3 + a] = m.positions[i as usize][a].to_bits();
+                    }
+                }
+                k
+            })
+            .collect();
+        t.sort_unstable();
+        t
+    };
+    assert_eq!(corners(&full.bark), corners(&kept.mesh.bark));
+    assert_eq!(corners(&full.leaves), corners(&kept.mesh.leaves));
+    // A reduced level keeps only the vertices its triangles use.
+    let half = stored.mesh_at([16.0, 16.0, 8.0, 2.0]);
+    assert!(half.leaves.triangle_count() * 2 <= full.leaves.triangle_count() + 8);
+    assert!(half.leaves.vertex_count() < full.leaves.vertex_count());
+    assert!(
+        half.leaves
+            .indices
+            .iter()
+            .all(|&i| (i as usize) < half.leaves.vertex_count())
+    );
 }

@@ -21,6 +21,19 @@ pub struct LeafTemplate {
     pub indices: Vec<u32>,
 }
 
+impl LeafTemplate {
+    /// Area of the outline for a leaf of unit length and width.
+    pub fn area(&self) -> f32 {
+        self.indices
+            .chunks(3)
+            .map(|t| {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| self.positions[i as usize]);
+                (b - a).cross(c - a).length() / 2.0
+            })
+            .sum()
+    }
+}
+
 /// The template of a shape (built once, shared).
 pub fn leaf_template(shape: LeafShape) -> &'static LeafTemplate {
     static TEMPLATES: OnceLock<Vec<LeafTemplate>> = OnceLock::new();

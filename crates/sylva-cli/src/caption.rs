@@ -1,0 +1,131 @@
+//! Text on pictures (captions, labels): glyphs from the Ubuntu Light font that egui ships,
+//! rasterised with ab_glyph and blended over the RGBA pixels.
+
+use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
+use sylva_render::Picture;
+
+fn font() -> FontRef<'static> {
+    // The font is compiled in and known good; a failure here is a build defect.
+    FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).expect("bundled font parses")
+}
+
+/// Width in pixels of `text` at `size` pixels.
+pub fn text_width(text: &str, size: f32) -> f32 {
+    let font = font();
+    let scaled = font.as_scaled(PxScale::from(size));
+    let mut width = 0.0;
+    let mut previous = None;
+    for c in text.chars() {
+        let id = scaled.glyph_id(c);
+        if let Some(p) = previous {
+            width += scaled.kern(p, id);
+        }
+        width += scaled.h_advance(id);
+        previous = Some(id);
+    }
+    width
+}
+
+/// Draws `text` with its top-left corner at (`x`, `y`), `size` pixels tall, in `colour`.
+pub fn draw_text(picture: &mut Picture, x: f32, y: f32, size: f32, text: &str, colour: [u8; 3]) {
+    let font = font();
+    let scaled = font.as_scaled(PxScale::from(size));
+    let mut caret = ab_glyph::point(x, y + scaled.ascent());
+    let mut previous = None;
+    for c in text.chars() {
+        let id = scaled.glyph_id(c);
+        if let Some(p) = previous {
+            caret.x += scaled.kern(p, id);
+        }
+        let glyph = id.with_scale_and_position(PxScale::from(size), caret);
+        caret.x += scaled.h_advance(id);
+        previous = Some(id);
+        let Some(outline) = font.outline_glyph(glyph) else {
+            continue;
+        };
+        let bounds = outline.px_bounds();
+        outline.draw(|gx, gy, coverage| {
+            let px = bounds.min.x as i64 + gx as i64;
+            let py = bounds.min.y as i64 + gy as i64;
+            if px < 0 || py < 0 || px >= picture.width as i64 || py >= picture.height as i64 {
+                return;
+            }
+            let i = ((py as u32 * picture.width + px as u32) * 4) as usize;
+            let a = coverage.clamp(0.0, 1.0);
+            for (k, &c) in colour.iter().enumerate() {
+                let under = picture.rgba[i + k] as f32;
+                picture.rgba[i + k] = (under + (c as f32 - under) * a).round() as u8;
+            }
+        });
+    }
+}
+
+/// A copy of `picture` with a white band of `lines` below it, each line centred.
+pub fn with_caption(picture: &Picture, lines: &[String], size: f32) -> Picture {
+    let line_height = (size * 1.35).ceil() as u32;
+    let band = line_height * lines.len() as u32 + (size * 0.6) as u32;
+    let mut out = Picture {
+        width: picture.width,
+        height: picture.height + band,
+        rgba: vec![255; (picture.width * (picture.height + band) * 4) as usize],
+        stats: picture.stats,
+    };
+    out.rgba[..picture.rgba.len()].copy_from_slice(&picture.rgba);
+    for (k, line) in lines.iter().enumerate() {
+        let x = ((picture.width as f32 - text_width(line, size)) / 2.0).max(4.0);
+        let y = picture.height as f32 + (size * 0.3) + (k as u32 * line_height) as f32;
+        draw_text(&mut out, x, y, size, line, [20, 20, 20]);
+    }
+    out
+}
+
+/// Pictures of the same height side by side, with a white gap between them.
+pub fn side_by_side(pictures: &[Picture], gap: u32) -> Picture {
+    let height = pictures.iter().map(|p| p.height).max().unwrap_or(16);
+    let width = pictures.iter().map(|p| p.width).sum::<u32>()
+        + gap * pictures.len().saturating_sub(1) as u32;
+    let mut out = Picture {
+        width,
+        height,
+        rgba: vec![255; (width * height * 4) as usize],
+        stats: Default::default(),
+    };
+    let mut left = 0;
+    for p in pictures {
+        for y in 0..p.height {
+            let src = &p.rgba[(y * p.width * 4) as usize..((y + 1) * p.width * 4) as usize];
+            let dst = ((y * width + left) * 4) as usize;
+            out.rgba[dst..dst + src.len()].copy_from_slice(src);
+        }
+        left += p.width + gap;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn captions_put_dark_ink_in_the_band_only() {
+        let p = Picture {
+            width: 200,
+            height: 50,
+            rgba: vec![255; 200 * 50 * 4],
+            stats: Default::default(),
+        };
+        let c = with_caption(&p, &["LOD 123".to_string()], 16.0);
+        assert!(c.height > 50);
+        let dark = |y0: u32, y1: u32| {
+            (y0..y1)
+                .flat_map(|y| (0..c.width).map(move |x| (x, y)))
+                .filter(|&(x, y)| c.pixel(x, y)[0] < 128)
+                .count()
+        };
+        assert_eq!(dark(0, 50), 0, "the picture itself is untouched");
+        assert!(dark(50, c.height) > 30, "the caption is drawn");
+        assert!(text_width("wide text", 16.0) > text_width("w", 16.0));
+        let both = side_by_side(&[p.clone(), p], 10);
+        assert_eq!((both.width, both.height), (410, 50));
+    }
+}
