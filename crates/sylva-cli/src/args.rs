@@ -91,6 +91,11 @@ pub struct GenerateArgs {
     #[arg(long, value_name = "FILE.png", help_heading = "Output")]
     pub preview: Option<PathBuf>,
 
+    /// GLB only: write a chain of levels of detail for engines (MSFT_lod with screen coverages:
+    /// full tree, half, quarter, and a baked 8-view billboard impostor), named NAME_LOD0..3.
+    #[arg(long, help_heading = "Output")]
+    pub lod_chain: bool,
+
     /// Camera of the preview picture.
     #[arg(long, value_enum, default_value_t = RenderView::Front, help_heading = "Output")]
     pub view: RenderView,

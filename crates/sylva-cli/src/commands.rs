@@ -129,9 +129,20 @@ fn generate(args: &GenerateArgs) -> Result<()> {
     }
     let materials = Materials::from_srgb(params.bark_color, params.leaf_color);
     match format {
+        Format::Glb if args.lod_chain => {
+            let lod =
+                sylva::lod::LodTree::build(&skeleton, &mesh_options(&params, args.tree.quality));
+            let levels = crate::lod_chain::write_lod_chain(&args.output, &lod, &params)?;
+            if !args.json {
+                println!("LOD chain: {levels}");
+            }
+        }
         Format::Glb => {
             let bytes = to_glb(&mesh, &params.name, &materials)?;
             write_atomically(&args.output, &bytes)?;
+        }
+        Format::Obj if args.lod_chain => {
+            bail!("--lod-chain: LOD chains are written as GLB; use a .glb file name")
         }
         Format::Obj => write_obj(&args.output, &mesh, &params.name, &materials)?,
     }

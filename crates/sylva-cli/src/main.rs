@@ -4,6 +4,7 @@ mod args;
 mod caption;
 mod commands;
 mod forest;
+mod lod_chain;
 mod render;
 mod render_forest;
 mod viewer;

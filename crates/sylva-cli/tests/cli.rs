@@ -578,3 +578,140 @@ fn forest_writes_shared_variants_as_instances() {
         );
     }
 }
+
+/// The JSON chunk of a GLB file.
+fn glb_json(path: &Path) -> serde_json::Value {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    serde_json::from_slice(&bytes[20..20 + len]).unwrap()
+}
+
+#[test]
+fn lod_chain_glb_has_msft_lod_levels_and_a_baked_impostor() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("aspen-lod.glb");
+    let run = sylva(&[
+        "generate",
+        "quaking_aspen",
+        "--quality",
+        "0.4",
+        "--lod-chain",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    // A real reader loads it, atlas included.
+    let (doc, _, images) = gltf::import(&out).expect("valid GLB");
+    assert_eq!(images.len(), 1, "one impostor atlas");
+    let atlas = &images[0];
+    assert_eq!(atlas.format, gltf::image::Format::R8G8B8A8);
+    let alphas: Vec<u8> = atlas.pixels.chunks(4).map(|p| p[3]).collect();
+    let clear = alphas.iter().filter(|&&a| a == 0).count();
+    let solid = alphas.iter().filter(|&&a| a == 255).count();
+    assert!(
+        clear > alphas.len() / 5 && solid > alphas.len() / 20,
+        "the atlas has transparent background ({clear}) and opaque tree ({solid}) pixels"
+    );
+    let triangles = |name: &str| {
+        let node = doc.nodes().find(|n| n.name() == Some(name)).unwrap();
+        node.mesh()
+            .unwrap()
+            .primitives()
+            .map(|p| p.indices().unwrap().count() / 3)
+            .sum::<usize>()
+    };
+    let counts: Vec<usize> = (0..4)
+        .map(|k| triangles(&format!("Quaking_Aspen_LOD{k}")))
+        .collect();
+    assert!(
+        counts.windows(2).all(|w| w[1] < w[0]) && counts[3] == 16,
+        "{counts:?}"
+    );
+    // The scene shows LOD0, which lists the others and their screen coverages.
+    let json = glb_json(&out);
+    assert!(
+        json["extensionsUsed"]
+            .as_array()
+            .unwrap()
+            .contains(&serde_json::json!("MSFT_lod"))
+    );
+    let root = json["scenes"][0]["nodes"][0].as_u64().unwrap() as usize;
+    let node = &json["nodes"][root];
+    assert_eq!(node["name"], "Quaking_Aspen_LOD0");
+    let ids = node["extensions"]["MSFT_lod"]["ids"].as_array().unwrap();
+    assert_eq!(ids.len(), 3);
+    for (k, id) in ids.iter().enumerate() {
+        let n = &json["nodes"][id.as_u64().unwrap() as usize];
+        assert_eq!(n["name"], format!("Quaking_Aspen_LOD{}", k + 1));
+    }
+    let coverage: Vec<f64> = node["extras"]["MSFT_screencoverage"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(coverage.len(), 4);
+    assert!(coverage.windows(2).all(|w| w[1] < w[0]), "{coverage:?}");
+    // OBJ has no LOD chains.
+    let obj = dir.path().join("t.obj");
+    let run = sylva(&[
+        "generate",
+        "quaking_aspen",
+        "--lod-chain",
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success() && text(&run.stderr).contains("--lod-chain"));
+    assert!(!obj.exists());
+}
+
+#[test]
+fn forest_file_renders_with_and_without_lod_side_by_side() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("grove.toml");
+    std::fs::write(
+        &file,
+        "[forest]\nspecies = [\"quaking_aspen\", \"hazel\"]\ncount = 12\narea = [40, 40]\nvariants = 1\nquality = 0.3\n",
+    )
+    .unwrap();
+    let png = dir.path().join("grove.png");
+    let run = sylva(&[
+        "render",
+        file.to_str().unwrap(),
+        "--lod",
+        "compare",
+        "--range",
+        "400",
+        "--size",
+        "200x150",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let (w, h) = png_size(&png);
+    assert_eq!(w, 2 * 200 + 8, "two pictures side by side");
+    assert!(h > 150, "with a caption band");
+    let out = text(&run.stdout);
+    let primitives = |label: &str| -> usize {
+        let line = out.lines().find(|l| l.starts_with(label)).unwrap();
+        let inner = line.split('(').nth(1).unwrap().split(' ').next().unwrap();
+        inner.replace(',', "").parse().unwrap()
+    };
+    let (with, without) = (primitives("with LOD:"), primitives("without LOD:"));
+    assert!(
+        with * 5 < without,
+        "LOD draws {with} primitives, full detail {without}"
+    );
+    // The GLB of the same forest file.
+    let glb = dir.path().join("grove.glb");
+    let run = sylva(&[
+        "forest",
+        file.to_str().unwrap(),
+        "-o",
+        glb.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let (doc, _, _) = gltf::import(&glb).expect("valid GLB");
+    assert_eq!(doc.nodes().count(), 12);
+}

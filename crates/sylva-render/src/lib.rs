@@ -1014,7 +1014,16 @@ impl Renderer {
         if scene.show_ground {
             draws.push(Draw::mesh(&ground_gpu, &ground_mat, 0..1));
         }
-        let sky = linear(SKY_SRGB);
+        // Transparent pictures clear to the leaves' colour, so that edge pixels blend
+        // towards it rather than towards the sky.
+        let sky = match (scene.transparent, scene.stands.first()) {
+            (true, Some(s)) => {
+                let [r, g, b, _] = linear(s.leaves);
+                [r * 0.5, g * 0.5, b * 0.5, 0.0]
+            }
+            (true, None) => [0.0; 4],
+            (false, _) => linear(SKY_SRGB),
+        };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("main"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -1026,7 +1035,7 @@ impl Renderer {
                         r: sky[0] as f64,
                         g: sky[1] as f64,
                         b: sky[2] as f64,
-                        a: 1.0,
+                        a: sky[3] as f64,
                     }),
                     store: wgpu::StoreOp::Discard,
                 },

@@ -126,6 +126,9 @@ pub struct Scene<'a> {
     pub use_lod: bool,
     /// The paper's quality factor for range degradation: 2 keeps detail twice as far.
     pub lod_quality: f32,
+    /// Clear to transparent instead of the sky (for baking impostors): the picture's alpha is
+    /// then the trees' coverage.
+    pub transparent: bool,
 }
 
 impl<'a> Scene<'a> {
@@ -150,6 +153,7 @@ impl<'a> Scene<'a> {
             sun: Vec3::new(-0.45, -0.6, 0.66).normalize(),
             use_lod: true,
             lod_quality: 1.0,
+            transparent: false,
         }
     }
 

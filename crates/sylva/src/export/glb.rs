@@ -62,8 +62,9 @@ impl Builder {
     fn view(
         &mut self,
         bytes: &[u8],
-        target: json::buffer::Target,
+        target: impl Into<Option<json::buffer::Target>>,
     ) -> json::Index<json::buffer::View> {
+        let target = target.into();
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
@@ -75,7 +76,7 @@ impl Builder {
             byte_offset: Some(USize64::from(offset)),
             byte_stride: None,
             name: None,
-            target: Some(Valid(target)),
+            target: target.map(Valid),
             extensions: None,
             extras: Default::default(),
         })
@@ -229,46 +230,11 @@ pub fn to_glb_scene(
             meshes.len()
         )));
     }
-    let mut b = Builder {
-        root: json::Root::default(),
-        bin: Vec::new(),
-        buffer: json::Index::new(0),
-    };
-    b.root.asset = json::Asset {
-        generator: Some(format!("Sylva {}", env!("CARGO_PKG_VERSION"))),
-        version: "2.0".into(),
-        ..Default::default()
-    };
-    b.buffer = b.root.push(json::Buffer {
-        byte_length: USize64(0),
-        name: None,
-        uri: None,
-        extensions: None,
-        extras: Default::default(),
-    });
-    let mut gltf_meshes = Vec::with_capacity(meshes.len());
-    for (name, mesh, materials) in meshes {
-        let mut primitives = Vec::new();
-        if !mesh.bark.indices.is_empty() {
-            let m = b.root.push(material("bark", materials.bark, false, 0.95));
-            primitives.push(b.primitive(&mesh.bark, m));
-        }
-        if !mesh.leaves.indices.is_empty() {
-            let m = b.root.push(material("leaves", materials.leaves, true, 0.6));
-            primitives.push(b.primitive(&mesh.leaves, m));
-        }
-        gltf_meshes.push(b.root.push(json::Mesh {
-            extensions: None,
-            extras: Default::default(),
-            name: Some((*name).into()),
-            primitives,
-            weights: None,
-        }));
-    }
-    while !b.bin.len().is_multiple_of(4) {
-        b.bin.push(0);
-    }
-    b.root.buffers[0].byte_length = USize64::from(b.bin.len());
+    let mut b = Builder::new();
+    let gltf_meshes: Vec<_> = meshes
+        .iter()
+        .map(|(name, mesh, materials)| b.tree_mesh(name, mesh, materials))
+        .collect();
     let mut nodes = Vec::with_capacity(instances.len());
     for inst in instances {
         let identity = inst.position == [0.0; 3] && inst.turn == 0.0 && inst.scale == 1.0;
@@ -284,14 +250,205 @@ pub fn to_glb_scene(
             ..Default::default()
         }));
     }
-    let scene = b.root.push(json::Scene {
-        extensions: None,
-        extras: Default::default(),
-        name: Some("scene".into()),
-        nodes,
-    });
-    b.root.scene = Some(scene);
+    b.scene(nodes);
     finish(b)
+}
+
+/// Encodes a tree as a chain of levels of detail in one GLB with the `MSFT_lod` extension: the
+/// scene holds the most detailed node, `<name>_LOD0`, which lists the others (`<name>_LOD1`,
+/// ...; the impostor last) in its `MSFT_lod` extension and their screen coverages in its
+/// `extras.MSFT_screencoverage`, as Babylon.js and other MSFT_lod readers expect; viewers
+/// without the extension show LOD0. `chain` pairs each mesh with the share of the screen's
+/// height below which the next level takes over. The impostor's material is unlit (its light
+/// is baked in), alpha-masked and single-sided.
+pub fn to_glb_lod(
+    name: &str,
+    chain: &[(TreeMesh, f32)],
+    impostor: Option<(&super::super::lod::impostor::Impostor, f32)>,
+    materials: &Materials,
+) -> Result<Vec<u8>, ExportError> {
+    if chain.is_empty() || chain[0].0.triangle_count() == 0 {
+        return Err(ExportError::Format("the LOD chain is empty".into()));
+    }
+    let mut b = Builder::new();
+    let mut levels: Vec<(json::Index<json::Mesh>, f32)> = chain
+        .iter()
+        .enumerate()
+        .map(|(k, (mesh, coverage))| {
+            (
+                b.tree_mesh(&format!("{name}_LOD{k}"), mesh, materials),
+                *coverage,
+            )
+        })
+        .collect();
+    let mut extensions_used = vec!["MSFT_lod".to_string()];
+    if let Some((imp, coverage)) = impostor {
+        extensions_used.push("KHR_materials_unlit".into());
+        levels.push((
+            b.impostor_mesh(&format!("{name}_LOD{}", chain.len()), imp),
+            coverage,
+        ));
+    }
+    // The lower levels first, so that LOD0 can list their indices.
+    let lower: Vec<json::Index<json::Node>> = levels[1..]
+        .iter()
+        .enumerate()
+        .map(|(k, (mesh, _))| {
+            b.root.push(json::Node {
+                mesh: Some(*mesh),
+                name: Some(format!("{name}_LOD{}", k + 1)),
+                ..Default::default()
+            })
+        })
+        .collect();
+    let ids: Vec<json::Value> = lower.iter().map(|n| json::Value::from(n.value())).collect();
+    let mut others = serde_json::Map::new();
+    others.insert("MSFT_lod".into(), serde_json::json!({ "ids": ids }));
+    let coverage: Vec<f32> = levels.iter().map(|(_, c)| *c).collect();
+    let extras =
+        serde_json::value::to_raw_value(&serde_json::json!({ "MSFT_screencoverage": coverage }))
+            .map_err(|e| ExportError::Format(e.to_string()))?;
+    let top = b.root.push(json::Node {
+        mesh: Some(levels[0].0),
+        name: Some(format!("{name}_LOD0")),
+        extensions: Some(json::extensions::scene::Node { others }),
+        extras: Some(extras),
+        ..Default::default()
+    });
+    b.root.extensions_used = extensions_used;
+    b.scene(vec![top]);
+    finish(b)
+}
+
+impl Builder {
+    fn new() -> Self {
+        let mut b = Builder {
+            root: json::Root::default(),
+            bin: Vec::new(),
+            buffer: json::Index::new(0),
+        };
+        b.root.asset = json::Asset {
+            generator: Some(format!("Sylva {}", env!("CARGO_PKG_VERSION"))),
+            version: "2.0".into(),
+            ..Default::default()
+        };
+        b.buffer = b.root.push(json::Buffer {
+            byte_length: USize64(0),
+            name: None,
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        b
+    }
+
+    /// A tree's mesh: bark and leaf primitives with their materials.
+    fn tree_mesh(
+        &mut self,
+        name: &str,
+        mesh: &TreeMesh,
+        materials: &Materials,
+    ) -> json::Index<json::Mesh> {
+        let mut primitives = Vec::new();
+        if !mesh.bark.indices.is_empty() {
+            let m = self
+                .root
+                .push(material("bark", materials.bark, false, 0.95));
+            primitives.push(self.primitive(&mesh.bark, m));
+        }
+        if !mesh.leaves.indices.is_empty() {
+            let m = self
+                .root
+                .push(material("leaves", materials.leaves, true, 0.6));
+            primitives.push(self.primitive(&mesh.leaves, m));
+        }
+        self.root.push(json::Mesh {
+            extensions: None,
+            extras: Default::default(),
+            name: Some(name.into()),
+            primitives,
+            weights: None,
+        })
+    }
+
+    /// The impostor's quads with the atlas as an unlit, alpha-masked texture.
+    fn impostor_mesh(
+        &mut self,
+        name: &str,
+        imp: &super::super::lod::impostor::Impostor,
+    ) -> json::Index<json::Mesh> {
+        let view = self.view(&imp.png, None);
+        let image = self.root.push(json::Image {
+            buffer_view: Some(view),
+            mime_type: Some(json::image::MimeType("image/png".into())),
+            name: Some("impostor atlas".into()),
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        let sampler = self.root.push(json::texture::Sampler {
+            mag_filter: Some(Valid(json::texture::MagFilter::Linear)),
+            min_filter: Some(Valid(json::texture::MinFilter::LinearMipmapLinear)),
+            wrap_s: Valid(json::texture::WrappingMode::ClampToEdge),
+            wrap_t: Valid(json::texture::WrappingMode::ClampToEdge),
+            ..Default::default()
+        });
+        let texture = self.root.push(json::Texture {
+            name: None,
+            sampler: Some(sampler),
+            source: image,
+            extensions: None,
+            extras: Default::default(),
+        });
+        let mut others = serde_json::Map::new();
+        others.insert("KHR_materials_unlit".into(), serde_json::json!({}));
+        let material = self.root.push(json::Material {
+            name: Some("impostor".into()),
+            alpha_mode: Valid(json::material::AlphaMode::Mask),
+            alpha_cutoff: Some(json::material::AlphaCutoff(0.5)),
+            double_sided: false,
+            pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+                base_color_texture: Some(json::texture::Info {
+                    index: texture,
+                    tex_coord: 0,
+                    extensions: None,
+                    extras: Default::default(),
+                }),
+                metallic_factor: json::material::StrengthFactor(0.0),
+                roughness_factor: json::material::StrengthFactor(1.0),
+                ..Default::default()
+            },
+            extensions: Some(json::extensions::material::Material {
+                others,
+                ..Default::default()
+            }),
+            ..Default::default()
+        });
+        let quads = imp.frame.quads();
+        let primitive = self.primitive(&quads, material);
+        self.root.push(json::Mesh {
+            extensions: None,
+            extras: Default::default(),
+            name: Some(name.into()),
+            primitives: vec![primitive],
+            weights: None,
+        })
+    }
+
+    /// Closes the buffer and makes the default scene of `nodes`.
+    fn scene(&mut self, nodes: Vec<json::Index<json::Node>>) {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        self.root.buffers[0].byte_length = USize64::from(self.bin.len());
+        let scene = self.root.push(json::Scene {
+            extensions: None,
+            extras: Default::default(),
+            name: Some("scene".into()),
+            nodes,
+        });
+        self.root.scene = Some(scene);
+    }
 }
 
 /// Packs the JSON and binary chunks into a GLB file.

@@ -10,7 +10,7 @@ mod glb;
 mod obj;
 
 pub use atomic::write_atomically;
-pub use glb::{Instance, Materials, to_glb, to_glb_scene};
+pub use glb::{Instance, Materials, to_glb, to_glb_lod, to_glb_scene};
 pub use obj::{to_obj, write_obj};
 
 /// Z-up model coordinates to Y-up file coordinates.

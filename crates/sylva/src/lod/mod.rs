@@ -5,6 +5,7 @@
 //! is one contiguous range per list and primitive. With range, stem meshes become lines along
 //! their axes and leaf polygons become points; items drop out one at a time.
 
+pub mod impostor;
 pub mod order;
 
 use crate::mesh::{MeshOptions, TreeMesh, mesh_stems_by_segment};
@@ -311,6 +312,52 @@ impl LodTree {
             }
         }
         out
+    }
+
+    /// Like [`LodTree::mesh_at`], but the leaves that remain grow about their centres so that
+    /// the crown keeps its leaf area (and so its density and colour at range): with half the
+    /// leaves, each is 1.41 times as long and wide. The meshes of an engine's LOD chain.
+    pub fn engine_mesh(&self, x: [f64; 4]) -> TreeMesh {
+        let mut out = self.mesh_at([x[0], x[1], x[2], 0.0]);
+        let list = &self.lists[3];
+        let n = prefix_len(list.items, list.mass, x[3]);
+        if n == 0 {
+            return out;
+        }
+        let grow = (list.items as f32 / n as f32).sqrt();
+        let (source, part) = (&self.mesh.leaves, &mut out.leaves);
+        let mut remap = vec![u32::MAX; source.positions.len()];
+        for p in 0..n {
+            let centre = glam::Vec3::from(list.points[p]);
+            let range = list.index_prefix[p] as usize..list.index_prefix[p + 1] as usize;
+            for &old in &list.indices[range] {
+                let old = old as usize;
+                if remap[old] == u32::MAX {
+                    remap[old] = part.positions.len() as u32;
+                    let at = centre + (glam::Vec3::from(source.positions[old]) - centre) * grow;
+                    part.positions.push(at.to_array());
+                    part.normals.push(source.normals[old]);
+                    part.uvs.push(source.uvs[old]);
+                }
+                part.indices.push(remap[old]);
+            }
+        }
+        out
+    }
+
+    /// An engine's chain of meshes, most detailed first, each with the share of the screen's
+    /// height below which the next one takes over (the `MSFT_lod` screen coverage): the whole
+    /// tree; half the twigs and leaves; a quarter of the leaves and an eighth of the twigs with
+    /// half the branches. Leaves keep the crown's leaf area at every level.
+    pub fn engine_chain(&self) -> Vec<(TreeMesh, f32)> {
+        [
+            ([16.0, 16.0, 16.0, 4.0], 0.5),
+            ([16.0, 16.0, 8.0, 2.0], 0.25),
+            ([16.0, 8.0, 2.0, 1.0], 0.1),
+        ]
+        .into_iter()
+        .map(|(x, coverage)| (self.engine_mesh(x), coverage))
+        .collect()
     }
 
     /// The whole tree as an ordinary mesh (triangles in rank-major order).

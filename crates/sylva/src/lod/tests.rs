@@ -207,3 +207,38 @@ fn stored_trees_drop_the_duplicate_order_and_rebuild_whole_meshes() {
             .all(|&i| (i as usize) < half.leaves.vertex_count())
     );
 }
+
+#[test]
+fn engine_levels_keep_the_leaf_area_with_fewer_leaves() {
+    let t = lod("black_tupelo", 0.5);
+    let area = |m: &crate::mesh::Mesh| {
+        m.indices
+            .chunks(3)
+            .map(|c| {
+                let [a, b, d] =
+                    [c[0], c[1], c[2]].map(|i| glam::Vec3::from(m.positions[i as usize]));
+                (b - a).cross(d - a).length() as f64 / 2.0
+            })
+            .sum::<f64>()
+    };
+    let chain = t.engine_chain();
+    assert_eq!(chain.len(), 3);
+    let full = area(&chain[0].0.leaves);
+    for (k, (mesh, coverage)) in chain.iter().enumerate() {
+        let a = area(&mesh.leaves);
+        // Prefix counts round, so the kept share is within one leaf per mass of the ideal.
+        assert!(
+            (a / full - 1.0).abs() < 0.05,
+            "level {k}: leaf area {a} vs {full}"
+        );
+        if k > 0 {
+            let (prev, prev_cov) = (&chain[k - 1].0, chain[k - 1].1);
+            assert!(
+                mesh.triangle_count() * 10 < prev.triangle_count() * 7,
+                "level {k} not smaller"
+            );
+            assert!(*coverage < prev_cov);
+        }
+    }
+    assert_eq!(chain[0].0.triangle_count(), t.mesh.triangle_count());
+}
