@@ -418,10 +418,7 @@ impl Builder {
                 roughness_factor: json::material::StrengthFactor(1.0),
                 ..Default::default()
             },
-            extensions: Some(json::extensions::material::Material {
-                others,
-                ..Default::default()
-            }),
+            extensions: Some(json::extensions::material::Material { others }),
             ..Default::default()
         });
         let quads = imp.frame.quads();
