@@ -294,4 +294,14 @@ pub struct BenchArgs {
     /// Also report range degradation: primitives per frame from 10 m to 3 km, selection cost.
     #[arg(long)]
     pub lod: bool,
+
+    /// Also draw a Black Tupelo and a 1,000-tree mixed forest from 10 m to 3 km with and
+    /// without range degradation (primitives, frame time, memory per tree).
+    #[arg(long)]
+    pub forest: bool,
+
+    /// Also grow this many unique trees of the appendix species in parallel (stored for
+    /// range, then released) and report trees per second.
+    #[arg(long, value_name = "N")]
+    pub throughput: Option<u32>,
 }

@@ -11,7 +11,7 @@ use sylva::preview::{PreviewOptions, View, render_preview};
 use sylva::{GenerateOptions, TreeParams};
 
 /// The paper's four appendix species: the benchmark set.
-const APPENDIX_SPECIES: [&str; 4] = [
+pub const APPENDIX_SPECIES: [&str; 4] = [
     "quaking_aspen",
     "black_tupelo",
     "weeping_willow",
@@ -19,7 +19,7 @@ const APPENDIX_SPECIES: [&str; 4] = [
 ];
 
 /// Fastest of `runs` timings of `f`, milliseconds (the least disturbed by a shared machine).
-fn fastest_ms(runs: u32, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
+pub fn fastest_ms(runs: u32, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
     let mut best = f64::MAX;
     for _ in 0..runs.max(1) {
         let t = Instant::now();
@@ -351,6 +351,12 @@ fn bench(args: &BenchArgs) -> Result<()> {
     }
     if args.lod {
         bench_lod()?;
+    }
+    if args.forest {
+        crate::bench_forest::bench_forest(runs.min(3))?;
+    }
+    if let Some(n) = args.throughput {
+        crate::bench_forest::bench_throughput(n)?;
     }
     Ok(())
 }

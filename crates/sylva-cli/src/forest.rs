@@ -69,11 +69,16 @@ pub struct Forest<T> {
     pub seconds: f64,
 }
 
+/// The most bytes the distinct trees of one forest may hold: a GLB cannot exceed 4 GiB, and a
+/// forest drawn on the GPU should leave room for the rest of the machine.
+pub const MAX_FOREST_BYTES: usize = 3_500_000_000;
+
 /// Plants `spec` and grows every variant in parallel (with a progress bar on a terminal),
-/// turning each skeleton into a `T` with `build` as soon as it is made.
+/// turning each skeleton into a `T` with `build`, which also says how many bytes it holds.
+/// Stops with an error when the trees would hold more than [`MAX_FOREST_BYTES`].
 pub fn grow<T: Send>(
     spec: &ForestSpec,
-    build: impl Fn(&TreeParams, &Skeleton) -> T + Sync + Send,
+    build: impl Fn(&TreeParams, &Skeleton) -> (T, usize) + Sync + Send,
 ) -> Result<Forest<T>> {
     spec.validate()
         .map_err(|e| anyhow::anyhow!("forest: {e}"))?;
@@ -90,10 +95,23 @@ pub fn grow<T: Send>(
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let t = Instant::now();
+    let held = std::sync::atomic::AtomicUsize::new(0);
+    let over_budget = || {
+        anyhow::anyhow!(
+            "forest: its {} distinct trees would hold more than {:.1} GB (after {} trees); use \
+             fewer --variants or a lower --quality",
+            planting.variants.len(),
+            MAX_FOREST_BYTES as f64 / 1e9,
+            bar.position()
+        )
+    };
     let grown = planting
         .variants
         .par_iter()
         .map(|v| {
+            if held.load(std::sync::atomic::Ordering::Relaxed) > MAX_FOREST_BYTES {
+                return Err(over_budget());
+            }
             let params = &species[v.species];
             let options = GenerateOptions {
                 seed: v.seed,
@@ -102,7 +120,12 @@ pub fn grow<T: Send>(
             };
             let skeleton = sylva::generate(params, &options)
                 .with_context(|| format!("growing {} (seed {})", params.name, v.seed))?;
-            let made = build(params, &skeleton);
+            let (made, bytes) = build(params, &skeleton);
+            if held.fetch_add(bytes, std::sync::atomic::Ordering::Relaxed) + bytes
+                > MAX_FOREST_BYTES
+            {
+                return Err(over_budget());
+            }
             bar.inc(1);
             Ok(made)
         })
@@ -146,7 +169,10 @@ pub fn forest(args: &ForestArgs) -> Result<()> {
     let spec = spec_of(args)?;
     let quality = spec.quality;
     let forest = grow(&spec, |params, skeleton| {
-        mesh_tree(skeleton, &mesh_options(params, quality))
+        let mesh = mesh_tree(skeleton, &mesh_options(params, quality));
+        // Position, normal and texture coordinate per vertex, and the triangles, in the GLB.
+        let bytes = mesh.vertex_count() * 32 + mesh.triangle_count() * 12;
+        (mesh, bytes)
     })?;
     let (planting, meshes) = (&forest.planting, &forest.grown);
     let names: Vec<&str> = planting

@@ -1,6 +1,7 @@
 //! The `sylva` command: generate, export and inspect trees.
 
 mod args;
+mod bench_forest;
 mod caption;
 mod commands;
 mod forest;

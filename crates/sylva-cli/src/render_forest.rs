@@ -55,7 +55,9 @@ impl ForestOnGpu {
         let spec = read_forest_file(path)?;
         let quality = spec.quality;
         let forest = grow(&spec, |params, skeleton| {
-            LodTree::build(skeleton, &mesh_options(params, quality))
+            let tree = LodTree::build(skeleton, &mesh_options(params, quality));
+            let bytes = tree.heap_bytes();
+            (tree, bytes)
         })?;
         let mut placements = vec![Vec::new(); forest.planting.variants.len()];
         for t in &forest.planting.trees {

@@ -1,0 +1,198 @@
+//! `sylva bench --forest` and `--throughput`: what range degradation saves when drawing a tree
+//! and a forest, and how fast unique trees grow.
+
+use crate::commands::{APPENDIX_SPECIES, fastest_ms, mesh_options};
+use crate::render_forest::grouped;
+use anyhow::{Context, Result};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::borrow::Cow;
+use std::time::Instant;
+use sylva::GenerateOptions;
+use sylva::forest::{ForestSpec, plant};
+use sylva::lod::LodTree;
+use sylva_render::{Camera, GpuTree, Placement, Renderer, Scene, Stand, View};
+
+const RANGES: [f32; 7] = [10.0, 30.0, 100.0, 300.0, 1000.0, 2000.0, 3000.0];
+const SIZE: (u32, u32) = (1280, 720);
+const FOV: f32 = 45.0;
+
+/// Frames of `scene` from each range along a low view towards `target`, with and without LOD.
+fn table(renderer: &Renderer, scene: &mut Scene, target: Vec3, runs: u32) -> Result<()> {
+    println!(
+        "{:>8} {:>13} {:>10} {:>10} {:>9} | {:>13} {:>9} | {:>8}",
+        "range m", "LOD prims", "lines", "points", "frame ms", "full prims", "frame ms", "x faster"
+    );
+    for range in RANGES {
+        let eye = target + Camera::direction(30.0, 8.0) * range;
+        let view = View::look_at(eye, target, FOV);
+        let mut frame = |use_lod: bool, runs: u32| -> Result<_> {
+            scene.use_lod = use_lod;
+            let mut stats = Default::default();
+            let ms = fastest_ms(runs, || {
+                stats = renderer.render(scene, &view, SIZE.0, SIZE.1)?.stats;
+                Ok(())
+            })?;
+            Ok((stats, ms))
+        };
+        let (lod, lod_ms) = frame(true, runs)?;
+        // Full-detail frames of a whole forest take seconds on a CPU rasteriser: once is enough.
+        let (full, full_ms) = frame(false, 1)?;
+        println!(
+            "{:>8} {:>13} {:>10} {:>10} {:>9.1} | {:>13} {:>9.1} | {:>8.1}",
+            range,
+            grouped(lod.primitives()),
+            grouped(lod.lines),
+            grouped(lod.points),
+            lod_ms,
+            grouped(full.primitives()),
+            full_ms,
+            full_ms / lod_ms
+        );
+    }
+    Ok(())
+}
+
+pub fn bench_forest(runs: u32) -> Result<()> {
+    let renderer = Renderer::new_headless()?;
+    println!();
+    println!(
+        "drawing with and without range degradation on {} ({}x{}, {FOV} degree lens; frames \
+         include shadow pass and read-back; x faster = full / LOD frame time)",
+        renderer.adapter_name, SIZE.0, SIZE.1
+    );
+    // Baseline in the same run: an empty scene.
+    let empty = renderer.upload(&Default::default());
+    let mut empty_scene = Scene::new(&empty, [0.5; 3], [0.5; 3]);
+    empty_scene.show_person = false;
+    let base = fastest_ms(runs, || {
+        renderer.render(&empty_scene, &View::orbit(0.0, 10.0), SIZE.0, SIZE.1)?;
+        Ok(())
+    })?;
+    println!("empty frame (ground, shadow pass, read-back): {base:.1} ms");
+
+    let params = sylva::species::builtin("black_tupelo").context("built-in species")?;
+    let skeleton = sylva::generate(&params, &GenerateOptions::default())?;
+    let lod = LodTree::build(&skeleton, &mesh_options(&params, 1.0));
+    let tree = renderer.upload_lod(&lod);
+    let mut scene = Scene::new(&tree, params.bark_color, params.leaf_color);
+    scene.show_person = false;
+    println!();
+    println!(
+        "black_tupelo, {} triangles, {:.1} MB stored for range",
+        grouped(lod.triangle_count()),
+        lod.heap_bytes() as f64 / 1e6
+    );
+    table(&renderer, &mut scene, Vec3::new(0.0, 0.0, 12.0), runs)?;
+    drop(scene);
+    drop(tree);
+
+    // 1,000 trees of the four appendix species, four variants each.
+    let spec = ForestSpec {
+        species: APPENDIX_SPECIES.iter().map(|s| s.to_string()).collect(),
+        count: 1000,
+        area: [600.0, 600.0],
+        seed: 1,
+        variants: 4,
+        quality: 0.5,
+    };
+    let t = Instant::now();
+    let forest = crate::forest::grow(&spec, |params, skeleton| {
+        let tree = LodTree::build(skeleton, &mesh_options(params, spec.quality));
+        let bytes = tree.heap_bytes();
+        (tree, bytes)
+    })?;
+    let grow_s = t.elapsed().as_secs_f64();
+    let stored: usize = forest.grown.iter().map(LodTree::heap_bytes).sum();
+    let placed_triangles: usize = forest
+        .planting
+        .trees
+        .iter()
+        .map(|t| forest.grown[t.variant].triangle_count())
+        .sum();
+    let gpu: Vec<GpuTree> = forest
+        .grown
+        .iter()
+        .map(|t| renderer.upload_lod(t))
+        .collect();
+    let mut placements = vec![Vec::new(); gpu.len()];
+    for t in &forest.planting.trees {
+        placements[t.variant].push(Placement {
+            position: Vec3::from(t.position),
+            turn: t.turn,
+            scale: t.scale,
+        });
+    }
+    let stands = gpu
+        .iter()
+        .zip(&forest.planting.variants)
+        .zip(&placements)
+        .map(|((tree, v), p)| Stand {
+            tree,
+            bark: forest.species[v.species].bark_color,
+            leaves: forest.species[v.species].leaf_color,
+            placements: Cow::Borrowed(p),
+        })
+        .collect();
+    let mut scene = Scene::forest(stands);
+    scene.show_person = false;
+    println!();
+    println!(
+        "mixed forest: 1,000 trees ({} variants of the 4 appendix species at quality 0.5) on \
+         600x600 m, {} triangles placed; grown in {grow_s:.1} s; {:.1} MB stored = {:.1} MB per \
+         variant, {:.2} MB per tree placed",
+        gpu.len(),
+        grouped(placed_triangles),
+        stored as f64 / 1e6,
+        stored as f64 / 1e6 / gpu.len() as f64,
+        stored as f64 / 1e6 / 1000.0
+    );
+    table(&renderer, &mut scene, Vec3::new(0.0, 0.0, 8.0), runs)?;
+    Ok(())
+}
+
+/// Grows `n` unique trees of the appendix species (quality 0.5, as `sylva forest`), each
+/// stored for range and then released, on every core.
+pub fn bench_throughput(n: u32) -> Result<()> {
+    let spec = ForestSpec {
+        species: APPENDIX_SPECIES.iter().map(|s| s.to_string()).collect(),
+        count: n.max(1),
+        area: [1000.0, 1000.0],
+        seed: 7,
+        variants: 0,
+        quality: 0.5,
+    };
+    spec.validate()
+        .map_err(|e| anyhow::anyhow!("--throughput: {e}"))?;
+    let species: Vec<_> = APPENDIX_SPECIES
+        .iter()
+        .map(|s| sylva::species::builtin(s).context("built-in species"))
+        .collect::<Result<_>>()?;
+    let planting = plant(&spec);
+    let t = Instant::now();
+    let triangles: usize = planting
+        .variants
+        .par_iter()
+        .map(|v| -> Result<usize> {
+            let params = &species[v.species];
+            let options = GenerateOptions {
+                seed: v.seed,
+                quality: spec.quality,
+                ..Default::default()
+            };
+            let skeleton = sylva::generate(params, &options)?;
+            Ok(LodTree::build(&skeleton, &mesh_options(params, spec.quality)).triangle_count())
+        })
+        .sum::<Result<usize>>()?;
+    let s = t.elapsed().as_secs_f64();
+    println!();
+    println!(
+        "{} unique trees of the appendix species (quality 0.5) grown and stored for range in \
+         {s:.1} s on {} threads: {:.1} trees/s, {:.1} M triangles/s (target: 10,000 in under 60 s)",
+        grouped(planting.variants.len()),
+        rayon::current_num_threads(),
+        planting.variants.len() as f64 / s,
+        triangles as f64 / s / 1e6
+    );
+    Ok(())
+}
