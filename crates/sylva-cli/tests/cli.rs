@@ -715,3 +715,59 @@ fn forest_file_renders_with_and_without_lod_side_by_side() {
     let (doc, _, _) = gltf::import(&glb).expect("valid GLB");
     assert_eq!(doc.nodes().count(), 12);
 }
+
+#[test]
+fn forest_viewer_flies_and_draws_fewer_primitives_with_lod() {
+    let Some(x) = Xvfb::start() else {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "Xvfb is needed for the viewer test in CI"
+        );
+        eprintln!("skipping the forest viewer test: no Xvfb here (apt-get install xvfb)");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("grove.toml");
+    std::fs::write(
+        &file,
+        "[forest]\nspecies = [\"quaking_aspen\", \"hazel\"]\ncount = 30\narea = [80, 80]\nvariants = 2\nquality = 0.3\n",
+    )
+    .unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_sylva"))
+        .args([
+            "view",
+            file.to_str().unwrap(),
+            "--self-test",
+            dir.path().to_str().unwrap(),
+        ])
+        .env("DISPLAY", &x.1)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let report: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(dir.path().join("forest-viewer.json")).expect("the viewer wrote its report"),
+    )
+    .unwrap();
+    let frames = report["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 3, "{report}");
+    let prims = |f: &serde_json::Value| {
+        ["triangles", "lines", "points"]
+            .iter()
+            .map(|k| f[*k].as_u64().unwrap())
+            .sum::<u64>()
+    };
+    assert_eq!(frames[0]["lod"], true);
+    assert_eq!(frames[1]["lod"], false);
+    assert!(frames.iter().all(|f| f["trees"] == 30), "{report}");
+    assert!(
+        prims(&frames[0]) < prims(&frames[1]),
+        "LOD on draws fewer primitives than off: {report}"
+    );
+    // Flown up and back over the forest: more trees in view, each further away.
+    assert!(
+        frames[2]["trees_drawn"].as_u64() >= frames[0]["trees_drawn"].as_u64(),
+        "{report}"
+    );
+    assert!(frames.iter().all(|f| f["frame_ms"].as_f64().unwrap() > 0.0));
+}

@@ -2,6 +2,7 @@
 //! rebuilt in the background), the camera orbits, the wind blows in real time, and species,
 //! models and pictures can be loaded, saved and exported.
 
+mod forest;
 mod panel;
 mod worker;
 
@@ -20,6 +21,9 @@ use worker::Worker;
 
 /// Opens the viewer window (blocks until it is closed).
 pub fn run(args: &ViewArgs) -> Result<()> {
+    if crate::forest::is_forest_file(std::path::Path::new(&args.species)) {
+        return forest::run(std::path::Path::new(&args.species), args.self_test.clone());
+    }
     let params = crate::commands::load_params(&args.species, &[])?;
     let self_test = args.self_test.clone();
     let options = eframe::NativeOptions {
@@ -44,6 +48,60 @@ struct ViewTexture {
     view: eframe::wgpu::TextureView,
     id: egui::TextureId,
     size: [u32; 2],
+}
+
+/// Makes (or remakes, at a new size) the texture the 3-D view is drawn into and shown from;
+/// true when it did.
+fn ensure_texture(
+    render_state: &egui_wgpu::RenderState,
+    texture: &mut Option<ViewTexture>,
+    size: [u32; 2],
+) -> bool {
+    if texture.as_ref().is_some_and(|t| t.size == size) {
+        return false;
+    }
+    let device = &render_state.device;
+            let gpu_texture = device.create_texture(&eframe::wgpu::TextureDescriptor {
+                label: Some("tree view"),
+                size: eframe::wgpu::Extent3d {
+                    width: size[0],
+                    height: size[1],
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: eframe::wgpu::TextureDimension::D2,
+                format: sylva_render::PICTURE_FORMAT,
+                usage: eframe::wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | eframe::wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[eframe::wgpu::TextureFormat::Rgba8Unorm],
+            });
+            let view = gpu_texture.create_view(&Default::default());
+            // egui blends in gamma space: it must read the sRGB-encoded bytes as they are,
+            // through a plain unorm view, or the picture comes out too dark.
+            let egui_view = gpu_texture.create_view(&eframe::wgpu::TextureViewDescriptor {
+                format: Some(eframe::wgpu::TextureFormat::Rgba8Unorm),
+                ..Default::default()
+            });
+            let mut egui_renderer = render_state.renderer.write();
+            let id = match &*texture {
+                Some(old) => {
+                    egui_renderer.update_egui_texture_from_wgpu_texture(
+                        device,
+                        &egui_view,
+                        eframe::wgpu::FilterMode::Linear,
+                        old.id,
+                    );
+                    old.id
+                }
+                None => egui_renderer.register_native_texture(
+                    device,
+                    &egui_view,
+                    eframe::wgpu::FilterMode::Linear,
+                ),
+            };
+            *texture = Some(ViewTexture { view, id, size });
+    true
 }
 
 /// Scripted run for tests: screenshot, change a parameter, screenshot, report, close.
@@ -220,48 +278,7 @@ impl Viewer {
     fn draw_view(&mut self, size: [u32; 2]) {
         let Some(tree) = &self.tree else { return };
         let size = [size[0].clamp(16, 4096), size[1].clamp(16, 4096)];
-        if self.texture.as_ref().is_none_or(|t| t.size != size) {
-            let device = &self.render_state.device;
-            let texture = device.create_texture(&eframe::wgpu::TextureDescriptor {
-                label: Some("tree view"),
-                size: eframe::wgpu::Extent3d {
-                    width: size[0],
-                    height: size[1],
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: eframe::wgpu::TextureDimension::D2,
-                format: sylva_render::PICTURE_FORMAT,
-                usage: eframe::wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | eframe::wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[eframe::wgpu::TextureFormat::Rgba8Unorm],
-            });
-            let view = texture.create_view(&Default::default());
-            // egui blends in gamma space: it must read the sRGB-encoded bytes as they are,
-            // through a plain unorm view, or the picture comes out too dark.
-            let egui_view = texture.create_view(&eframe::wgpu::TextureViewDescriptor {
-                format: Some(eframe::wgpu::TextureFormat::Rgba8Unorm),
-                ..Default::default()
-            });
-            let mut egui_renderer = self.render_state.renderer.write();
-            let id = match &self.texture {
-                Some(old) => {
-                    egui_renderer.update_egui_texture_from_wgpu_texture(
-                        device,
-                        &egui_view,
-                        eframe::wgpu::FilterMode::Linear,
-                        old.id,
-                    );
-                    old.id
-                }
-                None => egui_renderer.register_native_texture(
-                    device,
-                    &egui_view,
-                    eframe::wgpu::FilterMode::Linear,
-                ),
-            };
-            self.texture = Some(ViewTexture { view, id, size });
+        if ensure_texture(&self.render_state, &mut self.texture, size) {
             self.needs_render = true;
         }
         if self.needs_render
