@@ -2,16 +2,15 @@
 //! and a forest, and how fast unique trees grow.
 
 use crate::commands::{APPENDIX_SPECIES, fastest_ms, mesh_options};
-use crate::render_forest::grouped;
+use crate::render_forest::{ForestOnGpu, grouped};
 use anyhow::{Context, Result};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::borrow::Cow;
 use std::time::Instant;
 use sylva::GenerateOptions;
 use sylva::forest::{ForestSpec, plant};
 use sylva::lod::LodTree;
-use sylva_render::{Camera, GpuTree, Placement, Renderer, Scene, Stand, View};
+use sylva_render::{Camera, Renderer, Scene, View};
 
 const RANGES: [f32; 7] = [10.0, 30.0, 100.0, 300.0, 1000.0, 2000.0, 3000.0];
 const SIZE: (u32, u32) = (1280, 720);
@@ -96,56 +95,19 @@ pub fn bench_forest(runs: u32) -> Result<()> {
         variants: 4,
         quality: 0.5,
     };
-    let t = Instant::now();
-    let forest = crate::forest::grow(&spec, |params, skeleton| {
-        let tree = LodTree::build(skeleton, &mesh_options(params, spec.quality));
-        let bytes = tree.heap_bytes();
-        (tree, bytes)
-    })?;
-    let grow_s = t.elapsed().as_secs_f64();
-    let stored: usize = forest.grown.iter().map(LodTree::heap_bytes).sum();
-    let placed_triangles: usize = forest
-        .planting
-        .trees
-        .iter()
-        .map(|t| forest.grown[t.variant].triangle_count())
-        .sum();
-    let gpu: Vec<GpuTree> = forest
-        .grown
-        .iter()
-        .map(|t| renderer.upload_lod(t))
-        .collect();
-    let mut placements = vec![Vec::new(); gpu.len()];
-    for t in &forest.planting.trees {
-        placements[t.variant].push(Placement {
-            position: Vec3::from(t.position),
-            turn: t.turn,
-            scale: t.scale,
-        });
-    }
-    let stands = gpu
-        .iter()
-        .zip(&forest.planting.variants)
-        .zip(&placements)
-        .map(|((tree, v), p)| Stand {
-            tree,
-            bark: forest.species[v.species].bark_color,
-            leaves: forest.species[v.species].leaf_color,
-            placements: Cow::Borrowed(p),
-        })
-        .collect();
-    let mut scene = Scene::forest(stands);
-    scene.show_person = false;
+    let forest = ForestOnGpu::grow(&renderer, &spec)?;
+    let mut scene = forest.scene();
+    let variants = forest.trees.len();
+    let stored = forest.stored_bytes as f64 / 1e6;
     println!();
     println!(
-        "mixed forest: 1,000 trees ({} variants of the 4 appendix species at quality 0.5) on \
-         600x600 m, {} triangles placed; grown in {grow_s:.1} s; {:.1} MB stored = {:.1} MB per \
-         variant, {:.2} MB per tree placed",
-        gpu.len(),
-        grouped(placed_triangles),
-        stored as f64 / 1e6,
-        stored as f64 / 1e6 / gpu.len() as f64,
-        stored as f64 / 1e6 / 1000.0
+        "mixed forest: 1,000 trees ({variants} variants of the 4 appendix species at quality 0.5) \
+         on 600x600 m, {} triangles placed; grown in {:.1} s; {stored:.1} MB stored = {:.1} MB \
+         per variant, {:.2} MB per tree placed",
+        grouped(forest.triangles_placed),
+        forest.grow_seconds,
+        stored / variants as f64,
+        stored / 1000.0
     );
     table(&renderer, &mut scene, Vec3::new(0.0, 0.0, 8.0), runs)?;
     Ok(())

@@ -10,6 +10,7 @@ use glam::Vec3;
 use std::borrow::Cow;
 use std::path::Path;
 use std::time::Instant;
+use sylva::forest::ForestSpec;
 use sylva::lod::LodTree;
 use sylva_render::{Camera, FrameStats, GpuTree, Picture, Placement, Renderer, Scene, Stand, View};
 
@@ -46,15 +47,20 @@ pub struct ForestOnGpu {
     pub colours: Vec<([f32; 3], [f32; 3])>,
     pub placements: Vec<Vec<Placement>>,
     pub stored_bytes: usize,
+    pub triangles_placed: usize,
     pub grow_seconds: f64,
 }
 
 impl ForestOnGpu {
     /// Plants and grows `path`'s forest, stores every variant for range and uploads it.
     pub fn load(renderer: &Renderer, path: &Path) -> Result<Self> {
-        let spec = read_forest_file(path)?;
+        Self::grow(renderer, &read_forest_file(path)?)
+    }
+
+    /// Plants and grows `spec`, stores every variant for range and uploads it.
+    pub fn grow(renderer: &Renderer, spec: &ForestSpec) -> Result<Self> {
         let quality = spec.quality;
-        let forest = grow(&spec, |params, skeleton| {
+        let forest = grow(spec, |params, skeleton| {
             let tree = LodTree::build(skeleton, &mesh_options(params, quality));
             let bytes = tree.heap_bytes();
             (tree, bytes)
@@ -83,6 +89,12 @@ impl ForestOnGpu {
                 .map(|t| renderer.upload_lod(t))
                 .collect(),
             stored_bytes: forest.grown.iter().map(LodTree::heap_bytes).sum(),
+            triangles_placed: forest
+                .planting
+                .trees
+                .iter()
+                .map(|t| forest.grown[t.variant].triangle_count())
+                .sum(),
             colours,
             placements,
             grow_seconds: forest.seconds,

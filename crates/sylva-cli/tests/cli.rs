@@ -412,7 +412,10 @@ struct Xvfb(std::process::Child, String);
 
 impl Xvfb {
     fn start() -> Option<Self> {
-        let display = format!(":{}", 90 + std::process::id() % 400);
+        // One display per test: tests of one process run in parallel.
+        static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let display = format!(":{}", 90 + (std::process::id() % 400) * 4 + n);
         let child = Command::new("Xvfb")
             .args([
                 display.as_str(),

@@ -3,7 +3,7 @@
 
 use super::ViewTexture;
 use crate::render_forest::{ForestOnGpu, describe};
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Result, anyhow};
 use eframe::{egui, egui_wgpu};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
@@ -54,16 +54,7 @@ impl ForestViewer {
         path: &Path,
         self_test: Option<PathBuf>,
     ) -> Result<Self> {
-        let render_state = cc
-            .wgpu_render_state
-            .clone()
-            .context("the viewer needs the wgpu backend, which did not start")?;
-        let renderer = Renderer::from_device(
-            render_state.device.clone(),
-            render_state.queue.clone(),
-            sylva_render::PICTURE_FORMAT,
-            render_state.adapter.get_info().name,
-        );
+        let (renderer, render_state) = super::renderer_of(cc)?;
         let forest = ForestOnGpu::load(&renderer, path)?;
         // Start at the forest's edge, at eye height, looking across it.
         let (lo, hi) = forest.scene().tree_bounds();
@@ -110,19 +101,29 @@ impl ForestViewer {
             (
                 i.stable_dt.min(0.1),
                 [
-                    key(egui::Key::W) + key(egui::Key::ArrowUp) - key(egui::Key::S)
+                    key(egui::Key::W) + key(egui::Key::ArrowUp)
+                        - key(egui::Key::S)
                         - key(egui::Key::ArrowDown),
-                    key(egui::Key::D) + key(egui::Key::ArrowRight) - key(egui::Key::A)
+                    key(egui::Key::D) + key(egui::Key::ArrowRight)
+                        - key(egui::Key::A)
                         - key(egui::Key::ArrowLeft),
                     key(egui::Key::E) - key(egui::Key::Q),
                 ],
-                if response.hovered() { i.smooth_scroll_delta.y } else { 0.0 },
+                if response.hovered() {
+                    i.smooth_scroll_delta.y
+                } else {
+                    0.0
+                },
                 i.modifiers.shift,
             )
         });
         // Faster when high above the trees, as in any flight camera.
         let speed = (8.0 + self.eye.z.abs() * 0.8) * if fast { 5.0 } else { 1.0 };
-        let flat = Vec3::new(-self.yaw.to_radians().sin(), self.yaw.to_radians().cos(), 0.0);
+        let flat = Vec3::new(
+            -self.yaw.to_radians().sin(),
+            self.yaw.to_radians().cos(),
+            0.0,
+        );
         let right = flat.cross(Vec3::Z);
         let step = (flat * keys[0] + right * keys[1] + Vec3::Z * keys[2]) * speed * dt
             + self.forward() * scroll * 0.05;
@@ -149,9 +150,9 @@ impl ForestViewer {
         scene.lod_quality = self.lod_quality;
         scene.show_leaves = self.show_leaves;
         let t = Instant::now();
-        self.stats = self
-            .renderer
-            .render_into(&scene, &self.view(), &texture.view, size[0], size[1]);
+        self.stats =
+            self.renderer
+                .render_into(&scene, &self.view(), &texture.view, size[0], size[1]);
         // Wait for the GPU so that the time is the frame's, not just its recording.
         let _ = self
             .renderer
@@ -191,6 +192,8 @@ impl ForestViewer {
                 let report = serde_json::json!({ "frames": frames });
                 let _ = std::fs::write(dir.join("forest-viewer.json"), report.to_string());
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+                // Done: frames drawn while the window closes are not part of the report.
+                self.self_test = None;
                 return;
             }
         }

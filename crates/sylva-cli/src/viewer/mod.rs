@@ -50,6 +50,21 @@ struct ViewTexture {
     size: [u32; 2],
 }
 
+/// The renderer on eframe's wgpu device, and that device's state.
+fn renderer_of(cc: &eframe::CreationContext<'_>) -> Result<(Renderer, egui_wgpu::RenderState)> {
+    let render_state = cc
+        .wgpu_render_state
+        .clone()
+        .context("the viewer needs the wgpu backend, which did not start")?;
+    let renderer = Renderer::from_device(
+        render_state.device.clone(),
+        render_state.queue.clone(),
+        sylva_render::PICTURE_FORMAT,
+        render_state.adapter.get_info().name,
+    );
+    Ok((renderer, render_state))
+}
+
 /// Makes (or remakes, at a new size) the texture the 3-D view is drawn into and shown from;
 /// true when it did.
 fn ensure_texture(
@@ -61,46 +76,46 @@ fn ensure_texture(
         return false;
     }
     let device = &render_state.device;
-            let gpu_texture = device.create_texture(&eframe::wgpu::TextureDescriptor {
-                label: Some("tree view"),
-                size: eframe::wgpu::Extent3d {
-                    width: size[0],
-                    height: size[1],
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: eframe::wgpu::TextureDimension::D2,
-                format: sylva_render::PICTURE_FORMAT,
-                usage: eframe::wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | eframe::wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[eframe::wgpu::TextureFormat::Rgba8Unorm],
-            });
-            let view = gpu_texture.create_view(&Default::default());
-            // egui blends in gamma space: it must read the sRGB-encoded bytes as they are,
-            // through a plain unorm view, or the picture comes out too dark.
-            let egui_view = gpu_texture.create_view(&eframe::wgpu::TextureViewDescriptor {
-                format: Some(eframe::wgpu::TextureFormat::Rgba8Unorm),
-                ..Default::default()
-            });
-            let mut egui_renderer = render_state.renderer.write();
-            let id = match &*texture {
-                Some(old) => {
-                    egui_renderer.update_egui_texture_from_wgpu_texture(
-                        device,
-                        &egui_view,
-                        eframe::wgpu::FilterMode::Linear,
-                        old.id,
-                    );
-                    old.id
-                }
-                None => egui_renderer.register_native_texture(
-                    device,
-                    &egui_view,
-                    eframe::wgpu::FilterMode::Linear,
-                ),
-            };
-            *texture = Some(ViewTexture { view, id, size });
+    let gpu_texture = device.create_texture(&eframe::wgpu::TextureDescriptor {
+        label: Some("tree view"),
+        size: eframe::wgpu::Extent3d {
+            width: size[0],
+            height: size[1],
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: eframe::wgpu::TextureDimension::D2,
+        format: sylva_render::PICTURE_FORMAT,
+        usage: eframe::wgpu::TextureUsages::RENDER_ATTACHMENT
+            | eframe::wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[eframe::wgpu::TextureFormat::Rgba8Unorm],
+    });
+    let view = gpu_texture.create_view(&Default::default());
+    // egui blends in gamma space: it must read the sRGB-encoded bytes as they are,
+    // through a plain unorm view, or the picture comes out too dark.
+    let egui_view = gpu_texture.create_view(&eframe::wgpu::TextureViewDescriptor {
+        format: Some(eframe::wgpu::TextureFormat::Rgba8Unorm),
+        ..Default::default()
+    });
+    let mut egui_renderer = render_state.renderer.write();
+    let id = match &*texture {
+        Some(old) => {
+            egui_renderer.update_egui_texture_from_wgpu_texture(
+                device,
+                &egui_view,
+                eframe::wgpu::FilterMode::Linear,
+                old.id,
+            );
+            old.id
+        }
+        None => egui_renderer.register_native_texture(
+            device,
+            &egui_view,
+            eframe::wgpu::FilterMode::Linear,
+        ),
+    };
+    *texture = Some(ViewTexture { view, id, size });
     true
 }
 
@@ -156,16 +171,7 @@ impl Viewer {
         source: String,
         self_test: Option<PathBuf>,
     ) -> Result<Self> {
-        let render_state = cc
-            .wgpu_render_state
-            .clone()
-            .context("the viewer needs the wgpu backend, which did not start")?;
-        let renderer = Renderer::from_device(
-            render_state.device.clone(),
-            render_state.queue.clone(),
-            sylva_render::PICTURE_FORMAT,
-            render_state.adapter.get_info().name,
-        );
+        let (renderer, render_state) = renderer_of(cc)?;
         let ctx = cc.egui_ctx.clone();
         let worker = Worker::start(move || ctx.request_repaint());
         let self_test = self_test.map(|dir| {
