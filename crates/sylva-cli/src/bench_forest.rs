@@ -5,10 +5,9 @@ use crate::commands::{APPENDIX_SPECIES, fastest_ms, mesh_options};
 use crate::render_forest::{ForestOnGpu, grouped};
 use anyhow::{Context, Result};
 use glam::Vec3;
-use rayon::prelude::*;
 use std::time::Instant;
 use sylva::GenerateOptions;
-use sylva::forest::{ForestSpec, plant};
+use sylva::forest::ForestSpec;
 use sylva::lod::LodTree;
 use sylva_render::{Camera, Renderer, Scene, View};
 
@@ -126,27 +125,16 @@ pub fn bench_throughput(n: u32) -> Result<()> {
     };
     spec.validate()
         .map_err(|e| anyhow::anyhow!("--throughput: {e}"))?;
-    let species: Vec<_> = APPENDIX_SPECIES
-        .iter()
-        .map(|s| sylva::species::builtin(s).context("built-in species"))
-        .collect::<Result<_>>()?;
-    let planting = plant(&spec);
+    // Each tree is stored for range and released at once: it holds nothing against the
+    // forest's memory budget.
     let t = Instant::now();
-    let triangles: usize = planting
-        .variants
-        .par_iter()
-        .map(|v| -> Result<usize> {
-            let params = &species[v.species];
-            let options = GenerateOptions {
-                seed: v.seed,
-                quality: spec.quality,
-                ..Default::default()
-            };
-            let skeleton = sylva::generate(params, &options)?;
-            Ok(LodTree::build(&skeleton, &mesh_options(params, spec.quality)).triangle_count())
-        })
-        .sum::<Result<usize>>()?;
+    let forest = crate::forest::grow(&spec, |params, skeleton| {
+        let tree = LodTree::build(skeleton, &mesh_options(params, spec.quality));
+        (tree.triangle_count(), 0)
+    })?;
     let s = t.elapsed().as_secs_f64();
+    let triangles: usize = forest.grown.iter().sum();
+    let planting = forest.planting;
     println!();
     println!(
         "{} unique trees of the appendix species (quality 0.5) grown and stored for range in \

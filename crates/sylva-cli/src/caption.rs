@@ -79,25 +79,37 @@ pub fn with_caption(picture: &Picture, lines: &[String], size: f32) -> Picture {
     out
 }
 
-/// Pictures of the same height side by side, with a white gap between them.
+/// Pictures side by side, with a white gap between them.
 pub fn side_by_side(pictures: &[Picture], gap: u32) -> Picture {
-    let height = pictures.iter().map(|p| p.height).max().unwrap_or(16);
-    let width = pictures.iter().map(|p| p.width).sum::<u32>()
-        + gap * pictures.len().saturating_sub(1) as u32;
+    tile(pictures, pictures.len().max(1) as u32, gap, 255)
+}
+
+/// Pictures in a grid of `columns`, left to right and top to bottom, each in a cell as large
+/// as the largest, `gap` pixels apart, on a background of `fill` bytes (255: white; 0:
+/// transparent).
+pub fn tile(pictures: &[Picture], columns: u32, gap: u32, fill: u8) -> Picture {
+    let columns = columns.max(1);
+    let rows = (pictures.len() as u32).div_ceil(columns).max(1);
+    let cell_w = pictures.iter().map(|p| p.width).max().unwrap_or(16);
+    let cell_h = pictures.iter().map(|p| p.height).max().unwrap_or(16);
+    let width = columns * cell_w + gap * (columns - 1);
+    let height = rows * cell_h + gap * (rows - 1);
     let mut out = Picture {
         width,
         height,
-        rgba: vec![255; (width * height * 4) as usize],
+        rgba: vec![fill; (width * height * 4) as usize],
         stats: Default::default(),
     };
-    let mut left = 0;
-    for p in pictures {
+    for (i, p) in pictures.iter().enumerate() {
+        let (left, top) = (
+            (i as u32 % columns) * (cell_w + gap),
+            (i as u32 / columns) * (cell_h + gap),
+        );
         for y in 0..p.height {
             let src = &p.rgba[(y * p.width * 4) as usize..((y + 1) * p.width * 4) as usize];
-            let dst = ((y * width + left) * 4) as usize;
+            let dst = (((top + y) * width + left) * 4) as usize;
             out.rgba[dst..dst + src.len()].copy_from_slice(src);
         }
-        left += p.width + gap;
     }
     out
 }

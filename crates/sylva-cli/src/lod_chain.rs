@@ -34,23 +34,14 @@ pub fn bake_impostor(
     let centre = Vec3::new(0.0, 0.0, (frame.top + frame.bottom) / 2.0);
     let distance = height * 200.0;
     let fov = (2.0 * (height / 2.0 / distance).atan()).to_degrees();
-    let (cols, rows) = (frame.columns, frame.rows());
-    let mut atlas = Picture {
-        width: w * cols,
-        height: h * rows,
-        rgba: vec![0; (w * cols * h * rows * 4) as usize],
-        stats: Default::default(),
-    };
-    for k in 0..frame.views {
-        let eye = centre + frame.direction(k) * distance;
-        let view = renderer.render(&scene, &View::look_at(eye, centre, fov), w, h)?;
-        let (cx, cy) = (k % cols, k / cols);
-        for y in 0..h {
-            let src = &view.rgba[(y * w * 4) as usize..((y + 1) * w * 4) as usize];
-            let dst = (((cy * h + y) * atlas.width + cx * w) * 4) as usize;
-            atlas.rgba[dst..dst + src.len()].copy_from_slice(src);
-        }
-    }
+    let views = (0..frame.views)
+        .map(|k| {
+            let eye = centre + frame.direction(k) * distance;
+            Ok(renderer.render(&scene, &View::look_at(eye, centre, fov), w, h)?)
+        })
+        .collect::<Result<Vec<Picture>>>()?;
+    // Cells in the order the quads read them, on a transparent background.
+    let atlas = crate::caption::tile(&views, frame.columns, 0, 0);
     let mut png = Vec::new();
     image::ImageEncoder::write_image(
         image::codecs::png::PngEncoder::new(&mut png),

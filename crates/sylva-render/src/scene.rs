@@ -135,12 +135,15 @@ impl<'a> Scene<'a> {
     /// One tree at the origin, with ground, person, leaves and an afternoon sun from the
     /// south-west.
     pub fn new(tree: &'a GpuTree, bark: [f32; 3], leaves: [f32; 3]) -> Self {
-        Self::forest(vec![Stand {
-            tree,
-            bark,
-            leaves,
-            placements: std::borrow::Cow::Borrowed(std::slice::from_ref(&Placement::ORIGIN)),
-        }])
+        Self {
+            show_person: true,
+            ..Self::forest(vec![Stand {
+                tree,
+                bark,
+                leaves,
+                placements: std::borrow::Cow::Borrowed(std::slice::from_ref(&Placement::ORIGIN)),
+            }])
+        }
     }
 
     /// Many trees: the same defaults as [`Scene::new`], without the person.
@@ -149,7 +152,7 @@ impl<'a> Scene<'a> {
             stands,
             show_leaves: true,
             show_ground: true,
-            show_person: true,
+            show_person: false,
             sun: Vec3::new(-0.45, -0.6, 0.66).normalize(),
             use_lod: true,
             lod_quality: 1.0,
