@@ -159,7 +159,12 @@ pub struct RenderArgs {
 
     /// Forests: camera distance from the forest's centre, metres, along the --view direction
     /// (default: frame the whole forest).
-    #[arg(long, value_name = "METRES", help_heading = "Forest")]
+    #[arg(
+        long,
+        value_name = "METRES",
+        allow_negative_numbers = true,
+        help_heading = "Forest"
+    )]
     pub range: Option<f32>,
 
     /// Forests: camera position X,Y,Z in metres (Z up), with --target.
@@ -167,7 +172,7 @@ pub struct RenderArgs {
         long,
         value_name = "X,Y,Z",
         value_delimiter = ',',
-        num_args = 3,
+        allow_hyphen_values = true,
         requires = "target",
         help_heading = "Forest"
     )]
@@ -178,7 +183,7 @@ pub struct RenderArgs {
         long,
         value_name = "X,Y,Z",
         value_delimiter = ',',
-        num_args = 3,
+        allow_hyphen_values = true,
         requires = "eye",
         help_heading = "Forest"
     )]
@@ -189,7 +194,12 @@ pub struct RenderArgs {
     pub lod: LodMode,
 
     /// Vertical field of view, degrees.
-    #[arg(long, default_value_t = 30.0, help_heading = "Rendering")]
+    #[arg(
+        long,
+        default_value_t = 30.0,
+        allow_negative_numbers = true,
+        help_heading = "Rendering"
+    )]
     pub fov: f32,
 
     /// Output PNG.

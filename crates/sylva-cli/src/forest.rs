@@ -173,6 +173,10 @@ pub fn forest(args: &ForestArgs) -> Result<()> {
         // Position, normal and texture coordinate per vertex, and the triangles, in the GLB.
         let bytes = mesh.vertex_count() * 32 + mesh.triangle_count() * 12;
         (mesh, bytes)
+    })
+    .with_context(|| match &args.file {
+        Some(f) => f.display().to_string(),
+        None => "sylva forest".into(),
     })?;
     let (planting, meshes) = (&forest.planting, &forest.grown);
     let names: Vec<&str> = planting

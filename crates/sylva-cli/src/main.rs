@@ -13,6 +13,13 @@ mod viewer;
 use clap::Parser;
 
 fn main() {
+    // Rust ignores SIGPIPE, which turns a closed pipe (`sylva species list | head -1`) into a
+    // panic in println!; the default action ends the process quietly instead.
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to its default before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     // Mesa's drivers complain on stderr when XDG_RUNTIME_DIR is unset (root shells, CI) even
     // though headless rendering never needs it; give them the temp directory instead.
     if std::env::var_os("XDG_RUNTIME_DIR").is_none() {

@@ -144,27 +144,10 @@ fn view_of(v: RenderView) -> View {
     })
 }
 
-/// Lays `pictures` out in a grid on one sheet.
+/// Lays `pictures` out in a grid on one sheet, as square as it can be.
 fn contact_sheet(pictures: &[Picture]) -> Picture {
-    let n = pictures.len() as u32;
-    let cols = (n as f64).sqrt().ceil() as u32;
-    let rows = n.div_ceil(cols);
-    let (w, h) = (pictures[0].width, pictures[0].height);
-    let mut rgba = vec![255u8; (cols * w * rows * h * 4) as usize];
-    for (i, p) in pictures.iter().enumerate() {
-        let (cx, cy) = (i as u32 % cols, i as u32 / cols);
-        for y in 0..h {
-            let src = &p.rgba[(y * w * 4) as usize..((y + 1) * w * 4) as usize];
-            let dst = (((cy * h + y) * cols * w + cx * w) * 4) as usize;
-            rgba[dst..dst + src.len()].copy_from_slice(src);
-        }
-    }
-    Picture {
-        width: cols * w,
-        height: rows * h,
-        rgba,
-        stats: Default::default(),
-    }
+    let columns = (pictures.len() as f64).sqrt().ceil() as u32;
+    crate::caption::tile(pictures, columns, 0, 255)
 }
 
 /// Where the pictured tree comes from.
@@ -235,6 +218,9 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     }
     if args.turntable == Some(0) || args.frames == Some(0) {
         bail!("--turntable and --frames need at least 1");
+    }
+    if !(1.0..=170.0).contains(&args.fov) {
+        bail!("--fov {}: expected 1..170 degrees", args.fov);
     }
     if !(args.fps > 0.0 && args.fps <= 1000.0) {
         bail!("--fps {}: expected 0..1000", args.fps);

@@ -5,7 +5,7 @@ use crate::args::{LodMode, RenderArgs};
 use crate::caption::{side_by_side, with_caption};
 use crate::commands::mesh_options;
 use crate::forest::{grow, read_forest_file};
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use std::borrow::Cow;
 use std::path::Path;
@@ -54,7 +54,7 @@ pub struct ForestOnGpu {
 impl ForestOnGpu {
     /// Plants and grows `path`'s forest, stores every variant for range and uploads it.
     pub fn load(renderer: &Renderer, path: &Path) -> Result<Self> {
-        Self::grow(renderer, &read_forest_file(path)?)
+        Self::grow(renderer, &read_forest_file(path)?).with_context(|| path.display().to_string())
     }
 
     /// Plants and grows `spec`, stores every variant for range and uploads it.
@@ -115,9 +115,7 @@ impl ForestOnGpu {
                 placements: Cow::Borrowed(p),
             })
             .collect();
-        let mut scene = Scene::forest(stands);
-        scene.show_person = false;
-        scene
+        Scene::forest(stands)
     }
 }
 
@@ -131,6 +129,11 @@ pub fn forest_view(args: &RenderArgs, scene: &Scene, base: View) -> Result<View>
         (hi.z - lo.z) / 3.0,
     );
     if let (Some(eye), Some(target)) = (&args.eye, &args.target) {
+        if eye.len() != 3 || target.len() != 3 {
+            bail!(
+                "--eye and --target take three numbers each, X,Y,Z in metres, e.g. --eye 0,-80,2"
+            );
+        }
         let (eye, target) = (Vec3::from_slice(eye), Vec3::from_slice(target));
         if !eye.is_finite() || !target.is_finite() || eye.distance(target) < 1e-3 {
             bail!("--eye and --target must be finite and apart");

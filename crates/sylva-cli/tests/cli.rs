@@ -706,6 +706,37 @@ fn forest_file_renders_with_and_without_lod_side_by_side() {
         with * 5 < without,
         "LOD draws {with} primitives, full detail {without}"
     );
+    // Bad requests name what is wrong and write nothing.
+    let bad = dir.path().join("bad.png");
+    let unknown = dir.path().join("unknown.toml");
+    std::fs::write(&unknown, "[forest]\nspecies = [\"no_such_tree\"]\n").unwrap();
+    let f = file.to_str().unwrap();
+    for (args, needles) in [
+        (vec!["render", f, "--fov", "0"], vec!["--fov 0", "1..170"]),
+        (vec!["render", f, "--range", "-5"], vec!["--range -5"]),
+        (
+            vec!["render", f, "--eye", "1,2", "--target", "0,0,0"],
+            vec!["--eye", "three numbers"],
+        ),
+        (vec!["render", f, "--turntable", "3"], vec!["--turntable"]),
+        (
+            vec!["render", unknown.to_str().unwrap()],
+            vec!["unknown.toml", "no_such_tree"],
+        ),
+    ] {
+        let mut all = args.clone();
+        all.extend(["-o", bad.to_str().unwrap()]);
+        let run = sylva(&all);
+        let err = text(&run.stderr);
+        assert!(!run.status.success(), "{args:?} should fail");
+        for n in needles {
+            assert!(err.contains(n), "{args:?}: `{n}` not in {err}");
+        }
+        assert!(
+            !err.contains("panicked") && !bad.exists(),
+            "{args:?}: {err}"
+        );
+    }
     // The GLB of the same forest file.
     let glb = dir.path().join("grove.glb");
     let run = sylva(&[
