@@ -8,7 +8,7 @@
 pub mod impostor;
 pub mod order;
 
-use crate::mesh::{MeshOptions, TreeMesh, mesh_stems_by_segment};
+use crate::mesh::{MeshOptions, SegmentTriangles, TreeMesh, mesh_stems_by_segment};
 use crate::skeleton::Skeleton;
 use order::{LEAF_MASS, STEM_MASS, prefix_len, rank_major};
 use std::ops::Range;
@@ -165,33 +165,46 @@ impl LodList {
 impl LodTree {
     /// Builds the rank-major lists of a tree.
     pub fn build(skeleton: &Skeleton, options: &MeshOptions) -> Self {
-        let mut tree = Self::build_keeping_indices(skeleton, options);
+        let mut tree = Self::build_with(skeleton, options, false);
         // The lists hold the same triangles: keeping the mesh's own order too would double
         // the biggest buffers of every tree.
         tree.mesh.bark.indices = Vec::new();
-        tree.mesh.leaves.indices = Vec::new();
         tree
     }
 
     /// [`LodTree::build`], keeping the mesh's own triangle order too (for tests).
+    #[cfg(test)]
     pub(crate) fn build_keeping_indices(skeleton: &Skeleton, options: &MeshOptions) -> Self {
+        Self::build_with(skeleton, options, true)
+    }
+
+    fn build_with(skeleton: &Skeleton, options: &MeshOptions, keep_leaf_indices: bool) -> Self {
         let mut mesh = TreeMesh::default();
-        crate::mesh::mesh_leaves_into(skeleton, &mut mesh.leaves);
+        if keep_leaf_indices {
+            crate::mesh::mesh_leaves_into(skeleton, &mut mesh.leaves);
+        } else {
+            crate::mesh::mesh_leaf_vertices_into(skeleton, &mut mesh.leaves);
+        }
         let mut segments = Vec::new();
         mesh_stems_by_segment(skeleton, options, &mut mesh.bark, &mut segments);
         let mut lists: [LodList; 4] = Default::default();
-        for (kind, list) in lists.iter_mut().enumerate().take(3) {
-            let items: Vec<_> = segments
-                .iter()
-                .filter(|s| {
-                    let level = skeleton.stems[s.stem as usize].level as usize;
-                    level.min(2) == kind
-                })
-                .collect();
+        let mut kinds: [Vec<&SegmentTriangles>; 3] = Default::default();
+        for s in &segments {
+            let level = skeleton.stems[s.stem as usize].level as usize;
+            kinds[level.min(2)].push(s);
+        }
+        for (list, items) in lists.iter_mut().zip(&kinds) {
             list.mass = STEM_MASS;
             list.items = items.len();
+            // Sized exactly up front: these are the biggest buffers a forest holds.
+            let triangles: usize = items.iter().map(|s| s.indices.len()).sum();
+            list.indices.reserve_exact(triangles);
+            list.index_prefix.reserve_exact(items.len() + 1);
+            list.points.reserve_exact(items.len() * 2);
+            list.sizes.reserve_exact(items.len() * 2);
+            list.normals.reserve_exact(items.len() * 2);
             let (mut dsum, mut lsum) = (0.0f64, 0.0f64);
-            for s in &items {
+            for s in items {
                 let secs = skeleton.sections_of(crate::StemId(s.stem));
                 let (a, b) = (secs[s.section as usize], secs[s.section as usize + 1]);
                 dsum += (a.radius + b.radius) as f64;
@@ -217,32 +230,39 @@ impl LodTree {
             }
         }
         let leaves = &mut lists[3];
+        let count = skeleton.leaves.len();
         leaves.mass = LEAF_MASS;
-        leaves.items = skeleton.leaves.len();
-        let per_leaf: Vec<usize> = skeleton
-            .leaves
-            .iter()
-            .map(|l| crate::mesh::leaf_template(l.shape).indices.len())
-            .collect();
-        let mut starts = Vec::with_capacity(per_leaf.len() + 1);
-        starts.push(0usize);
-        for n in &per_leaf {
-            starts.push(starts.last().copied().unwrap_or(0) + n);
+        leaves.items = count;
+        // Where each leaf's vertices start in the leaf mesh (leaves are meshed in order).
+        let mut first_vertex = Vec::with_capacity(count);
+        let mut total_indices = 0;
+        let mut next = 0u32;
+        for l in &skeleton.leaves {
+            let t = crate::mesh::leaf_template(l.shape);
+            first_vertex.push(next);
+            next += t.positions.len() as u32;
+            total_indices += t.indices.len();
         }
-        leaves.length = skeleton.leaves.iter().map(|l| l.length).sum::<f32>()
-            / skeleton.leaves.len().max(1) as f32;
+        leaves.length = skeleton.leaves.iter().map(|l| l.length).sum::<f32>() / count.max(1) as f32;
+        leaves.indices.reserve_exact(total_indices);
+        leaves.index_prefix.reserve_exact(count + 1);
+        leaves.points.reserve_exact(count);
+        leaves.sizes.reserve_exact(count);
+        leaves.normals.reserve_exact(count);
         leaves.index_prefix.push(0);
         let areas: Vec<f32> = crate::LeafShape::ALL
             .iter()
             .map(|&s| crate::mesh::leaf_template(s).area())
             .collect();
-        for &i in &rank_major(skeleton.leaves.len(), LEAF_MASS) {
+        for &i in &rank_major(count, LEAF_MASS) {
             let i = i as usize;
-            leaves
-                .indices
-                .extend_from_slice(&mesh.leaves.indices[starts[i]..starts[i + 1]]);
-            leaves.index_prefix.push(leaves.indices.len() as u32);
             let l = &skeleton.leaves[i];
+            let t = crate::mesh::leaf_template(l.shape);
+            let base = first_vertex[i];
+            // The leaf's triangles written straight into rank-major order: the same indices
+            // the leaf mesh would hold, without building and copying that buffer.
+            leaves.indices.extend(t.indices.iter().map(|&k| base + k));
+            leaves.index_prefix.push(leaves.indices.len() as u32);
             let centre = l.position + l.orientation * glam::Vec3::new(0.0, 0.0, l.length / 2.0);
             leaves.points.push(centre.to_array());
             let shape = crate::LeafShape::ALL

@@ -55,9 +55,19 @@ pub(super) fn count(skeleton: &Skeleton) -> (usize, usize) {
 }
 
 pub(super) fn mesh_leaves(skeleton: &Skeleton, mesh: &mut Mesh) {
+    let mut base = mesh.positions.len() as u32;
+    leaf_vertices(skeleton, mesh);
     for leaf in &skeleton.leaves {
         let t = leaf_template(leaf.shape);
-        let base = mesh.positions.len() as u32;
+        mesh.indices.extend(t.indices.iter().map(|i| base + i));
+        base += t.positions.len() as u32;
+    }
+}
+
+/// Every leaf's vertices, in skeleton order, without triangles.
+pub(super) fn leaf_vertices(skeleton: &Skeleton, mesh: &mut Mesh) {
+    for leaf in &skeleton.leaves {
+        let t = leaf_template(leaf.shape);
         let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
         for ((p, n), uv) in t.positions.iter().zip(&t.normals).zip(&t.uvs) {
             mesh.push(
@@ -66,7 +76,6 @@ pub(super) fn mesh_leaves(skeleton: &Skeleton, mesh: &mut Mesh) {
                 *uv,
             );
         }
-        mesh.indices.extend(t.indices.iter().map(|i| base + i));
     }
 }
 

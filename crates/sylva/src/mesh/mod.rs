@@ -104,6 +104,14 @@ pub(crate) fn mesh_leaves_into(skeleton: &Skeleton, mesh: &mut Mesh) {
     leaves::mesh_leaves(skeleton, mesh);
 }
 
+/// The leaves' vertices only (appending to `mesh`), for callers that write the triangles in
+/// their own order.
+pub(crate) fn mesh_leaf_vertices_into(skeleton: &Skeleton, mesh: &mut Mesh) {
+    let (v, _) = leaves::count(skeleton);
+    mesh.reserve(v, 0);
+    leaves::leaf_vertices(skeleton, mesh);
+}
+
 /// Meshes every stem and leaf of a skeleton.
 pub fn mesh_tree(skeleton: &Skeleton, options: &MeshOptions) -> TreeMesh {
     let mut mesh = TreeMesh::default();

@@ -623,7 +623,7 @@ fn bend_leaf(q: Quat, position: Vec3, bend: f32) -> Quat {
     let cross = n.x * position.y - n.y * position.x;
     let dot = n.x * position.x + n.y * position.y;
     let q = if cross != 0.0 || dot != 0.0 {
-        Quat::from_rotation_z(bend * cross.atan2(dot)) * q
+        Quat::from_rotation_z(bend * atan2(cross, dot)) * q
     } else {
         q
     };
@@ -634,7 +634,34 @@ fn bend_leaf(q: Quat, position: Vec3, bend: f32) -> Quat {
     }
     // Tilt about n x Z (horizontal) by bend * the normal's angle from the vertical.
     let axis = Vec3::new(n.y / horizontal, -n.x / horizontal, 0.0);
-    (Quat::from_axis_angle(axis, bend * horizontal.atan2(n.z)) * q).normalize()
+    (Quat::from_axis_angle(axis, bend * atan2(horizontal, n.z)) * q).normalize()
+}
+
+/// atan2 to within 2e-5 radians, several times faster than libm's: it runs twice for every
+/// leaf, where libm's took a tenth of a forest's generation time. An odd minimax polynomial of
+/// degree 11 for atan on [-1, 1], with the octant folded in.
+fn atan2(y: f32, x: f32) -> f32 {
+    use std::f32::consts::{FRAC_PI_2, PI};
+    let (ax, ay) = (x.abs(), y.abs());
+    let (num, den) = if ay > ax { (ax, ay) } else { (ay, ax) };
+    if den == 0.0 {
+        // Both zero: callers never ask; any fixed answer will do.
+        return 0.0;
+    }
+    let t = num / den;
+    let t2 = t * t;
+    let mut a = t
+        * (0.999_977_26
+            + t2 * (-0.332_623_47
+                + t2 * (0.193_543_46
+                    + t2 * (-0.116_432_87 + t2 * (0.052_653_32 - 0.011_721_2 * t2)))));
+    if ay > ax {
+        a = FRAC_PI_2 - a;
+    }
+    if x < 0.0 {
+        a = PI - a;
+    }
+    a.copysign(y)
 }
 
 /// Applies `ZScale`: stretches heights and turns frames to follow the stretched axes.

@@ -568,3 +568,18 @@ fn the_sway_oscillates_over_seconds() {
     assert!(hi - lo > 0.5, "branch tips barely move over 4 s: {poses:?}");
     assert!(hi < 90.0, "{poses:?}");
 }
+
+#[test]
+fn fast_atan2_matches_libm_all_around_the_circle() {
+    let mut worst = 0.0f32;
+    for i in 0..3600 {
+        let a = (i as f32 / 3600.0 - 0.5) * std::f32::consts::TAU;
+        for r in [1e-3f32, 0.7, 1.0, 250.0] {
+            let (y, x) = (r * a.sin(), r * a.cos());
+            worst = worst.max((super::atan2(y, x) - y.atan2(x)).abs());
+        }
+    }
+    assert!(worst < 2e-5, "worst error {worst} rad");
+    assert_eq!(super::atan2(0.0, 0.0), 0.0);
+    assert!((super::atan2(0.0, -1.0) - std::f32::consts::PI).abs() < 1e-6);
+}
