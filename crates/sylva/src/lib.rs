@@ -26,6 +26,7 @@
 pub mod error;
 pub mod export;
 pub mod forest;
+pub mod growth;
 pub mod lod;
 pub mod mesh;
 pub mod params;

@@ -1,0 +1,68 @@
+//! Growing street trees from measured data (Linsen et al. 2005; Rudnick, Linsen & McPherson
+//! 2007): the USDA Urban Tree Database's equations as functions of age, an annual-segment
+//! growth model steered by them and by light inside the crown, and measurement of the result
+//! the way the data were measured.
+
+pub mod database;
+pub mod equations;
+pub mod measured;
+
+pub use database::{Database, Quantity, Region, SpeciesEntry};
+pub use equations::{Equation, Form};
+pub use measured::Measured;
+
+/// What can go wrong finding or reading growth data.
+#[derive(Debug, thiserror::Error)]
+pub enum GrowthError {
+    /// A region code the database does not have.
+    #[error("no region `{region}` in the Urban Tree Database; regions: {known}")]
+    UnknownRegion {
+        /// As given.
+        region: String,
+        /// The regions there are.
+        known: String,
+    },
+    /// No species of that code or name in the region.
+    #[error("no species `{query}` in region {region}; try one of: {candidates}")]
+    UnknownSpecies {
+        /// As given.
+        query: String,
+        /// Region searched.
+        region: String,
+        /// Close or all names.
+        candidates: String,
+    },
+    /// The species lacks one of the five equations growth needs.
+    #[error(
+        "{code} in {region} has no {which} equation, so it cannot be grown (palms lack age -> DBH)"
+    )]
+    MissingEquation {
+        /// Species code.
+        code: String,
+        /// Region code.
+        region: String,
+        /// The missing relation.
+        which: String,
+    },
+    /// A table that does not parse.
+    #[error("{file}, line {line}: {message}")]
+    Syntax {
+        /// File.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A file that cannot be read.
+    #[error("{path}: {message}")]
+    Io {
+        /// File.
+        path: String,
+        /// The system's message.
+        message: String,
+    },
+}
+
+#[cfg(test)]
+mod tests;
