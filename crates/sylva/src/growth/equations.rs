@@ -139,7 +139,9 @@ impl Equation {
     pub fn rise_start(&self, from: f64, to: f64) -> f64 {
         let h = (to - from) / 3000.0;
         let mut x = from;
-        while x < to && !(self.raw(x + h) > self.raw(x)) {
+        while x < to
+            && self.raw(x + h).partial_cmp(&self.raw(x)) != Some(std::cmp::Ordering::Greater)
+        {
             x += h;
         }
         x

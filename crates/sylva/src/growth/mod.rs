@@ -5,11 +5,16 @@
 
 pub mod database;
 pub mod equations;
+pub mod light;
+pub mod measure;
 pub mod measured;
+pub mod model;
 
 pub use database::{Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};
+pub use measure::{Dimensions, measure};
 pub use measured::Measured;
+pub use model::{CrownShape, Grower, GrowthOptions, Targets};
 
 /// What can go wrong finding or reading growth data.
 #[derive(Debug, thiserror::Error)]

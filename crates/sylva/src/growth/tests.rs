@@ -1,4 +1,5 @@
 use super::*;
+use glam::Vec3;
 
 fn close(got: f64, want: f64, tolerance: f64) -> bool {
     (got - want).abs() <= tolerance * want.abs().max(1e-9)
@@ -195,4 +196,164 @@ fn a_broken_table_names_its_file_and_line() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("line 3") && e.contains("`one`"), "{e}");
+}
+
+/// Worst relative error per quantity (height, DBH, crown diameter, crown height, leaf area)
+/// over every whole age in the fitted range.
+pub(crate) fn fidelity(region: &str, code: &str, seed: u64) -> ([f64; 5], [u32; 5]) {
+    let m = Database::builtin().find(region, code).unwrap();
+    let ages = m.whole_ages();
+    let mut g = Grower::new(
+        m,
+        GrowthOptions {
+            seed,
+            ..Default::default()
+        },
+    );
+    let mut worst = [0.0f64; 5];
+    let mut at = [0u32; 5];
+    for age in ages {
+        g.advance_to(age as f64);
+        let d = measure(&g.skeleton());
+        let t = g.targets(age as f64);
+        let errs = [
+            d.height / t.height - 1.0,
+            d.dbh / t.dbh - 1.0,
+            d.crown_diameter / t.crown_diameter - 1.0,
+            d.crown_height / t.crown_height - 1.0,
+            d.leaf_area / t.leaf_area - 1.0,
+        ];
+        for k in 0..5 {
+            if errs[k].abs() > worst[k].abs() {
+                worst[k] = errs[k];
+                at[k] = age;
+            }
+        }
+    }
+    (worst, at)
+}
+
+/// Not yet within the bounds at the youngest ages of some species (see the closing
+/// note of the stop that added it): run with `--ignored` to print the worst errors.
+#[test]
+#[ignore]
+fn print_fidelity() {
+    for code in ["PLAC", "ACSA1", "FRVE_G", "KOPA", "MAGR", "PICH", "CESI4"] {
+        let t = std::time::Instant::now();
+        let (w, at) = fidelity("InlVal", code, 1);
+        println!(
+            "{code:7} H {:+.3}@{} DBH {:+.3}@{} CD {:+.3}@{} CH {:+.3}@{} LA {:+.3}@{}  {:.1}s",
+            w[0],
+            at[0],
+            w[1],
+            at[1],
+            w[2],
+            at[2],
+            w[3],
+            at[3],
+            w[4],
+            at[4],
+            t.elapsed().as_secs_f64()
+        );
+    }
+}
+
+#[test]
+#[ignore]
+fn print_ages() {
+    let code = std::env::var("SP").unwrap_or("PLAC".into());
+    let m = Database::builtin().find("InlVal", &code).unwrap();
+    let ages = m.whole_ages();
+    let mut g = Grower::new(
+        m,
+        GrowthOptions {
+            seed: 1,
+            ..Default::default()
+        },
+    );
+    for age in ages {
+        let t0 = std::time::Instant::now();
+        g.advance_to(age as f64);
+        let dt = t0.elapsed().as_secs_f64();
+        let sk = g.skeleton();
+        let d = measure(&sk);
+        let t = g.targets(age as f64);
+        println!(
+            "{age:3} H {:5.2}/{:5.2} DBH {:5.1}/{:5.1} CD {:5.2}/{:5.2} CH {:5.2}/{:5.2} LA {:6.1}/{:6.1} segs {} leaves {} {:.0}ms (growth {:.1} light {:.1} ms/step) gain {:.2}",
+            d.height,
+            t.height,
+            d.dbh,
+            t.dbh,
+            d.crown_diameter,
+            t.crown_diameter,
+            d.crown_height,
+            t.crown_height,
+            d.leaf_area,
+            t.leaf_area,
+            g.segment_count(),
+            sk.leaves.len(),
+            dt * 1e3,
+            g.times.growth * 1e3,
+            g.times.light * 1e3,
+            g.gain()
+        );
+    }
+}
+
+#[test]
+fn growth_is_deterministic_and_incremental() {
+    let m = Database::builtin().find("InlVal", "PLAC").unwrap();
+    let options = GrowthOptions {
+        seed: 3,
+        ..Default::default()
+    };
+    let mut a = Grower::new(m.clone(), options.clone());
+    a.advance_to(4.0);
+    let young = a.skeleton();
+    a.advance_to(7.0);
+    let mut b = Grower::new(m.clone(), options.clone());
+    b.advance_to(7.0);
+    assert_eq!(
+        a.skeleton(),
+        b.skeleton(),
+        "4 then 7 years equals 7 at once"
+    );
+    assert_ne!(young, a.skeleton());
+    // Asking for a younger age does not regrow or shrink the tree.
+    let before = a.skeleton();
+    a.advance_to(5.0);
+    assert_eq!(a.skeleton(), before);
+    let mut c = Grower::new(m, GrowthOptions { seed: 4, ..options });
+    c.advance_to(7.0);
+    assert_ne!(c.skeleton(), b.skeleton(), "another seed, another tree");
+}
+
+#[test]
+fn a_young_plane_tree_has_the_measured_height_and_dbh_and_light_thins_its_interior() {
+    let m = Database::builtin().find("InlVal", "PLAC").unwrap();
+    let mut g = Grower::new(
+        m,
+        GrowthOptions {
+            seed: 1,
+            ..Default::default()
+        },
+    );
+    g.advance_to(8.0);
+    let sk = g.skeleton();
+    let d = measure(&sk);
+    let t = g.targets(8.0);
+    assert!((d.height / t.height - 1.0).abs() < 0.05, "{d:?} vs {t:?}");
+    assert!((d.dbh / t.dbh - 1.0).abs() < 0.05, "{d:?} vs {t:?}");
+    assert!(
+        (d.leaf_area / t.leaf_area - 1.0).abs() < 0.1,
+        "{d:?} vs {t:?}"
+    );
+    // Stems: a trunk and side branches of several orders, each starting on its parent.
+    assert_eq!(sk.stems[0].level, 0);
+    assert!(sk.stems.iter().any(|s| s.level >= 2));
+    // The crown's interior is darker than its top.
+    let light = g.light();
+    let centre = Vec3::new(0.0, 0.0, (t.crown_base() + t.crown_height * 0.4) as f32);
+    let top = Vec3::new(0.0, 0.0, t.height as f32 - 0.1);
+    assert!(light.light_at(centre) < light.light_at(top));
 }

@@ -1,0 +1,82 @@
+//! Measuring a grown tree the way the Urban Tree Database's trees were measured.
+
+use super::model::BREAST_HEIGHT;
+use crate::skeleton::Skeleton;
+use glam::Vec3;
+
+/// A tree's dimensions as the survey measured them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Dimensions {
+    /// Highest point of wood or leaf, m.
+    pub height: f64,
+    /// Height minus the lowest point of the live crown (side branches and leaves), m.
+    pub crown_height: f64,
+    /// Mean of the crown's x and y extents, m.
+    pub crown_diameter: f64,
+    /// Trunk diameter at 1.37 m, cm.
+    pub dbh: f64,
+    /// Sum of one side of every leaf, m².
+    pub leaf_area: f64,
+}
+
+/// Measures a skeleton whose first stem is the trunk, standing at the origin.
+pub fn measure(skeleton: &Skeleton) -> Dimensions {
+    let mut top = f32::NEG_INFINITY;
+    let mut bottom = f32::INFINITY;
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for stem in &skeleton.stems {
+        let crown = stem.level > 0;
+        for c in &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize] {
+            top = top.max(c.position.z);
+            if crown {
+                bottom = bottom.min(c.position.z);
+                lo = lo.min(c.position);
+                hi = hi.max(c.position);
+            }
+        }
+    }
+    let mut leaf_area = 0.0f64;
+    for l in &skeleton.leaves {
+        let t = crate::mesh::leaf_template(l.shape);
+        leaf_area += (t.area() * l.length * l.width) as f64;
+        for p in [
+            l.position,
+            l.position + l.orientation * Vec3::new(0.0, 0.0, l.length),
+        ] {
+            top = top.max(p.z);
+            bottom = bottom.min(p.z);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    let dbh = skeleton
+        .stems
+        .first()
+        .map(|_| {
+            let s = skeleton.sections_of(crate::StemId(0));
+            let i = s.partition_point(|c| c.position.z < BREAST_HEIGHT);
+            if i == 0 || i >= s.len() {
+                return s.first().map_or(0.0, |c| c.radius) * 2.0;
+            }
+            let (a, b) = (s[i - 1], s[i]);
+            let f = (BREAST_HEIGHT - a.position.z) / (b.position.z - a.position.z).max(1e-6);
+            (a.radius + (b.radius - a.radius) * f) * 2.0
+        })
+        .unwrap_or(0.0);
+    let crown_diameter = if lo.x <= hi.x {
+        ((hi.x - lo.x) + (hi.y - lo.y)) as f64 / 2.0
+    } else {
+        0.0
+    };
+    Dimensions {
+        height: top.max(0.0) as f64,
+        crown_height: if bottom.is_finite() {
+            (top - bottom).max(0.0) as f64
+        } else {
+            0.0
+        },
+        crown_diameter,
+        dbh: dbh as f64 * 100.0,
+        leaf_area,
+    }
+}

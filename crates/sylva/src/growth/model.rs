@@ -1,0 +1,1039 @@
+//! The growth model (Rudnick et al. 2007 with Linsen et al. 2005): branches made of annual
+//! segments, grown in steps of 1/n year. In its first year a segment elongates (primary
+//! growth); after that it only thickens (secondary growth). At the end of a year the apical
+//! bud continues every branch that still has room to grow, and lateral buds start branches of
+//! the next order with a probability from light, local density and chance. Lengths come from
+//! the crown shape function and the measured crown, radii from f_DBH, angles from f_CD / f_CH.
+//!
+//! The model is fitted to the data the way the seeds' title says, by inverse modelling: one
+//! gain on branch length is corrected every step so that the crown's measured diameter follows
+//! f_CD; the trunk follows f_H; lower branches are shed as the crown base (monotone) rises;
+//! the leaves on young, thin, lit shoots add up to f_LA.
+
+use super::light::{LightGrid, Ray, daylight};
+use super::measured::Measured;
+use crate::rng::{Random, StreamKey};
+use crate::skeleton::{CrossSection, Leaf, LeafShape, Skeleton, Stem, StemId};
+use glam::{Quat, Vec3};
+use std::f32::consts::PI;
+
+/// Height at which DBH is measured, m.
+pub const BREAST_HEIGHT: f32 = 1.37;
+/// Most light cells along an axis.
+const MAX_LIGHT_CELLS: usize = 28;
+/// Divergence between successive laterals of a branch, degrees (scaffolds spiral evenly).
+const DIVERGENCE: f32 = 130.0;
+/// Years before the first fitted age in which the tree is brought up from a small sapling.
+const NURSERY_YEARS: f64 = 3.0;
+/// Leaves grow on shoots at most this many years old...
+const LEAF_SHOOT_YEARS: f64 = 2.0;
+/// ...thinner than this (radius, m)...
+const LEAF_MAX_RADIUS: f32 = 0.02;
+/// ...with at least this much light.
+const LEAF_MIN_LIGHT: f32 = 0.12;
+
+/// The shape of a crown: the relative length c(p) of a branch starting at relative position p
+/// along its parent (0 base, 1 tip), at most 1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CrownShape {
+    /// Widest at mid-height (Rudnick's figure 2).
+    Ellipse,
+    /// Widest at the base, as conifers and the southern magnolia.
+    Cone,
+    /// Widest a third of the way up, a rounded dome.
+    Dome,
+    /// Widest near the top, narrow at the base: vase-shaped.
+    Vase,
+}
+
+impl CrownShape {
+    /// c(p).
+    pub fn relative_length(self, p: f32) -> f32 {
+        let p = p.clamp(0.0, 1.0);
+        match self {
+            CrownShape::Ellipse => 2.0 * (p * (1.0 - p)).sqrt(),
+            CrownShape::Cone => (1.0 - p).powf(0.9),
+            CrownShape::Dome => {
+                let q = ((p - 0.33) / if p < 0.33 { 0.45 } else { 0.67 }).clamp(-1.0, 1.0);
+                (1.0 - q * q).sqrt()
+            }
+            CrownShape::Vase => {
+                let q = ((p - 0.72) / if p < 0.72 { 0.8 } else { 0.28 }).clamp(-1.0, 1.0);
+                (1.0 - q * q).sqrt()
+            }
+        }
+    }
+
+    /// The shape for a species: a few known street trees by code, otherwise by the database's
+    /// tree type (conifers conical, the rest elliptical).
+    pub fn for_species(code: &str, tree_type: &str) -> CrownShape {
+        match code {
+            "MAGR" => CrownShape::Cone,
+            "PICH" | "KOPA" | "PLAC" => CrownShape::Dome,
+            "CESI4" | "ZESE" | "ULPA" => CrownShape::Vase,
+            _ if tree_type.starts_with('C') => CrownShape::Cone,
+            _ => CrownShape::Ellipse,
+        }
+    }
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            CrownShape::Ellipse => "ellipse",
+            CrownShape::Cone => "cone",
+            CrownShape::Dome => "dome",
+            CrownShape::Vase => "vase",
+        }
+    }
+}
+
+/// Settings of a growth run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GrowthOptions {
+    /// Seed: the same seed gives the same tree at every age.
+    pub seed: u64,
+    /// Growth steps per year (Rudnick: 20).
+    pub steps_per_year: u32,
+    /// Most branch segments the tree may hold; past it lateral buds stay dormant.
+    pub max_segments: usize,
+    /// Most leaves the skeleton may carry; a larger leaf area is drawn with larger leaves.
+    pub max_leaves: usize,
+    /// Light cell size, m.
+    pub light_cell: f32,
+}
+
+impl Default for GrowthOptions {
+    fn default() -> Self {
+        GrowthOptions {
+            seed: 0,
+            steps_per_year: 20,
+            max_segments: 60_000,
+            max_leaves: 120_000,
+            light_cell: 0.5,
+        }
+    }
+}
+
+/// What one branch is.
+#[derive(Clone, Debug)]
+struct Branch {
+    order: u8,
+    /// Parent branch and the segment it grows from.
+    parent: Option<(u32, u32)>,
+    /// Where on the parent segment it starts (0..1).
+    along: f32,
+    /// Length scale s_l and the cumulated c_l.
+    s_l: f32,
+    c_l: f32,
+    /// Diameter factor c_d.
+    c_d: f32,
+    /// Segments, oldest first.
+    segments: Vec<u32>,
+    /// Azimuth of this branch's next lateral, degrees.
+    next_azimuth: f32,
+    alive: bool,
+    /// Branches growing from this one.
+    children: Vec<u32>,
+    /// Length of its finished segments (all but the last), m.
+    finished: f32,
+    /// Distance along the parent to where it starts, m (fixed: it starts on a finished
+    /// segment).
+    offset: f32,
+    /// Height where its scaffold (its order-1 ancestor, or itself) leaves the trunk, m: the
+    /// crown shape function is read there.
+    anchor: f32,
+    /// Consecutive years its apex has been deep in shade.
+    shaded_years: u8,
+}
+
+/// One annual segment.
+#[derive(Clone, Copy, Debug)]
+struct Segment {
+    branch: u32,
+    start: Vec3,
+    direction: Vec3,
+    length: f32,
+    /// Age of the tree when it started.
+    born: f64,
+}
+
+impl Segment {
+    fn end(&self) -> Vec3 {
+        self.start + self.direction * self.length
+    }
+}
+
+/// Targets at an age: the measured functions, ramped up from a sapling before the first
+/// fitted age.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Targets {
+    /// Height, m.
+    pub height: f64,
+    /// Crown diameter, m.
+    pub crown_diameter: f64,
+    /// Crown height (monotone crown base), m.
+    pub crown_height: f64,
+    /// DBH, cm.
+    pub dbh: f64,
+    /// Leaf area, m².
+    pub leaf_area: f64,
+}
+
+impl Targets {
+    /// Height to the crown base, m.
+    pub fn crown_base(&self) -> f64 {
+        self.height - self.crown_height
+    }
+}
+
+/// Time spent in the last step, seconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepTimes {
+    /// Production rules.
+    pub growth: f64,
+    /// Densities and rays.
+    pub light: f64,
+}
+
+/// A tree growing over the years.
+pub struct Grower {
+    measured: Measured,
+    shape: CrownShape,
+    options: GrowthOptions,
+    age: f64,
+    step: u64,
+    key: StreamKey,
+    rng: Random,
+    branches: Vec<Branch>,
+    segments: Vec<Segment>,
+    light: LightGrid,
+    sky: Vec<Ray>,
+    /// Inverse-modelling gain on branch length (fits the crown diameter).
+    gain: f64,
+    /// Leaf blade length and width, m, and area of one leaf, m².
+    leaf_size: (f32, f32),
+    leaf_shape: LeafShape,
+    /// Leaves per segment, from the last allocation.
+    leaves_on: Vec<u16>,
+    /// Area factor of each leaf where shoots are too few to carry the leaf area.
+    leaf_boost: f32,
+    /// Time spent in the last step.
+    pub times: StepTimes,
+}
+
+impl Grower {
+    /// A sapling of the species, `NURSERY_YEARS` before its first fitted age, brought up to
+    /// that age.
+    pub fn new(measured: Measured, options: GrowthOptions) -> Self {
+        let shape = CrownShape::for_species(&measured.species.code, &measured.species.tree_type);
+        let conifer = measured.species.tree_type.starts_with('C');
+        let (leaf_size, leaf_shape) = if conifer {
+            ((0.12, 0.03), LeafShape::Palm)
+        } else {
+            ((0.14, 0.1), LeafShape::Oval)
+        };
+        // Refitted to the tree's bounds every step: cells outside a crown are empty, so
+        // light there needs no walking.
+        let light = LightGrid::new(Vec3::ZERO, Vec3::ONE, options.light_cell, MAX_LIGHT_CELLS);
+        let key = StreamKey::from_seed(options.seed);
+        let start = measured.ages.0 - NURSERY_YEARS;
+        let mut g = Grower {
+            shape,
+            age: start,
+            step: 0,
+            rng: key.child(1).stream(),
+            key,
+            branches: Vec::new(),
+            segments: Vec::new(),
+            light,
+            sky: daylight(),
+            gain: 1.0,
+            leaf_size,
+            leaf_shape,
+            leaves_on: Vec::new(),
+            leaf_boost: 1.0,
+            times: StepTimes::default(),
+            options,
+            measured,
+        };
+        let t = g.targets(start);
+        g.gain = t.crown_diameter / (2.0 * t.crown_height.max(0.3));
+        // The trunk: order 0, one segment, growing straight up.
+        g.branches.push(Branch {
+            order: 0,
+            parent: None,
+            along: 0.0,
+            s_l: 1.0,
+            c_l: 1.0,
+            c_d: 1.0,
+            segments: vec![0],
+            next_azimuth: 0.0,
+            alive: true,
+            children: Vec::new(),
+            finished: 0.0,
+            offset: 0.0,
+            anchor: 0.0,
+            shaded_years: 0,
+        });
+        g.segments.push(Segment {
+            branch: 0,
+            start: Vec3::ZERO,
+            direction: Vec3::Z,
+            length: t.height as f32,
+            born: start,
+        });
+        g.update_light();
+        let first = g.measured.ages.0;
+        g.advance_to(first);
+        g
+    }
+
+    /// The measured functions this tree follows.
+    pub fn measured(&self) -> &Measured {
+        &self.measured
+    }
+
+    /// The inverse-modelling gain on scaffold length now.
+    pub fn gain(&self) -> f64 {
+        self.gain
+    }
+
+    /// The crown shape used.
+    pub fn shape(&self) -> CrownShape {
+        self.shape
+    }
+
+    /// Current age, years since planting.
+    pub fn age(&self) -> f64 {
+        self.age
+    }
+
+    /// Live branch segments.
+    pub fn segment_count(&self) -> usize {
+        self.branches
+            .iter()
+            .filter(|b| b.alive)
+            .map(|b| b.segments.len())
+            .sum()
+    }
+
+    /// The light grid after the last step.
+    pub fn light(&self) -> &LightGrid {
+        &self.light
+    }
+
+    /// The targets at age `t`: the measured functions inside their range; before it, a
+    /// sapling ramping up to them.
+    pub fn targets(&self, t: f64) -> Targets {
+        let m = &self.measured;
+        let first = m.ages.0;
+        let ramp = if t < first {
+            (0.4 + 0.6 * (1.0 - (first - t) / NURSERY_YEARS)).clamp(0.4, 1.0)
+        } else {
+            1.0
+        };
+        let height = m.height(t) * ramp;
+        let crown_height = m.crown_height(t) * ramp;
+        Targets {
+            height,
+            crown_diameter: m.crown_diameter(t) * ramp,
+            crown_height: crown_height.min(height),
+            dbh: m.dbh(t) * ramp,
+            leaf_area: m.leaf_area(t) * ramp,
+        }
+    }
+
+    /// Grows until `age` (never backwards: a tree that is older stays as it is).
+    pub fn advance_to(&mut self, age: f64) {
+        let dt = 1.0 / self.options.steps_per_year.max(1) as f64;
+        while self.age + dt * 0.5 < age {
+            self.step_once(dt);
+        }
+    }
+
+    /// One growth step of `dt` years.
+    pub fn step_once(&mut self, dt: f64) {
+        let t0 = std::time::Instant::now();
+        let before = self.age;
+        self.age += dt;
+        self.step += 1;
+        // End of a year: primary growth of this year's segments ends; buds break.
+        if (before + 1e-9).floor() < (self.age + 1e-9).floor() {
+            self.end_of_year();
+        }
+        self.elongate();
+        self.shed();
+        self.fit_crown();
+        self.allocate_leaves();
+        let t1 = std::time::Instant::now();
+        self.update_light();
+        self.times = StepTimes {
+            growth: (t1 - t0).as_secs_f64(),
+            light: t1.elapsed().as_secs_f64(),
+        };
+    }
+
+    fn targets_now(&self) -> Targets {
+        self.targets(self.age)
+    }
+
+    /// Apical and lateral buds at the end of a year.
+    fn end_of_year(&mut self) {
+        let t = self.targets_now();
+        let live_segments = self.segment_count();
+        let mut budget = self.options.max_segments.saturating_sub(live_segments);
+        let bifurcation = (t.crown_diameter / t.crown_height.max(0.1)).atan() as f32;
+        let n = self.branches.len();
+        for b in 0..n {
+            if !self.branches[b].alive {
+                continue;
+            }
+            let last = *self.branches[b]
+                .segments
+                .last()
+                .expect("a branch has a segment");
+            let seg = self.segments[last as usize];
+            let order = self.branches[b].order;
+            // Lateral buds at nodes along the year's shoot: on the trunk a fourteenth of the
+            // crown height apart, at most 0.35 m (so the crown base can be matched closely), on branches 0.25 m apart, at most
+            // four; each breaks with a probability from light, density and chance.
+            let trunk_node = (t.crown_height as f32 / 14.0).clamp(0.1, 0.35);
+            let buds = if order == 0 {
+                ((seg.length / trunk_node).round() as usize).clamp(1, 12)
+            } else {
+                ((seg.length / 0.25).round() as usize).clamp(1, 4)
+            };
+            for k in 0..buds {
+                if budget == 0 || order >= 4 {
+                    break;
+                }
+                let along = (k as f32 + 0.3 + 0.6 * self.rng.unit() as f32) / buds as f32;
+                let at = seg.start + seg.direction * seg.length * along;
+                if order == 0 && (at.z as f64) < t.crown_base() {
+                    continue;
+                }
+                let light = self.light.light_at(at);
+                let open = self.light.density_at(at);
+                let p = 0.95 * light.powf(1.5) * open.sqrt();
+                if self.rng.unit() as f32 >= p {
+                    continue;
+                }
+                self.add_lateral(b, last, along, bifurcation);
+                budget -= 1;
+            }
+            // The apical bud always continues the branch. A bud that made no shoot this year
+            // (the branch had reached its length) is the same bud next year.
+            let branch = &self.branches[b];
+            if seg.length <= 1e-4 {
+                self.segments[last as usize].born = self.age;
+            } else if branch.alive && budget > 0 {
+                let light_dir = self.light.gradient_at(seg.end());
+                let wobble = Vec3::new(
+                    self.rng.var(1.0) as f32,
+                    self.rng.var(1.0) as f32,
+                    self.rng.var(1.0) as f32,
+                ) * 0.12;
+                let mut d = seg.direction + wobble;
+                if order > 0 {
+                    d += light_dir.normalize_or_zero() * 0.15;
+                } else {
+                    d = Vec3::Z + wobble * 0.1;
+                }
+                self.segments.push(Segment {
+                    branch: b as u32,
+                    start: seg.end(),
+                    direction: d.normalize_or(seg.direction),
+                    length: 0.0,
+                    born: self.age,
+                });
+                let id = self.segments.len() as u32 - 1;
+                self.branches[b].segments.push(id);
+                self.branches[b].finished += seg.length;
+                budget = budget.saturating_sub(1);
+            }
+            // Deep shade for years on end kills a side branch: the interior thins out.
+            if order >= 2 {
+                let dark = self.light.light_at(seg.end()) < 0.05;
+                let br = &mut self.branches[b];
+                br.shaded_years = if dark { br.shaded_years + 1 } else { 0 };
+                if br.shaded_years >= 3 {
+                    self.kill(b);
+                }
+            }
+        }
+    }
+
+    fn add_lateral(&mut self, parent: usize, segment: u32, along: f32, bifurcation: f32) {
+        let seg = self.segments[segment as usize];
+        let p = &mut self.branches[parent];
+        let azimuth = p.next_azimuth;
+        p.next_azimuth = (p.next_azimuth + DIVERGENCE) % 360.0;
+        let order = p.order + 1;
+        let (c_l_parent, c_d_parent) = (p.c_l, p.c_d);
+        let breakout = order >= 2 && self.rng.unit() < 0.05;
+        let s_l = if breakout {
+            1.2 + 0.3 * self.rng.unit() as f32
+        } else {
+            0.6 + 0.4 * self.rng.unit() as f32
+        };
+        let c_l = if order == 1 { s_l } else { c_l_parent * s_l };
+        let c_d = c_l.min(1.0) * c_d_parent * (1.0 - 0.7 * c_d_parent);
+        // Bifurcation angle from the crown's proportions, a few degrees either way, turned
+        // about the parent by the divergence.
+        let angle = bifurcation + (self.rng.var(5.0) as f32).to_radians();
+        let axis = seg.direction;
+        let side = axis.any_orthogonal_vector().normalize();
+        let side = Quat::from_axis_angle(axis, azimuth.to_radians()) * side;
+        let mut direction =
+            (Quat::from_axis_angle(axis.cross(side).normalize(), angle) * axis).normalize();
+        // Laterals of side branches keep out of the ground's way: never steeper than 20
+        // degrees below the horizontal.
+        if direction.z < -0.34 {
+            direction = Vec3::new(direction.x, direction.y, -0.34).normalize();
+        }
+        let start = seg.start + seg.direction * seg.length * along;
+        let id = self.branches.len() as u32;
+        let offset = {
+            let p = &self.branches[parent];
+            let mut before = 0.0;
+            for &s in &p.segments {
+                if s == segment {
+                    break;
+                }
+                before += self.segments[s as usize].length;
+            }
+            before + seg.length * along
+        };
+        let anchor = if order == 1 {
+            start.z
+        } else {
+            self.branches[parent].anchor
+        };
+        self.branches[parent].children.push(id);
+        self.branches.push(Branch {
+            order,
+            parent: Some((parent as u32, segment)),
+            along,
+            s_l,
+            c_l,
+            c_d,
+            segments: vec![self.segments.len() as u32],
+            next_azimuth: (self.rng.unit() * 360.0) as f32,
+            alive: true,
+            children: Vec::new(),
+            finished: 0.0,
+            offset,
+            anchor,
+            shaded_years: 0,
+        });
+        self.segments.push(Segment {
+            branch: self.branches.len() as u32 - 1,
+            start,
+            direction,
+            length: 0.0,
+            born: self.age,
+        });
+    }
+
+    /// Marks a branch and everything on it dead.
+    fn kill(&mut self, b: usize) {
+        let mut stack = vec![b];
+        while let Some(b) = stack.pop() {
+            if !self.branches[b].alive {
+                continue;
+            }
+            self.branches[b].alive = false;
+            stack.extend(self.branches[b].children.iter().map(|&c| c as usize));
+        }
+    }
+
+    /// Primary growth: the last segment of every growing branch reaches for the branch's
+    /// target length.
+    fn elongate(&mut self) {
+        let t = self.targets_now();
+        let top = t.height as f32;
+        let base = t.crown_base() as f32;
+        for b in 0..self.branches.len() {
+            let branch = &self.branches[b];
+            if !branch.alive {
+                continue;
+            }
+            let finished = branch.finished;
+            let last = *branch.segments.last().expect("a segment") as usize;
+            let seg = self.segments[last];
+            let target = if branch.order == 0 {
+                top
+            } else {
+                let (parent, pseg) = branch.parent.expect("a side branch has a parent");
+                let pb = &self.branches[parent as usize];
+                // Relative position p_r along the parent; for the trunk, within the crown.
+                let (p_r, l_p) = if pb.order == 0 {
+                    let z = self.segments[pseg as usize].start.z
+                        + self.segments[pseg as usize].direction.z
+                            * self.segments[pseg as usize].length
+                            * branch.along;
+                    ((z - base) / (top - base).max(0.1), (top - base).max(0.1))
+                } else {
+                    let last = *pb.segments.last().expect("a segment") as usize;
+                    let l_p = pb.finished + self.segments[last].length;
+                    (branch.offset / l_p.max(1e-3), l_p)
+                };
+                // Little light at the apex: the branch reaches further, out of the shade.
+                let apex_light = self.light.light_at(seg.end());
+                let reach = 1.0 + 0.5 * (1.0 - apex_light).clamp(0.0, 1.0);
+                let order_factor = 0.5 + 0.5 * branch.order as f32;
+                let gain = if branch.order == 1 {
+                    self.gain as f32
+                } else {
+                    1.0
+                };
+                gain * branch.s_l * reach * self.shape.relative_length(p_r) * l_p / order_factor
+            };
+            let mut length = (target - finished).max(seg.length);
+            if branch.order == 0 {
+                length = target - finished;
+            } else if length > seg.length {
+                // Nothing leaves the crown's envelope: the measured crown diameter shaped by
+                // c(p) at each height, under the leader. Break-outs may go 15% past it.
+                let slack = if branch.s_l > 1.0 { 1.15 } else { 1.0 };
+                let half = (t.crown_diameter * 0.5) as f32 * slack;
+                let rel = (branch.anchor - base) / (top - base).max(0.1);
+                let reach = half * self.shape.relative_length(rel).max(0.15);
+                let inside = |p: Vec3| p.z <= top - 0.05 && p.truncate().length() <= reach;
+                let tip = |l: f32| seg.start + seg.direction * l;
+                if !inside(tip(length)) {
+                    // The longest length whose tip is inside, by bisection from the current
+                    // one (which may itself be outside if the crown base rose: then no growth).
+                    let (mut lo, mut hi) = (seg.length, length);
+                    if inside(tip(lo)) {
+                        for _ in 0..20 {
+                            let mid = 0.5 * (lo + hi);
+                            if inside(tip(mid)) {
+                                lo = mid;
+                            } else {
+                                hi = mid;
+                            }
+                        }
+                    }
+                    length = lo;
+                }
+            }
+            self.segments[last].length = length.max(0.0);
+        }
+    }
+
+    /// Sheds what the rising crown base leaves below it.
+    fn shed(&mut self) {
+        let base = self.targets_now().crown_base() as f32;
+        for b in 1..self.branches.len() {
+            if !self.branches[b].alive {
+                continue;
+            }
+            // Scaffolds go when the crown base passes where they leave the trunk; smaller
+            // branches as soon as any of them hangs below it.
+            let branch = &self.branches[b];
+            let lowest = if branch.order == 1 {
+                self.segments[branch.segments[0] as usize].start.z
+            } else {
+                branch
+                    .segments
+                    .iter()
+                    .map(|&s| {
+                        let s = &self.segments[s as usize];
+                        s.start.z.min(s.end().z)
+                    })
+                    .fold(f32::INFINITY, f32::min)
+            };
+            if lowest < base - 0.02 {
+                self.kill(b);
+            }
+        }
+    }
+
+    /// Measured crown diameter now: the mean of the x and y extents of everything on the
+    /// branches (a leaf's length added where a segment carries leaves).
+    fn crown_diameter_now(&self) -> f64 {
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for (i, s) in self.segments.iter().enumerate() {
+            let b = &self.branches[s.branch as usize];
+            if !b.alive || b.order == 0 {
+                continue;
+            }
+            let pad = if self.leaves_on.get(i).copied().unwrap_or(0) > 0 {
+                self.leaf_size.0
+            } else {
+                0.0
+            };
+            for p in [s.start, s.end()] {
+                lo = lo.min(p - pad);
+                hi = hi.max(p + pad);
+            }
+        }
+        if lo.x > hi.x {
+            return 0.0;
+        }
+        (((hi.x - lo.x) + (hi.y - lo.y)) / 2.0) as f64
+    }
+
+    /// Inverse modelling: corrects the length gain toward the measured crown diameter.
+    fn fit_crown(&mut self) {
+        let want = self.targets_now().crown_diameter;
+        let have = self.crown_diameter_now();
+        if have > 1e-3 {
+            // Small corrections every step: the crown answers a year late (laterals break at
+            // the end of a year), so a hasty gain overshoots.
+            let ratio = (want / have).powf(0.5).clamp(0.97, 1.03);
+            self.gain = (self.gain * ratio).clamp(0.05, 20.0);
+        }
+    }
+
+    /// Radius of a segment's base section now, m.
+    fn radius_at_base(&self, s: &Segment) -> f32 {
+        let b = &self.branches[s.branch as usize];
+        let age = (self.age - s.born).max(0.0);
+        if b.order == 0 {
+            self.trunk_radius(s.start.z)
+        } else {
+            let d = self.dbh_at_age(self.age - age.max(0.0), age);
+            (b.c_d as f64 * d / 200.0) as f32
+        }
+    }
+
+    /// f_DBH(segment age), cm, where `_born` is the tree's age at the segment's start.
+    fn dbh_at_age(&self, _born: f64, age: f64) -> f64 {
+        let first = self.measured.ages.0 - NURSERY_YEARS;
+        self.targets(first + age).dbh
+    }
+
+    /// Trunk radius at height z, m: the DBH of the tree when the leader passed breast height,
+    /// shifted by how much later the leader passed z, so the trunk tapers and is f_DBH(t)
+    /// exactly at 1.37 m.
+    fn trunk_radius(&self, z: f32) -> f32 {
+        let passed = |z: f32| -> f64 {
+            // The age at which the target height first reached z (bisection on the ramped,
+            // rising height).
+            let (mut lo, mut hi) = (self.measured.ages.0 - NURSERY_YEARS, self.age);
+            if self.targets(lo).height >= z as f64 {
+                return lo;
+            }
+            for _ in 0..40 {
+                let mid = 0.5 * (lo + hi);
+                if self.targets(mid).height < z as f64 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            hi
+        };
+        let shift = passed(z) - passed(BREAST_HEIGHT);
+        let d = self.targets(self.age - shift).dbh;
+        let top = self.targets_now().height as f32;
+        // Thin to a point over the leader's last half metre (less on a sapling, never down
+        // to breast height).
+        let zone = ((top - BREAST_HEIGHT) * 0.9).clamp(0.05, 0.5);
+        let tip = ((top - z) / zone).clamp(0.05, 1.0);
+        (d / 200.0) as f32 * tip
+    }
+
+    /// Leaves on young, thin, lit shoots, adding up to f_LA.
+    fn allocate_leaves(&mut self) {
+        let t = self.targets_now();
+        let area = self.leaf_area_each();
+        let wanted = (t.leaf_area / area as f64).round() as usize;
+        // A branch's outermost shoot stays leafy however old it is: its bud renews it.
+        let mut tip_shoot = vec![false; self.segments.len()];
+        for b in self.branches.iter().filter(|b| b.alive && b.order > 0) {
+            if let Some(&s) = b
+                .segments
+                .iter()
+                .rev()
+                .find(|&&s| self.segments[s as usize].length > 1e-4)
+            {
+                tip_shoot[s as usize] = true;
+            }
+        }
+        let radii: Vec<f32> = self
+            .segments
+            .iter()
+            .map(|s| self.radius_at_base(s))
+            .collect();
+        let lights: Vec<f32> = self
+            .segments
+            .iter()
+            .map(|s| self.light.light_at(s.start + s.direction * s.length * 0.5))
+            .collect();
+        // Young, thin, lit shoots first; where they cannot hold the measured leaf area, older
+        // and thicker wood carries leaves too (spurs), step by step.
+        let levels = [
+            (LEAF_SHOOT_YEARS, LEAF_MAX_RADIUS, LEAF_MIN_LIGHT),
+            (4.0, 0.03, 0.08),
+            (8.0, 0.05, 0.04),
+            (f64::INFINITY, f32::INFINITY, 0.0),
+        ];
+        let mut weights = vec![0.0f32; self.segments.len()];
+        let mut capacity = vec![0u32; self.segments.len()];
+        for (k, &(years, radius, min_light)) in levels.iter().enumerate() {
+            let mut room = 0usize;
+            for (i, s) in self.segments.iter().enumerate() {
+                let b = &self.branches[s.branch as usize];
+                let eligible = b.alive
+                    && b.order > 0
+                    && (self.age - s.born <= years || tip_shoot[i])
+                    && radii[i] <= radius
+                    && lights[i] >= min_light;
+                // Leaves sit at least 1.2 cm apart along a shoot.
+                capacity[i] = if eligible {
+                    (s.length / 0.012).floor() as u32
+                } else {
+                    0
+                };
+                weights[i] = if eligible {
+                    s.length * lights[i].max(0.01)
+                } else {
+                    0.0
+                };
+                room += capacity[i] as usize;
+            }
+            if room >= wanted || k == levels.len() - 1 {
+                break;
+            }
+        }
+        let total: f32 = weights.iter().sum();
+        self.leaves_on.clear();
+        self.leaves_on.resize(self.segments.len(), 0);
+        if total <= 0.0 {
+            return;
+        }
+        let mut carry = 0.0f32;
+        let mut placed = 0usize;
+        for i in 0..self.segments.len() {
+            if weights[i] == 0.0 {
+                continue;
+            }
+            let share = wanted as f32 * weights[i] / total + carry;
+            let n = (share.floor() as u32).min(capacity[i]).min(u16::MAX as u32);
+            carry = share - n as f32;
+            self.leaves_on[i] = n as u16;
+            placed += n as usize;
+        }
+        // What full shoots could not take goes to shoots with room left.
+        for (on, &cap) in self.leaves_on.iter_mut().zip(&capacity) {
+            if placed >= wanted {
+                break;
+            }
+            let spare = cap.min(u16::MAX as u32) - *on as u32;
+            let n = (spare as usize).min(wanted - placed);
+            *on += n as u16;
+            placed += n;
+        }
+        // A sapling with too little shoot for its measured leaf area carries larger leaves
+        // (at most three times the area).
+        self.leaf_boost = if placed > 0 && placed < wanted {
+            (wanted as f32 / placed as f32).min(3.0)
+        } else {
+            1.0
+        };
+    }
+
+    /// Area of one leaf as drawn, m² (larger than life when the leaf budget is reached).
+    fn leaf_area_each(&self) -> f32 {
+        let template = crate::mesh::leaf_template(self.leaf_shape).area();
+        let natural = self.leaf_size.0 * self.leaf_size.1 * template;
+        let t = self.targets_now();
+        let needed = t.leaf_area as f32 / self.options.max_leaves as f32;
+        natural.max(needed)
+    }
+
+    /// Densities from every live segment and its leaves, then the rays.
+    fn update_light(&mut self) {
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for s in &self.segments {
+            if self.branches[s.branch as usize].alive {
+                lo = lo.min(s.start.min(s.end()));
+                hi = hi.max(s.start.max(s.end()));
+            }
+        }
+        let margin = Vec3::splat(self.leaf_size.0 + self.options.light_cell);
+        self.light.reshape(
+            lo - margin,
+            hi + margin,
+            self.options.light_cell,
+            MAX_LIGHT_CELLS,
+        );
+        let leaf_area = if self.segments.is_empty() {
+            0.0
+        } else {
+            self.leaf_area_each() * self.leaf_boost
+        };
+        let cell = self.light.cell;
+        for (i, s) in self.segments.iter().enumerate() {
+            let b = &self.branches[s.branch as usize];
+            if !b.alive || s.length <= 0.0 {
+                continue;
+            }
+            let r = self.radius_at_base(s);
+            let pieces = (s.length / (cell * 0.5)).ceil().max(1.0) as usize;
+            let piece = s.length / pieces as f32;
+            let leaves = self.leaves_on.get(i).copied().unwrap_or(0) as f32;
+            // Leaves lie at all angles: on average half their area faces up.
+            let leaf_share = leaves * leaf_area * 0.5 / pieces as f32;
+            for k in 0..pieces {
+                let p = s.start + s.direction * piece * (k as f32 + 0.5);
+                // A cylinder piece seen from above covers about its diameter times its
+                // horizontal length (its end disc when it stands upright).
+                let horizontal = piece * (1.0 - s.direction.z * s.direction.z).sqrt();
+                let covered = 2.0 * r * horizontal + PI * r * r * s.direction.z.abs();
+                self.light.occlude(p, covered, leaf_share);
+            }
+        }
+        self.light.illuminate(&self.sky);
+    }
+
+    /// The tree now as a Skeleton: one stem per live branch, sections at the segment joints
+    /// (the trunk also at breast height and every half metre), leaves spiralled along the
+    /// young shoots.
+    pub fn skeleton(&self) -> Skeleton {
+        let mut sk = Skeleton::default();
+        let mut stem_of = vec![u32::MAX; self.branches.len()];
+        let (leaf_len, leaf_width) = {
+            let natural = self.leaf_size.0
+                * self.leaf_size.1
+                * crate::mesh::leaf_template(self.leaf_shape).area();
+            let k = (self.leaf_area_each() * self.leaf_boost / natural).sqrt();
+            (self.leaf_size.0 * k, self.leaf_size.1 * k)
+        };
+        let top = self.targets_now().height as f32;
+        for (b, branch) in self.branches.iter().enumerate() {
+            if !branch.alive {
+                continue;
+            }
+            let parent = branch.parent.map(|(p, _)| StemId(stem_of[p as usize]));
+            if parent.is_some_and(|p| p.0 == u32::MAX) {
+                continue;
+            }
+            let first = sk.sections.len() as u32;
+            let segs: Vec<&Segment> = branch
+                .segments
+                .iter()
+                .map(|&s| &self.segments[s as usize])
+                .filter(|s| s.length > 1e-4)
+                .collect();
+            if segs.is_empty() {
+                continue;
+            }
+            let total: f32 = segs.iter().map(|s| s.length).sum();
+            let mut points: Vec<(Vec3, Vec3, f32)> = Vec::new();
+            let mut run = 0.0f32;
+            for s in &segs {
+                let pieces = if branch.order == 0 {
+                    (s.length / 0.5).ceil().max(1.0) as usize
+                } else {
+                    1
+                };
+                for k in 0..pieces {
+                    let f = k as f32 / pieces as f32;
+                    let p = s.start + s.direction * s.length * f;
+                    points.push((p, s.direction, run + s.length * f));
+                }
+                run += s.length;
+            }
+            let last = segs[segs.len() - 1];
+            points.push((last.end(), last.direction, total));
+            if branch.order == 0 {
+                // A section exactly at breast height, so DBH reads the trunk there.
+                if let Some(i) = points.iter().position(|p| p.0.z > BREAST_HEIGHT)
+                    && i > 0
+                    && (points[i - 1].0.z - BREAST_HEIGHT).abs() > 1e-3
+                {
+                    let (a, b) = (points[i - 1], points[i]);
+                    let f = (BREAST_HEIGHT - a.0.z) / (b.0.z - a.0.z);
+                    points.insert(i, (a.0.lerp(b.0, f), a.1, a.2 + (b.2 - a.2) * f));
+                }
+            }
+            for (k, &(p, d, at)) in points.iter().enumerate() {
+                // Side branches: one section per segment (its base radius, older and thicker
+                // toward the base), then a thin tip.
+                let radius = if branch.order == 0 {
+                    self.trunk_radius(p.z)
+                } else if k < segs.len() {
+                    self.radius_at_base(segs[k])
+                } else {
+                    (self.radius_at_base(last) * 0.35).max(0.001)
+                };
+                sk.sections.push(CrossSection {
+                    position: p,
+                    orientation: frame(d),
+                    radius: radius.max(0.0008),
+                    z: if total > 0.0 { at / total } else { 0.0 },
+                });
+            }
+            let id = sk.stems.len() as u32;
+            stem_of[b] = id;
+            let offset = branch.offset;
+            sk.stems.push(Stem {
+                level: branch.order,
+                parent,
+                clone_of: None,
+                offset,
+                length: total,
+                sections: first..sk.sections.len() as u32,
+                lobes: 0,
+                lobe_depth: 0.0,
+            });
+            // Leaves, spiralling at a fixed divergence, tilted 50 degrees off the shoot.
+            let mut turn = 0.0f32;
+            let mut rng = self.key.child(1000 + b as u64).stream();
+            for &si in &branch.segments {
+                let s = &self.segments[si as usize];
+                let n = self.leaves_on.get(si as usize).copied().unwrap_or(0) as usize;
+                for k in 0..n {
+                    let f = (k as f32 + 0.5) / n as f32;
+                    let p = s.start + s.direction * s.length * f;
+                    turn += 137.5;
+                    let q = frame(s.direction)
+                        * Quat::from_rotation_z(turn.to_radians())
+                        * Quat::from_rotation_x((50.0 + rng.var(10.0) as f32).to_radians());
+                    // Blade faces the sky where it can: roll it about its own axis.
+                    let q = face_up(q);
+                    if (q * Vec3::Z).z * leaf_len + p.z > top {
+                        continue;
+                    }
+                    sk.leaves.push(Leaf {
+                        position: p,
+                        orientation: q,
+                        length: leaf_len,
+                        width: leaf_width,
+                        shape: self.leaf_shape,
+                        stem: StemId(id),
+                    });
+                }
+            }
+        }
+        sk
+    }
+
+    /// Light (0..1) where each leaf of [`Grower::skeleton`] sits, in the same order: the
+    /// leaves' luminance classes come from it.
+    pub fn leaf_light(&self, skeleton: &Skeleton) -> Vec<f32> {
+        skeleton
+            .leaves
+            .iter()
+            .map(|l| self.light.light_at(l.position))
+            .collect()
+    }
+}
+
+/// A frame whose local z is `d` (local y as near the world's up as can be).
+fn frame(d: Vec3) -> Quat {
+    Quat::from_rotation_arc(Vec3::Z, d.normalize_or(Vec3::Z))
+}
+
+/// Rolls a leaf frame about its own z so its normal (local y) points as far up as it can.
+fn face_up(q: Quat) -> Quat {
+    let z = q * Vec3::Z;
+    let y = q * Vec3::Y;
+    let up = (Vec3::Z - z * z.dot(Vec3::Z)).normalize_or(y);
+    let angle = y.cross(up).dot(z).atan2(y.dot(up));
+    Quat::from_axis_angle(z, angle) * q
+}
