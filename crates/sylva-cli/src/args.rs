@@ -22,6 +22,9 @@ pub enum Command {
     Render(RenderArgs),
     /// Plant a forest: many trees of several species, generated in parallel, as one GLB.
     Forest(ForestArgs),
+    /// Grow a street tree from the USDA Urban Tree Database year by year: a GLB and a picture
+    /// per age, modelled against measured dimensions (CSV and charts), species side by side.
+    Grow(GrowArgs),
     /// Open the interactive editor: every parameter live, orbit camera, wind, load/save/export.
     View(ViewArgs),
     /// Time generation and meshing of the paper's four appendix species.
@@ -204,6 +207,54 @@ pub struct RenderArgs {
 
     /// Output PNG.
     #[arg(short, long, value_name = "FILE.png", help_heading = "Output")]
+    pub output: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct GrowArgs {
+    /// Species: code (PLAC), scientific name or common name (`london_planetree`).
+    pub species: String,
+
+    /// Climate region of the database (InlVal: Modesto, California, where the seeds' data were
+    /// measured).
+    #[arg(long, default_value = "InlVal")]
+    pub region: String,
+
+    /// First age written, years since planting (default: the first age the data cover).
+    #[arg(long)]
+    pub from: Option<f64>,
+
+    /// Last age written (default: the last age the data cover).
+    #[arg(long)]
+    pub to: Option<f64>,
+
+    /// Years between written ages.
+    #[arg(long, default_value_t = 1.0)]
+    pub step: f64,
+
+    /// Random seed: the same seed grows the same tree.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+
+    /// Other species grown beside this one, comma-separated: one picture per age with all of
+    /// them, named, with their ages and heights.
+    #[arg(long, value_delimiter = ',')]
+    pub compare: Vec<String>,
+
+    /// A folder holding the database's CSV tables (TS1, TS2, TS6) instead of the built-in copy.
+    #[arg(long, value_name = "DIR")]
+    pub database: Option<PathBuf>,
+
+    /// Picture size in pixels.
+    #[arg(long, default_value = "900x900", value_name = "WxH")]
+    pub size: String,
+
+    /// Write models, CSV and charts, but no pictures (no renderer needed).
+    #[arg(long)]
+    pub no_pictures: bool,
+
+    /// Output folder (created if missing).
+    #[arg(short, long, value_name = "DIR")]
     pub output: PathBuf,
 }
 

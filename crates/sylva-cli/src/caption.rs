@@ -9,6 +9,19 @@ fn font() -> FontRef<'static> {
     FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).expect("bundled font parses")
 }
 
+/// Makes the bundled font plotters' "sans-serif", once (charts need no system fonts).
+pub fn register_chart_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // Same bundled font as the captions; known to parse.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            plotters::style::FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+    });
+}
+
 /// Width in pixels of `text` at `size` pixels.
 pub fn text_width(text: &str, size: f32) -> f32 {
     let font = font();

@@ -37,6 +37,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Render(args) => crate::render::render(&args),
         Command::View(args) => crate::viewer::run(&args),
         Command::Forest(args) => crate::forest::forest(&args),
+        Command::Grow(args) => crate::grow::grow(&args),
         Command::Bench(args) => bench(&args),
     }
 }

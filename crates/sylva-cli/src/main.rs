@@ -5,6 +5,7 @@ mod bench_forest;
 mod caption;
 mod commands;
 mod forest;
+mod grow;
 mod lod_chain;
 mod render;
 mod render_forest;

@@ -12,7 +12,7 @@ use sylva::{GenerateOptions, Wind};
 use sylva_render::{Picture, Renderer, Scene, View, ViewKind};
 
 /// Parses `WxH`.
-fn parse_size(text: &str) -> Result<(u32, u32)> {
+pub fn parse_size(text: &str) -> Result<(u32, u32)> {
     let (w, h) = text
         .split_once(['x', 'X'])
         .with_context(|| format!("--size {text}: expected WIDTHxHEIGHT, e.g. 1280x720"))?;

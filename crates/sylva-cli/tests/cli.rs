@@ -805,3 +805,67 @@ fn forest_viewer_flies_and_draws_fewer_primitives_with_lod() {
     );
     assert!(frames.iter().all(|f| f["frame_ms"].as_f64().unwrap() > 0.0));
 }
+
+#[test]
+fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("plane");
+    let run = sylva(&[
+        "grow",
+        "london_planetree",
+        "--from",
+        "3",
+        "--to",
+        "5",
+        "--no-pictures",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    for age in ["03", "04", "05"] {
+        let (doc, buffers, _) = gltf::import(out.join(format!("PLAC-age-{age}.glb"))).unwrap();
+        assert!(doc.meshes().count() >= 1 && !buffers.is_empty());
+    }
+    let csv = std::fs::read_to_string(out.join("PLAC.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 4, "{csv}");
+    assert!(lines[0].starts_with("age,height_model_m,height_measured_m"));
+    // Modelled height within 5% of the equation at every age written.
+    for line in &lines[1..] {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        assert!((v[1] / v[2] - 1.0).abs() < 0.05, "{line}");
+    }
+    let chart = image::open(out.join("PLAC-chart.png")).unwrap();
+    assert_eq!((chart.width(), chart.height()), (1500, 900));
+
+    let bad = dir.path().join("bad");
+    let run = sylva(&["grow", "plane", "-o", bad.to_str().unwrap()]);
+    assert!(!run.status.success());
+    let err = text(&run.stderr);
+    assert!(err.contains("`plane`") && err.contains("PLAC"), "{err}");
+    let run = sylva(&[
+        "grow",
+        "PLAC",
+        "--region",
+        "Mars",
+        "-o",
+        bad.to_str().unwrap(),
+    ]);
+    assert!(
+        text(&run.stderr).contains("InlVal"),
+        "{}",
+        text(&run.stderr)
+    );
+    let run = sylva(&[
+        "grow",
+        "PLAC",
+        "--from",
+        "9",
+        "--to",
+        "3",
+        "-o",
+        bad.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success() && text(&run.stderr).contains("--from 9"));
+    assert!(!bad.exists(), "no output folder for refused input");
+}
