@@ -158,8 +158,7 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
         if species.len() > 1
             && let Some(r) = &renderer
         {
-            let picture =
-                compare_picture(r, &meshes, &species, age, (width, height), tallest, widest)?;
+            let picture = compare_picture(r, &meshes, &species, (width, height), tallest, widest)?;
             let heights: Vec<String> = species
                 .iter()
                 .zip(&history)
@@ -248,7 +247,6 @@ fn compare_picture(
     r: &Renderer,
     meshes: &[TreeMesh],
     species: &[Measured],
-    _age: f64,
     (width, height): (u32, u32),
     tallest: f64,
     widest: f64,
@@ -304,7 +302,7 @@ fn compare_picture(
 fn worst_errors(history: &[Grown]) -> [f64; 5] {
     let mut worst = [0.0f64; 5];
     for g in history {
-        let e = errors(g);
+        let e = g.model.relative_errors(&g.measured);
         for k in 0..5 {
             if e[k].abs() > worst[k].abs() {
                 worst[k] = e[k];
@@ -312,17 +310,6 @@ fn worst_errors(history: &[Grown]) -> [f64; 5] {
         }
     }
     worst
-}
-
-fn errors(g: &Grown) -> [f64; 5] {
-    let rel = |a: f64, b: f64| if b > 0.0 { a / b - 1.0 } else { 0.0 };
-    [
-        rel(g.model.height, g.measured.height),
-        rel(g.model.dbh, g.measured.dbh),
-        rel(g.model.crown_diameter, g.measured.crown_diameter),
-        rel(g.model.crown_height, g.measured.crown_height),
-        rel(g.model.leaf_area, g.measured.leaf_area),
-    ]
 }
 
 fn write_csv(path: &Path, history: &[Grown]) -> Result<()> {
@@ -408,7 +395,7 @@ fn write_chart(path: &Path, m: &Measured, history: &[Grown]) -> Result<()> {
             let steps = 200;
             let curve = (0..=steps).map(|i| {
                 let a = a0 + (a1 - a0) * i as f64 / steps as f64;
-                (a, want(&measured_at(m, a)))
+                (a, want(&Targets::of(m, a)))
             });
             chart.draw_series(LineSeries::new(curve, BLUE.stroke_width(2)))?;
             chart.draw_series(
@@ -424,15 +411,4 @@ fn write_chart(path: &Path, m: &Measured, history: &[Grown]) -> Result<()> {
         .flat_map(|p| [p[0], p[1], p[2], 255])
         .collect();
     encode_png(path, w, h, &rgba)
-}
-
-/// The equations at an age, as the grower reads them.
-fn measured_at(m: &Measured, age: f64) -> Targets {
-    Targets {
-        height: m.height(age),
-        crown_diameter: m.crown_diameter(age),
-        crown_height: m.crown_height(age),
-        dbh: m.dbh(age),
-        leaf_area: m.leaf_area(age),
-    }
 }

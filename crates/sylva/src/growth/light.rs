@@ -143,37 +143,23 @@ impl LightGrid {
         let [nx, ny, nz] = self.size;
         for ray in sky {
             let d = ray.direction;
-            // The top face for every direction; the side faces the ray enters through.
-            for y in 0..ny {
-                for x in 0..nx {
-                    self.trace(
-                        Vec3::new(x as f32 + 0.5, y as f32 + 0.5, nz as f32 - 1e-3),
-                        d,
-                        ray.intensity,
-                    );
-                }
-            }
+            // The top face for every direction; a side face where the ray enters through it.
+            // Each face is spanned by two axes (u, v) at a fixed third coordinate.
+            let mut faces = vec![(0, 1, 2, nz as f32 - 1e-3)];
             if d.x != 0.0 {
-                let x0 = if d.x > 0.0 { 1e-3 } else { nx as f32 - 1e-3 };
-                for z in 0..nz {
-                    for y in 0..ny {
-                        self.trace(
-                            Vec3::new(x0, y as f32 + 0.5, z as f32 + 0.5),
-                            d,
-                            ray.intensity,
-                        );
-                    }
-                }
+                faces.push((1, 2, 0, if d.x > 0.0 { 1e-3 } else { nx as f32 - 1e-3 }));
             }
             if d.y != 0.0 {
-                let y0 = if d.y > 0.0 { 1e-3 } else { ny as f32 - 1e-3 };
-                for z in 0..nz {
-                    for x in 0..nx {
-                        self.trace(
-                            Vec3::new(x as f32 + 0.5, y0, z as f32 + 0.5),
-                            d,
-                            ray.intensity,
-                        );
+                faces.push((0, 2, 1, if d.y > 0.0 { 1e-3 } else { ny as f32 - 1e-3 }));
+            }
+            for (u, v, w, at) in faces {
+                for j in 0..self.size[v] {
+                    for i in 0..self.size[u] {
+                        let mut start = [0.0f32; 3];
+                        start[u] = i as f32 + 0.5;
+                        start[v] = j as f32 + 0.5;
+                        start[w] = at;
+                        self.trace(Vec3::from_array(start), d, ray.intensity);
                     }
                 }
             }

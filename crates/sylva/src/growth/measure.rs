@@ -19,6 +19,21 @@ pub struct Dimensions {
     pub leaf_area: f64,
 }
 
+impl Dimensions {
+    /// Relative errors against the measured functions, in the order height, DBH, crown
+    /// diameter, crown height, leaf area (0 where a target is 0).
+    pub fn relative_errors(&self, t: &super::Targets) -> [f64; 5] {
+        let rel = |a: f64, b: f64| if b > 0.0 { a / b - 1.0 } else { 0.0 };
+        [
+            rel(self.height, t.height),
+            rel(self.dbh, t.dbh),
+            rel(self.crown_diameter, t.crown_diameter),
+            rel(self.crown_height, t.crown_height),
+            rel(self.leaf_area, t.leaf_area),
+        ]
+    }
+}
+
 /// Measures a skeleton whose first stem is the trunk, standing at the origin.
 pub fn measure(skeleton: &Skeleton) -> Dimensions {
     let mut top = f32::NEG_INFINITY;

@@ -180,6 +180,17 @@ pub struct Targets {
 }
 
 impl Targets {
+    /// The measured functions at age `t`, as they are.
+    pub fn of(m: &Measured, t: f64) -> Targets {
+        Targets {
+            height: m.height(t),
+            crown_diameter: m.crown_diameter(t),
+            crown_height: m.crown_height(t),
+            dbh: m.dbh(t),
+            leaf_area: m.leaf_area(t),
+        }
+    }
+
     /// Height to the crown base, m.
     pub fn crown_base(&self) -> f64 {
         self.height - self.crown_height
@@ -201,7 +212,6 @@ pub struct Grower {
     shape: CrownShape,
     options: GrowthOptions,
     age: f64,
-    step: u64,
     key: StreamKey,
     rng: Random,
     branches: Vec<Branch>,
@@ -215,6 +225,9 @@ pub struct Grower {
     leaf_shape: LeafShape,
     /// Leaves per segment, from the last allocation.
     leaves_on: Vec<u16>,
+    /// Base radius of every segment this step (0 for dead ones): leaf allocation and the
+    /// light's densities both need them.
+    radii: Vec<f32>,
     /// Area factor of each leaf where shoots are too few to carry the leaf area.
     leaf_boost: f32,
     /// Time spent in the last step.
@@ -240,7 +253,6 @@ impl Grower {
         let mut g = Grower {
             shape,
             age: start,
-            step: 0,
             rng: key.child(1).stream(),
             key,
             branches: Vec::new(),
@@ -251,6 +263,7 @@ impl Grower {
             leaf_size,
             leaf_shape,
             leaves_on: Vec::new(),
+            radii: Vec::new(),
             leaf_boost: 1.0,
             times: StepTimes::default(),
             options,
@@ -282,6 +295,7 @@ impl Grower {
             length: t.height as f32,
             born: start,
         });
+        g.refresh_radii();
         g.update_light();
         let first = g.measured.ages.0;
         g.advance_to(first);
@@ -325,21 +339,19 @@ impl Grower {
     /// The targets at age `t`: the measured functions inside their range; before it, a
     /// sapling ramping up to them.
     pub fn targets(&self, t: f64) -> Targets {
-        let m = &self.measured;
-        let first = m.ages.0;
+        let first = self.measured.ages.0;
         let ramp = if t < first {
             (0.4 + 0.6 * (1.0 - (first - t) / NURSERY_YEARS)).clamp(0.4, 1.0)
         } else {
             1.0
         };
-        let height = m.height(t) * ramp;
-        let crown_height = m.crown_height(t) * ramp;
+        let m = Targets::of(&self.measured, t);
         Targets {
-            height,
-            crown_diameter: m.crown_diameter(t) * ramp,
-            crown_height: crown_height.min(height),
-            dbh: m.dbh(t) * ramp,
-            leaf_area: m.leaf_area(t) * ramp,
+            height: m.height * ramp,
+            crown_diameter: m.crown_diameter * ramp,
+            crown_height: m.crown_height * ramp,
+            dbh: m.dbh * ramp,
+            leaf_area: m.leaf_area * ramp,
         }
     }
 
@@ -356,7 +368,6 @@ impl Grower {
         let t0 = std::time::Instant::now();
         let before = self.age;
         self.age += dt;
-        self.step += 1;
         // End of a year: primary growth of this year's segments ends; buds break.
         if (before + 1e-9).floor() < (self.age + 1e-9).floor() {
             self.end_of_year();
@@ -364,6 +375,7 @@ impl Grower {
         self.elongate();
         self.shed();
         self.fit_crown();
+        self.refresh_radii();
         self.allocate_leaves();
         let t1 = std::time::Instant::now();
         self.update_light();
@@ -687,6 +699,21 @@ impl Grower {
         }
     }
 
+    fn refresh_radii(&mut self) {
+        let radii: Vec<f32> = self
+            .segments
+            .iter()
+            .map(|s| {
+                if self.branches[s.branch as usize].alive {
+                    self.radius_at_base(s)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        self.radii = radii;
+    }
+
     /// Radius of a segment's base section now, m.
     fn radius_at_base(&self, s: &Segment) -> f32 {
         let b = &self.branches[s.branch as usize];
@@ -694,15 +721,10 @@ impl Grower {
         if b.order == 0 {
             self.trunk_radius(s.start.z)
         } else {
-            let d = self.dbh_at_age(self.age - age.max(0.0), age);
+            // f_DBH of the segment's own age, read on the sapling-ramped curve.
+            let d = self.targets(self.measured.ages.0 - NURSERY_YEARS + age).dbh;
             (b.c_d as f64 * d / 200.0) as f32
         }
-    }
-
-    /// f_DBH(segment age), cm, where `_born` is the tree's age at the segment's start.
-    fn dbh_at_age(&self, _born: f64, age: f64) -> f64 {
-        let first = self.measured.ages.0 - NURSERY_YEARS;
-        self.targets(first + age).dbh
     }
 
     /// Trunk radius at height z, m: the DBH of the tree when the leader passed breast height,
@@ -753,11 +775,7 @@ impl Grower {
                 tip_shoot[s as usize] = true;
             }
         }
-        let radii: Vec<f32> = self
-            .segments
-            .iter()
-            .map(|s| self.radius_at_base(s))
-            .collect();
+        let radii = &self.radii;
         let lights: Vec<f32> = self
             .segments
             .iter()
@@ -872,7 +890,7 @@ impl Grower {
             if !b.alive || s.length <= 0.0 {
                 continue;
             }
-            let r = self.radius_at_base(s);
+            let r = self.radii[i];
             let pieces = (s.length / (cell * 0.5)).ceil().max(1.0) as usize;
             let piece = s.length / pieces as f32;
             let leaves = self.leaves_on.get(i).copied().unwrap_or(0) as f32;
@@ -1011,16 +1029,6 @@ impl Grower {
             }
         }
         sk
-    }
-
-    /// Light (0..1) where each leaf of [`Grower::skeleton`] sits, in the same order: the
-    /// leaves' luminance classes come from it.
-    pub fn leaf_light(&self, skeleton: &Skeleton) -> Vec<f32> {
-        skeleton
-            .leaves
-            .iter()
-            .map(|l| self.light.light_at(l.position))
-            .collect()
     }
 }
 

@@ -216,13 +216,7 @@ pub(crate) fn fidelity(region: &str, code: &str, seed: u64) -> ([f64; 5], [u32; 
         g.advance_to(age as f64);
         let d = measure(&g.skeleton());
         let t = g.targets(age as f64);
-        let errs = [
-            d.height / t.height - 1.0,
-            d.dbh / t.dbh - 1.0,
-            d.crown_diameter / t.crown_diameter - 1.0,
-            d.crown_height / t.crown_height - 1.0,
-            d.leaf_area / t.leaf_area - 1.0,
-        ];
+        let errs = d.relative_errors(&t);
         for k in 0..5 {
             if errs[k].abs() > worst[k].abs() {
                 worst[k] = errs[k];
