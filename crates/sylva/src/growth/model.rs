@@ -120,7 +120,7 @@ struct Branch {
     order: u8,
     /// Parent branch and the segment it grows from.
     parent: Option<(u32, u32)>,
-    /// Where on the parent segment it starts (0..1).
+    /// Where on the parent segment it starts, m from the segment's start.
     along: f32,
     /// Length scale s_l and the cumulated c_l.
     s_l: f32,
@@ -152,9 +152,14 @@ struct Segment {
     branch: u32,
     start: Vec3,
     direction: Vec3,
+    /// Direction the bud set out in: while the shoot elongates it sags from here, and bends
+    /// to stay under the crown's top and above its base.
+    aim: Vec3,
     length: f32,
     /// Age of the tree when it started.
     born: f64,
+    /// Length of it on which lateral buds have been set, m.
+    budded: f32,
 }
 
 impl Segment {
@@ -220,9 +225,16 @@ pub struct Grower {
     sky: Vec<Ray>,
     /// Inverse-modelling gain on branch length (fits the crown diameter).
     gain: f64,
+    /// Inverse-modelling sag of young shoots in the lower crown, radians (fits the crown
+    /// height).
+    droop: f64,
+    /// Inverse-modelling scale of the crown envelope, about 1.
+    spread: f64,
     /// Leaf blade length and width, m, and area of one leaf, m².
     leaf_size: (f32, f32),
     leaf_shape: LeafShape,
+    /// Least distance between leaves along a shoot, m.
+    leaf_spacing: f32,
     /// Leaves per segment, from the last allocation.
     leaves_on: Vec<u16>,
     /// Base radius of every segment this step (0 for dead ones): leaf allocation and the
@@ -238,12 +250,22 @@ impl Grower {
     /// A sapling of the species, `NURSERY_YEARS` before its first fitted age, brought up to
     /// that age.
     pub fn new(measured: Measured, options: GrowthOptions) -> Self {
+        let mut g = Self::sapling(measured, options);
+        let first = g.measured.ages.0;
+        g.advance_to(first);
+        g
+    }
+
+    /// The sapling `NURSERY_YEARS` before the first fitted age: a trunk alone.
+    pub(crate) fn sapling(measured: Measured, options: GrowthOptions) -> Self {
         let shape = CrownShape::for_species(&measured.species.code, &measured.species.tree_type);
         let conifer = measured.species.tree_type.starts_with('C');
-        let (leaf_size, leaf_shape) = if conifer {
-            ((0.12, 0.03), LeafShape::Palm)
+        // A conifer's "leaf" is a tuft of needles, set far closer along the shoot than a
+        // broadleaf's leaves.
+        let (leaf_size, leaf_shape, leaf_spacing) = if conifer {
+            ((0.12, 0.03), LeafShape::Palm, 0.004)
         } else {
-            ((0.14, 0.1), LeafShape::Oval)
+            ((0.14, 0.1), LeafShape::Oval, 0.012)
         };
         // Refitted to the tree's bounds every step: cells outside a crown are empty, so
         // light there needs no walking.
@@ -260,8 +282,11 @@ impl Grower {
             light,
             sky: daylight(),
             gain: 1.0,
+            droop: 0.3,
+            spread: 1.0,
             leaf_size,
             leaf_shape,
+            leaf_spacing,
             leaves_on: Vec::new(),
             radii: Vec::new(),
             leaf_boost: 1.0,
@@ -270,7 +295,10 @@ impl Grower {
             measured,
         };
         let t = g.targets(start);
-        g.gain = t.crown_diameter / (2.0 * t.crown_height.max(0.3));
+        // The gain at which an average scaffold (s_l and c(p) about 0.8) leaving the trunk at
+        // the bifurcation angle reaches the measured crown radius.
+        let angle = (t.crown_diameter / t.crown_height.max(0.1)).atan();
+        g.gain = t.crown_diameter / (1.28 * angle.sin() * t.crown_height.max(0.3));
         // The trunk: order 0, one segment, growing straight up.
         g.branches.push(Branch {
             order: 0,
@@ -292,13 +320,13 @@ impl Grower {
             branch: 0,
             start: Vec3::ZERO,
             direction: Vec3::Z,
+            aim: Vec3::Z,
             length: t.height as f32,
             born: start,
+            budded: 0.0,
         });
         g.refresh_radii();
         g.update_light();
-        let first = g.measured.ages.0;
-        g.advance_to(first);
         g
     }
 
@@ -345,7 +373,9 @@ impl Grower {
         } else {
             1.0
         };
-        let m = Targets::of(&self.measured, t);
+        // Before the fitted range the equations mean nothing (a log-log fit runs to zero at
+        // age 0): the sapling is the tree at the first age, scaled down.
+        let m = Targets::of(&self.measured, t.max(first));
         Targets {
             height: m.height * ramp,
             crown_diameter: m.crown_diameter * ramp,
@@ -371,6 +401,13 @@ impl Grower {
         // End of a year: primary growth of this year's segments ends; buds break.
         if (before + 1e-9).floor() < (self.age + 1e-9).floor() {
             self.end_of_year();
+        } else if (before + 0.5 + 1e-9).floor() < (self.age + 0.5 + 1e-9).floor() {
+            let t = self.targets_now();
+            let mut budget = self
+                .options
+                .max_segments
+                .saturating_sub(self.segment_count());
+            self.leader_buds(&mut budget, &t);
         }
         self.elongate();
         self.shed();
@@ -406,32 +443,27 @@ impl Grower {
                 .expect("a branch has a segment");
             let seg = self.segments[last as usize];
             let order = self.branches[b].order;
-            // Lateral buds at nodes along the year's shoot: on the trunk a fourteenth of the
-            // crown height apart, at most 0.35 m (so the crown base can be matched closely), on branches 0.25 m apart, at most
-            // four; each breaks with a probability from light, density and chance.
-            let trunk_node = (t.crown_height as f32 / 14.0).clamp(0.1, 0.35);
-            let buds = if order == 0 {
-                ((seg.length / trunk_node).round() as usize).clamp(1, 12)
-            } else {
-                ((seg.length / 0.25).round() as usize).clamp(1, 4)
-            };
-            for k in 0..buds {
-                if budget == 0 || order >= 4 {
-                    break;
+            if order == 0 {
+                self.leader_buds(&mut budget, &t);
+            } else if order < 4 {
+                // Lateral buds 0.25 m apart along the year's shoot, at most four; each breaks
+                // with a probability from light, crowding and chance.
+                let buds = ((seg.length / 0.25).round() as usize).clamp(1, 4);
+                for k in 0..buds {
+                    if budget == 0 {
+                        break;
+                    }
+                    let along = (k as f32 + 0.3 + 0.6 * self.rng.unit() as f32) / buds as f32;
+                    let at = seg.start + seg.direction * seg.length * along;
+                    let light = self.light.light_at(at);
+                    let open = self.light.density_at(at);
+                    let p = 0.95 * light.powf(1.5) * open.sqrt();
+                    if self.rng.unit() as f32 >= p {
+                        continue;
+                    }
+                    self.add_lateral(b, last, seg.length * along, bifurcation);
+                    budget -= 1;
                 }
-                let along = (k as f32 + 0.3 + 0.6 * self.rng.unit() as f32) / buds as f32;
-                let at = seg.start + seg.direction * seg.length * along;
-                if order == 0 && (at.z as f64) < t.crown_base() {
-                    continue;
-                }
-                let light = self.light.light_at(at);
-                let open = self.light.density_at(at);
-                let p = 0.95 * light.powf(1.5) * open.sqrt();
-                if self.rng.unit() as f32 >= p {
-                    continue;
-                }
-                self.add_lateral(b, last, along, bifurcation);
-                budget -= 1;
             }
             // The apical bud always continues the branch. A bud that made no shoot this year
             // (the branch had reached its length) is the same bud next year.
@@ -451,12 +483,15 @@ impl Grower {
                 } else {
                     d = Vec3::Z + wobble * 0.1;
                 }
+                let d = d.normalize_or(seg.direction);
                 self.segments.push(Segment {
                     branch: b as u32,
                     start: seg.end(),
-                    direction: d.normalize_or(seg.direction),
+                    direction: d,
+                    aim: d,
                     length: 0.0,
                     born: self.age,
+                    budded: 0.0,
                 });
                 let id = self.segments.len() as u32 - 1;
                 self.branches[b].segments.push(id);
@@ -473,6 +508,44 @@ impl Grower {
                 }
             }
         }
+    }
+
+    /// Lateral buds on the leader's shoot grown since its last buds were set: a fourteenth of
+    /// the crown height apart, at most 0.35 m, so the crown base can be matched closely. The
+    /// leader's buds are the tree's scaffolds: apical control makes them break regularly
+    /// wherever there is light. A vigorous leader also branches in mid-season (sylleptic
+    /// shoots), so this runs at mid-year too.
+    fn leader_buds(&mut self, budget: &mut usize, t: &Targets) {
+        let last = *self.branches[0]
+            .segments
+            .last()
+            .expect("the trunk has a segment");
+        let seg = self.segments[last as usize];
+        let fresh = seg.length - seg.budded;
+        let node = (t.crown_height as f32 / 14.0).clamp(0.1, 0.35);
+        if fresh < node * 0.5 {
+            return;
+        }
+        let bifurcation = (t.crown_diameter / t.crown_height.max(0.1)).atan() as f32;
+        let buds = ((fresh / node).round() as usize).clamp(1, 12);
+        for k in 0..buds {
+            if *budget == 0 {
+                break;
+            }
+            let along =
+                seg.budded + fresh * (k as f32 + 0.3 + 0.6 * self.rng.unit() as f32) / buds as f32;
+            let at = seg.start + seg.direction * along;
+            if (at.z as f64) < t.crown_base() {
+                continue;
+            }
+            let p = 0.95 * self.light.light_at(at).sqrt();
+            if self.rng.unit() as f32 >= p {
+                continue;
+            }
+            self.add_lateral(0, last, along, bifurcation);
+            *budget -= 1;
+        }
+        self.segments[last as usize].budded = seg.length;
     }
 
     fn add_lateral(&mut self, parent: usize, segment: u32, along: f32, bifurcation: f32) {
@@ -503,7 +576,7 @@ impl Grower {
         if direction.z < -0.34 {
             direction = Vec3::new(direction.x, direction.y, -0.34).normalize();
         }
-        let start = seg.start + seg.direction * seg.length * along;
+        let start = seg.start + seg.direction * along;
         let id = self.branches.len() as u32;
         let offset = {
             let p = &self.branches[parent];
@@ -514,7 +587,7 @@ impl Grower {
                 }
                 before += self.segments[s as usize].length;
             }
-            before + seg.length * along
+            before + along
         };
         let anchor = if order == 1 {
             start.z
@@ -542,8 +615,10 @@ impl Grower {
             branch: self.branches.len() as u32 - 1,
             start,
             direction,
+            aim: direction,
             length: 0.0,
             born: self.age,
+            budded: 0.0,
         });
     }
 
@@ -565,6 +640,7 @@ impl Grower {
         let t = self.targets_now();
         let top = t.height as f32;
         let base = t.crown_base() as f32;
+        let leaf = self.drawn_leaf_size().0;
         for b in 0..self.branches.len() {
             let branch = &self.branches[b];
             if !branch.alive {
@@ -581,9 +657,7 @@ impl Grower {
                 // Relative position p_r along the parent; for the trunk, within the crown.
                 let (p_r, l_p) = if pb.order == 0 {
                     let z = self.segments[pseg as usize].start.z
-                        + self.segments[pseg as usize].direction.z
-                            * self.segments[pseg as usize].length
-                            * branch.along;
+                        + self.segments[pseg as usize].direction.z * branch.along;
                     ((z - base) / (top - base).max(0.1), (top - base).max(0.1))
                 } else {
                     let last = *pb.segments.last().expect("a segment") as usize;
@@ -605,14 +679,27 @@ impl Grower {
             if branch.order == 0 {
                 length = target - finished;
             } else if length > seg.length {
-                // Nothing leaves the crown's envelope: the measured crown diameter shaped by
-                // c(p) at each height, under the leader. Break-outs may go 15% past it.
-                let slack = if branch.s_l > 1.0 { 1.15 } else { 1.0 };
-                let half = (t.crown_diameter * 0.5) as f32 * slack;
                 let rel = (branch.anchor - base) / (top - base).max(0.1);
+                // A shoot in its first year sags from where its bud aimed, the more the lower
+                // in the crown its scaffold leaves the trunk; the sag is fitted to the crown
+                // height. It bends rather than pass above the leader or below the crown base
+                // (where its leaves would hang out of the measured crown).
+                let direction = if self.age - seg.born < 1.0 {
+                    let sag = self.droop as f32 * (1.0 - rel).clamp(0.0, 1.0).powi(2);
+                    let ceiling = top - 0.05;
+                    let floor = base + leaf;
+                    within_heights(sag_down(seg.aim, sag), seg.start, length, floor, ceiling)
+                } else {
+                    seg.direction
+                };
+                self.segments[last].direction = direction;
+                // Nothing leaves the crown's envelope: the measured crown diameter shaped by
+                // c(p) at each height. Break-outs may go 15% past it.
+                let slack = if branch.s_l > 1.0 { 1.15 } else { 1.0 };
+                let half = (t.crown_diameter * 0.5 * self.spread) as f32 * slack;
                 let reach = half * self.shape.relative_length(rel).max(0.15);
-                let inside = |p: Vec3| p.z <= top - 0.05 && p.truncate().length() <= reach;
-                let tip = |l: f32| seg.start + seg.direction * l;
+                let inside = |p: Vec3| p.z <= top - 0.04 && p.truncate().length() <= reach;
+                let tip = |l: f32| seg.start + direction * l;
                 if !inside(tip(length)) {
                     // The longest length whose tip is inside, by bisection from the current
                     // one (which may itself be outside if the crown base rose: then no growth).
@@ -662,40 +749,93 @@ impl Grower {
         }
     }
 
-    /// Measured crown diameter now: the mean of the x and y extents of everything on the
-    /// branches (a leaf's length added where a segment carries leaves).
-    fn crown_diameter_now(&self) -> f64 {
+    /// The crown's diameter and height now, measured as `measure` measures the skeleton: the
+    /// mean of the x and y extents of the branches and their leaves, and the top of the tree
+    /// less the lowest point of either.
+    pub(crate) fn crown_now(&self) -> (f64, f64) {
+        self.crown_above(f32::NEG_INFINITY)
+    }
+
+    /// `crown_now` of the branches whose scaffolds leave the trunk at or above `base`.
+    fn crown_above(&self, base: f32) -> (f64, f64) {
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        for (i, s) in self.segments.iter().enumerate() {
+        let mut top = f32::NEG_INFINITY;
+        let counted = |b: &Branch| b.alive && b.order > 0 && b.anchor >= base;
+        for s in &self.segments {
             let b = &self.branches[s.branch as usize];
-            if !b.alive || b.order == 0 {
-                continue;
+            if b.alive {
+                top = top.max(s.end().z);
             }
-            let pad = if self.leaves_on.get(i).copied().unwrap_or(0) > 0 {
-                self.leaf_size.0
-            } else {
-                0.0
-            };
-            for p in [s.start, s.end()] {
-                lo = lo.min(p - pad);
-                hi = hi.max(p + pad);
+            if counted(b) && s.length > 1e-4 {
+                lo = lo.min(s.start.min(s.end()));
+                hi = hi.max(s.start.max(s.end()));
             }
         }
         if lo.x > hi.x {
-            return 0.0;
+            return (0.0, 0.0);
         }
-        (((hi.x - lo.x) + (hi.y - lo.y)) / 2.0) as f64
+        // Leaves widen the crown only where a shoot comes within a leaf's length of its
+        // bounds: those branches' leaves are placed exactly as the skeleton places them.
+        let leaf = self.drawn_leaf_size().0;
+        let tree_top = self.targets_now().height as f32;
+        let (wood_lo, wood_hi) = (lo, hi);
+        let near_edge = |p: Vec3| {
+            p.x - leaf < wood_lo.x
+                || p.y - leaf < wood_lo.y
+                || p.z - leaf < wood_lo.z
+                || p.x + leaf > wood_hi.x
+                || p.y + leaf > wood_hi.y
+        };
+        for (i, b) in self.branches.iter().enumerate() {
+            if !counted(b)
+                || !b.segments.iter().any(|&si| {
+                    let s = &self.segments[si as usize];
+                    self.leaves_on.get(si as usize).is_some_and(|&n| n > 0)
+                        && (near_edge(s.start) || near_edge(s.end()))
+                })
+            {
+                continue;
+            }
+            self.for_each_leaf(i, leaf, tree_top, |p, q| {
+                let tip = p + q * Vec3::new(0.0, 0.0, leaf);
+                lo = lo.min(p.min(tip));
+                hi = hi.max(p.max(tip));
+            });
+        }
+        (
+            (((hi.x - lo.x) + (hi.y - lo.y)) / 2.0) as f64,
+            (top - lo.z).max(0.0) as f64,
+        )
     }
 
-    /// Inverse modelling: corrects the length gain toward the measured crown diameter.
+    /// Inverse modelling: corrects the length gain toward the measured crown diameter and the
+    /// sag toward the measured crown height.
     fn fit_crown(&mut self) {
-        let want = self.targets_now().crown_diameter;
-        let have = self.crown_diameter_now();
-        if have > 1e-3 {
-            // Small corrections every step: the crown answers a year late (laterals break at
-            // the end of a year), so a hasty gain overshoots.
-            let ratio = (want / have).powf(0.5).clamp(0.97, 1.03);
+        let t = self.targets_now();
+        let (diameter, height) = self.crown_now();
+        // The gain steers the crown that will still be there in a year: scaffolds the crown
+        // base is about to pass are shed soon whatever their length.
+        let coming_base = self.targets(self.age + 1.0).crown_base() as f32;
+        let (mut coming, _) = self.crown_above(coming_base);
+        if coming <= 1e-3 {
+            coming = diameter;
+        }
+        if diameter > 1e-3 {
+            // Two corrections. The gain lets branches reach for a crown a fifth wider than
+            // measured, so their tips meet the envelope; the envelope's scale then holds the
+            // crown to the measured diameter. It also widens where a sparse crown (a
+            // sapling's few scaffolds) meets its envelope in only a few directions. Both move
+            // a little every step: the crown answers a year late, so haste overshoots.
+            let ratio = (1.2 * t.crown_diameter / coming)
+                .powf(0.5)
+                .clamp(0.95, 1.05);
             self.gain = (self.gain * ratio).clamp(0.05, 20.0);
+            let ratio = (t.crown_diameter / diameter).clamp(0.97, 1.03);
+            self.spread = (self.spread * ratio).clamp(0.8, 1.6);
+        }
+        if height > 1e-3 {
+            let short = (t.crown_height - height) / t.crown_height.max(0.1);
+            self.droop = (self.droop + (0.5 * short).clamp(-0.03, 0.03)).clamp(0.0, 1.5);
         }
     }
 
@@ -761,6 +901,9 @@ impl Grower {
     /// Leaves on young, thin, lit shoots, adding up to f_LA.
     fn allocate_leaves(&mut self) {
         let t = self.targets_now();
+        // Shoots low enough for their leaves to hang below the crown base carry none (see
+        // `for_each_leaf`).
+        let floor = t.crown_base() as f32 + 0.5 * self.drawn_leaf_size().0;
         let area = self.leaf_area_each();
         let wanted = (t.leaf_area / area as f64).round() as usize;
         // A branch's outermost shoot stays leafy however old it is: its bud renews it.
@@ -797,12 +940,12 @@ impl Grower {
                 let b = &self.branches[s.branch as usize];
                 let eligible = b.alive
                     && b.order > 0
+                    && s.start.z.min(s.end().z) >= floor
                     && (self.age - s.born <= years || tip_shoot[i])
                     && radii[i] <= radius
                     && lights[i] >= min_light;
-                // Leaves sit at least 1.2 cm apart along a shoot.
                 capacity[i] = if eligible {
-                    (s.length / 0.012).floor() as u32
+                    (s.length / self.leaf_spacing).floor() as u32
                 } else {
                     0
                 };
@@ -846,12 +989,21 @@ impl Grower {
             placed += n;
         }
         // A sapling with too little shoot for its measured leaf area carries larger leaves
-        // (at most three times the area).
+        // (at most five times the area).
         self.leaf_boost = if placed > 0 && placed < wanted {
-            (wanted as f32 / placed as f32).min(3.0)
+            (wanted as f32 / placed as f32).min(5.0)
         } else {
             1.0
         };
+    }
+
+    /// Length and width of a leaf as drawn, m.
+    fn drawn_leaf_size(&self) -> (f32, f32) {
+        let natural = self.leaf_size.0
+            * self.leaf_size.1
+            * crate::mesh::leaf_template(self.leaf_shape).area();
+        let k = (self.leaf_area_each() * self.leaf_boost / natural).sqrt();
+        (self.leaf_size.0 * k, self.leaf_size.1 * k)
     }
 
     /// Area of one leaf as drawn, m² (larger than life when the leaf budget is reached).
@@ -914,13 +1066,7 @@ impl Grower {
     pub fn skeleton(&self) -> Skeleton {
         let mut sk = Skeleton::default();
         let mut stem_of = vec![u32::MAX; self.branches.len()];
-        let (leaf_len, leaf_width) = {
-            let natural = self.leaf_size.0
-                * self.leaf_size.1
-                * crate::mesh::leaf_template(self.leaf_shape).area();
-            let k = (self.leaf_area_each() * self.leaf_boost / natural).sqrt();
-            (self.leaf_size.0 * k, self.leaf_size.1 * k)
-        };
+        let (leaf_len, leaf_width) = self.drawn_leaf_size();
         let top = self.targets_now().height as f32;
         for (b, branch) in self.branches.iter().enumerate() {
             if !branch.alive {
@@ -999,37 +1145,72 @@ impl Grower {
                 lobes: 0,
                 lobe_depth: 0.0,
             });
-            // Leaves, spiralling at a fixed divergence, tilted 50 degrees off the shoot.
-            let mut turn = 0.0f32;
-            let mut rng = self.key.child(1000 + b as u64).stream();
-            for &si in &branch.segments {
-                let s = &self.segments[si as usize];
-                let n = self.leaves_on.get(si as usize).copied().unwrap_or(0) as usize;
-                for k in 0..n {
-                    let f = (k as f32 + 0.5) / n as f32;
-                    let p = s.start + s.direction * s.length * f;
-                    turn += 137.5;
-                    let q = frame(s.direction)
-                        * Quat::from_rotation_z(turn.to_radians())
-                        * Quat::from_rotation_x((50.0 + rng.var(10.0) as f32).to_radians());
-                    // Blade faces the sky where it can: roll it about its own axis.
-                    let q = face_up(q);
-                    if (q * Vec3::Z).z * leaf_len + p.z > top {
-                        continue;
-                    }
-                    sk.leaves.push(Leaf {
-                        position: p,
-                        orientation: q,
-                        length: leaf_len,
-                        width: leaf_width,
-                        shape: self.leaf_shape,
-                        stem: StemId(id),
-                    });
-                }
-            }
+            self.for_each_leaf(b, leaf_len, top, |position, orientation| {
+                sk.leaves.push(Leaf {
+                    position,
+                    orientation,
+                    length: leaf_len,
+                    width: leaf_width,
+                    shape: self.leaf_shape,
+                    stem: StemId(id),
+                })
+            });
         }
         sk
     }
+}
+
+impl Grower {
+    /// The leaves of branch `b` (position and orientation), spiralling at a fixed divergence,
+    /// tilted 50 degrees off the shoot, none above the tree's top or below the crown base
+    /// (the survey's crown base is where the lowest foliage is).
+    fn for_each_leaf(&self, b: usize, length: f32, top: f32, mut f: impl FnMut(Vec3, Quat)) {
+        let floor = self.targets_now().crown_base() as f32 - 0.02;
+        let mut turn = 0.0f32;
+        let mut rng = self.key.child(1000 + b as u64).stream();
+        for &si in &self.branches[b].segments {
+            let s = &self.segments[si as usize];
+            let n = self.leaves_on.get(si as usize).copied().unwrap_or(0) as usize;
+            for k in 0..n {
+                let along = (k as f32 + 0.5) / n as f32;
+                let p = s.start + s.direction * s.length * along;
+                turn += 137.5;
+                let q = frame(s.direction)
+                    * Quat::from_rotation_z(turn.to_radians())
+                    * Quat::from_rotation_x((50.0 + rng.var(10.0) as f32).to_radians());
+                // Blade faces the sky where it can: roll it about its own axis.
+                let q = face_up(q);
+                let tip = (q * Vec3::Z).z * length + p.z;
+                if tip <= top && tip.min(p.z) >= floor {
+                    f(p, q);
+                }
+            }
+        }
+    }
+}
+
+/// `aim` turned `sag` radians further down in its vertical plane, never steeper than 40 degrees
+/// below the horizontal.
+fn sag_down(aim: Vec3, sag: f32) -> Vec3 {
+    let horizontal = aim.truncate().normalize_or(glam::Vec2::X);
+    let elevation = (aim.z.clamp(-1.0, 1.0).asin() - sag).max(-0.7);
+    (horizontal * elevation.cos()).extend(elevation.sin())
+}
+
+/// `direction` tilted in its vertical plane so that a shoot of `length` from `start` ends
+/// between the heights `floor` and `ceiling`.
+fn within_heights(direction: Vec3, start: Vec3, length: f32, floor: f32, ceiling: f32) -> Vec3 {
+    let end = start.z + direction.z * length;
+    let rise = if end > ceiling {
+        (ceiling - start.z) / length.max(1e-6)
+    } else if end < floor {
+        (floor - start.z) / length.max(1e-6)
+    } else {
+        return direction;
+    };
+    let rise = rise.clamp(-1.0, 1.0);
+    let horizontal = direction.truncate().normalize_or(glam::Vec2::X);
+    (horizontal * (1.0 - rise * rise).sqrt()).extend(rise)
 }
 
 /// A frame whose local z is `d` (local y as near the world's up as can be).
