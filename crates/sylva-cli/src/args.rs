@@ -361,6 +361,11 @@ pub struct BenchArgs {
     #[arg(long)]
     pub forest: bool,
 
+    /// Also time growth steps (production rules, light, mesh) of a street tree at 5k to 30k
+    /// branch segments.
+    #[arg(long)]
+    pub growth: bool,
+
     /// Also grow this many unique trees of the appendix species in parallel (stored for
     /// range, then released) and report trees per second.
     #[arg(long, value_name = "N")]

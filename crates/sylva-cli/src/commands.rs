@@ -359,6 +359,9 @@ fn bench(args: &BenchArgs) -> Result<()> {
     if let Some(n) = args.throughput {
         crate::bench_forest::bench_throughput(n)?;
     }
+    if args.growth {
+        crate::bench_growth::bench_growth(runs.min(3))?;
+    }
     Ok(())
 }
 

@@ -2,6 +2,7 @@
 
 mod args;
 mod bench_forest;
+mod bench_growth;
 mod caption;
 mod commands;
 mod forest;

@@ -237,6 +237,8 @@ pub struct Grower {
     leaf_spacing: f32,
     /// Leaves per segment, from the last allocation.
     leaves_on: Vec<u16>,
+    /// f_DBH (cm) of the ramped curve, by steps from the nursery's start.
+    dbh_by_step: Vec<f32>,
     /// Base radius of every segment this step (0 for dead ones): leaf allocation and the
     /// light's densities both need them.
     radii: Vec<f32>,
@@ -289,6 +291,7 @@ impl Grower {
             leaf_spacing,
             leaves_on: Vec::new(),
             radii: Vec::new(),
+            dbh_by_step: Vec::new(),
             leaf_boost: 1.0,
             times: StepTimes::default(),
             options,
@@ -387,7 +390,7 @@ impl Grower {
 
     /// Grows until `age` (never backwards: a tree that is older stays as it is).
     pub fn advance_to(&mut self, age: f64) {
-        let dt = 1.0 / self.options.steps_per_year.max(1) as f64;
+        let dt = self.step_length();
         while self.age + dt * 0.5 < age {
             self.step_once(dt);
         }
@@ -840,6 +843,15 @@ impl Grower {
     }
 
     fn refresh_radii(&mut self) {
+        // f_DBH along the sapling-ramped curve, by whole steps from the nursery's start: a
+        // segment's radius depends only on its age, and ages come in steps.
+        let dt = self.step_length();
+        let start = self.measured.ages.0 - NURSERY_YEARS;
+        let steps = ((self.age - start) / dt).round().max(0.0) as usize + 1;
+        for k in self.dbh_by_step.len()..steps {
+            let d = self.targets(start + k as f64 * dt).dbh;
+            self.dbh_by_step.push(d as f32);
+        }
         let radii: Vec<f32> = self
             .segments
             .iter()
@@ -854,15 +866,23 @@ impl Grower {
         self.radii = radii;
     }
 
+    fn step_length(&self) -> f64 {
+        1.0 / self.options.steps_per_year.max(1) as f64
+    }
+
     /// Radius of a segment's base section now, m.
     fn radius_at_base(&self, s: &Segment) -> f32 {
         let b = &self.branches[s.branch as usize];
-        let age = (self.age - s.born).max(0.0);
         if b.order == 0 {
             self.trunk_radius(s.start.z)
         } else {
             // f_DBH of the segment's own age, read on the sapling-ramped curve.
-            let d = self.targets(self.measured.ages.0 - NURSERY_YEARS + age).dbh;
+            let age = (self.age - s.born).max(0.0);
+            let k = (age / self.step_length()).round() as usize;
+            let d = match self.dbh_by_step.get(k) {
+                Some(&d) => d as f64,
+                None => self.targets(self.measured.ages.0 - NURSERY_YEARS + age).dbh,
+            };
             (b.c_d as f64 * d / 200.0) as f32
         }
     }
@@ -1065,7 +1085,19 @@ impl Grower {
     /// young shoots.
     pub fn skeleton(&self) -> Skeleton {
         let mut sk = Skeleton::default();
+        self.skeleton_into(&mut sk);
+        sk
+    }
+
+    /// Like [`Grower::skeleton`], but reuses `sk`'s buffers (cleared first), so showing the
+    /// tree after every step allocates nothing once the buffers have grown.
+    pub fn skeleton_into(&self, sk: &mut Skeleton) {
+        sk.stems.clear();
+        sk.sections.clear();
+        sk.leaves.clear();
         let mut stem_of = vec![u32::MAX; self.branches.len()];
+        let mut segs: Vec<&Segment> = Vec::new();
+        let mut points: Vec<(Vec3, Vec3, f32)> = Vec::new();
         let (leaf_len, leaf_width) = self.drawn_leaf_size();
         let top = self.targets_now().height as f32;
         for (b, branch) in self.branches.iter().enumerate() {
@@ -1077,17 +1109,19 @@ impl Grower {
                 continue;
             }
             let first = sk.sections.len() as u32;
-            let segs: Vec<&Segment> = branch
-                .segments
-                .iter()
-                .map(|&s| &self.segments[s as usize])
-                .filter(|s| s.length > 1e-4)
-                .collect();
+            segs.clear();
+            segs.extend(
+                branch
+                    .segments
+                    .iter()
+                    .map(|&s| &self.segments[s as usize])
+                    .filter(|s| s.length > 1e-4),
+            );
             if segs.is_empty() {
                 continue;
             }
             let total: f32 = segs.iter().map(|s| s.length).sum();
-            let mut points: Vec<(Vec3, Vec3, f32)> = Vec::new();
+            points.clear();
             let mut run = 0.0f32;
             for s in &segs {
                 let pieces = if branch.order == 0 {
@@ -1156,7 +1190,6 @@ impl Grower {
                 })
             });
         }
-        sk
     }
 }
 
