@@ -15,6 +15,7 @@ fn main() {
         .iter()
         .enumerate()
         .map(|(i, &shape)| Leaf {
+            light: 1.0,
             position: Vec3::new(i as f32 * 1.3, 0.0, 0.0),
             // Blade along +Y, normal up: seen from above.
             orientation: Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2),

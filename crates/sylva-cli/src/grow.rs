@@ -77,6 +77,12 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
         );
     }
     let ages: Vec<f64> = (0..count).map(|i| from + i as f64 * args.step).collect();
+    if args.output.exists() && !args.output.is_dir() {
+        bail!(
+            "-o {}: that is a file; give a folder (it is created if missing)",
+            args.output.display()
+        );
+    }
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("creating {}", args.output.display()))?;
     let renderer = if args.no_pictures {
@@ -280,9 +286,12 @@ fn compare_picture(
     let w = width.max(height * meshes.len() as u32 * 2 / 3);
     let view = fixed_view(tallest, across as f64, w as f32 / height as f32);
     let mut picture = r.render(&scene, &view, w, height)?;
-    // Each tree's name under it.
-    for (i, m) in species.iter().enumerate() {
-        let x = w as f32 * (i as f32 + 0.5) / n;
+    // Each tree's name under its trunk.
+    let camera = scene.camera(&view, w as f32 / height as f32);
+    for (m, p) in species.iter().zip(&placements) {
+        let x = camera
+            .project(p.position, w, height)
+            .map_or(w as f32 / 2.0, |(x, _)| x);
         let name = &m.species.common;
         let size = 20.0;
         draw_text(

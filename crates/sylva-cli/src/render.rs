@@ -111,6 +111,22 @@ pub fn read_glb(path: &Path) -> Result<GlbTree> {
                 None => vec![[0.0, 0.0, 1.0]; positions.len()],
             };
             let count = positions.len() as u32;
+            // COLOR_0 (a grown tree's leaf light classes) becomes the shade; the other
+            // primitives of a part with shades are fully lit.
+            let shades: Option<Vec<f32>> = reader
+                .read_colors(0)
+                .map(|c| c.into_rgb_f32().map(|c| c[1].clamp(0.0, 1.0)).collect())
+                .filter(|c: &Vec<f32>| c.len() == count as usize);
+            match shades {
+                Some(c) => {
+                    part.shades.resize(base as usize, 1.0);
+                    part.shades.extend(c);
+                }
+                None if !part.shades.is_empty() => {
+                    part.shades.resize(base as usize + count as usize, 1.0);
+                }
+                None => {}
+            }
             part.positions.extend(positions);
             part.normals.extend(normals);
             part.uvs

@@ -825,6 +825,21 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
     for age in ["03", "04", "05"] {
         let (doc, buffers, _) = gltf::import(out.join(format!("PLAC-age-{age}.glb"))).unwrap();
         assert!(doc.meshes().count() >= 1 && !buffers.is_empty());
+        // The leaves carry their light class as COLOR_0: at most ten shades, a lit top and a
+        // darker inside.
+        let mut shades: Vec<u32> = Vec::new();
+        for p in doc.meshes().flat_map(|m| m.primitives()) {
+            let reader = p.reader(|b| Some(&buffers[b.index()]));
+            if let Some(c) = reader.read_colors(0) {
+                shades.extend(c.into_rgb_f32().map(|c| (c[1] * 1000.0).round() as u32));
+            }
+        }
+        shades.sort_unstable();
+        shades.dedup();
+        assert!(
+            (3..=10).contains(&shades.len()) && shades[0] < *shades.last().unwrap(),
+            "age {age}: leaf shades {shades:?}"
+        );
     }
     let csv = std::fs::read_to_string(out.join("PLAC.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
@@ -868,4 +883,12 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
     ]);
     assert!(!run.status.success() && text(&run.stderr).contains("--from 9"));
     assert!(!bad.exists(), "no output folder for refused input");
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let run = sylva(&["grow", "PLAC", "-o", file.to_str().unwrap()]);
+    let err = text(&run.stderr);
+    assert!(
+        !run.status.success() && err.contains("a-file") && err.contains("folder"),
+        "{err}"
+    );
 }

@@ -456,7 +456,7 @@ impl Renderer {
         let vertex_layout = wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+            attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32],
         };
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("tree"),
@@ -649,6 +649,7 @@ impl Renderer {
         let dummy_v = [Vertex {
             position: [0.0; 3],
             normal: [0.0, 0.0, 1.0],
+            shade: 1.0,
         }];
         let v = if vertices.is_empty() {
             &dummy_v[..]
@@ -684,9 +685,11 @@ impl Renderer {
             .positions
             .iter()
             .zip(&mesh.normals)
-            .map(|(p, n)| Vertex {
+            .enumerate()
+            .map(|(i, (p, n))| Vertex {
                 position: *p,
                 normal: *n,
+                shade: mesh.shades.get(i).copied().unwrap_or(1.0),
             })
             .collect();
         self.upload_vertices(label, &vertices, &mesh.indices)

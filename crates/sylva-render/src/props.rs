@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-/// Interleaved vertex as the GPU reads it: position then normal.
+/// Interleaved vertex as the GPU reads it: position, normal, shade.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -11,6 +11,8 @@ pub struct Vertex {
     pub position: [f32; 3],
     /// Unit normal.
     pub normal: [f32; 3],
+    /// Luminance factor (a leaf's light class; 1 for everything else).
+    pub shade: f32,
 }
 
 /// A small indexed mesh of [`Vertex`].
@@ -29,6 +31,7 @@ impl PropMesh {
             self.vertices.push(Vertex {
                 position: c.to_array(),
                 normal: normal.to_array(),
+                shade: 1.0,
             });
         }
         self.indices

@@ -29,6 +29,8 @@ struct Material {
 struct VsIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
+    // A leaf's luminance class as a factor (1 for everything else).
+    @location(2) shade: f32,
 };
 
 // Where a copy of a tree stands: xyz offset and scale, then cos and sin of its turn about Z.
@@ -52,6 +54,7 @@ struct VsOut {
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) light_clip: vec4<f32>,
+    @location(3) shade: f32,
 };
 
 @vertex
@@ -62,6 +65,7 @@ fn vs_main(v: VsIn, i: Instance) -> VsOut {
     out.world = world;
     out.normal = turned(i, v.normal);
     out.light_clip = g.light_view_proj * vec4<f32>(world, 1.0);
+    out.shade = v.shade;
     return out;
 }
 
@@ -70,7 +74,25 @@ fn vs_shadow(v: VsIn, i: Instance) -> @builtin(position) vec4<f32> {
     return g.light_view_proj * vec4<f32>(placed(i, v.position), 1.0);
 }
 
-// Fraction of sunlight reaching a point: 3x3 percentage-closer filtering.
+// Taps of the shadow filter: a golden-angle spiral filling the unit disc evenly.
+const TAPS = array<vec2<f32>, 12>(
+    vec2<f32>(0.2041, 0.0000),
+    vec2<f32>(-0.2607, 0.2388),
+    vec2<f32>(0.0399, -0.4547),
+    vec2<f32>(0.3286, 0.4286),
+    vec2<f32>(-0.6030, -0.1067),
+    vec2<f32>(0.5712, -0.3634),
+    vec2<f32>(-0.1911, 0.7107),
+    vec2<f32>(-0.3644, -0.7016),
+    vec2<f32>(0.7906, 0.2887),
+    vec2<f32>(-0.8224, 0.3395),
+    vec2<f32>(0.3965, -0.8472),
+    vec2<f32>(0.2930, 0.9341),
+);
+
+// Fraction of sunlight reaching a point: percentage-closer filtering over a disc three
+// texels wide each way, so shadows on the ground have soft edges, as under a real sun (half
+// a degree wide) and a crown's many small gaps.
 fn sunlit(light_clip: vec4<f32>) -> f32 {
     let p = light_clip.xyz / light_clip.w;
     let uv = vec2<f32>(p.x * 0.5 + 0.5, 0.5 - p.y * 0.5);
@@ -78,13 +100,11 @@ fn sunlit(light_clip: vec4<f32>) -> f32 {
         return 1.0;
     }
     var sum = 0.0;
-    for (var dy = -1; dy <= 1; dy++) {
-        for (var dx = -1; dx <= 1; dx++) {
-            let offset = vec2<f32>(f32(dx), f32(dy)) * g.shadow.x;
-            sum += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + offset, p.z - g.shadow.y);
-        }
+    for (var i = 0; i < 12; i++) {
+        let offset = TAPS[i] * (3.0 * g.shadow.x);
+        sum += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + offset, p.z - g.shadow.y);
     }
-    return sum / 9.0;
+    return sum / 12.0;
 }
 
 // Anti-aliased grid lines every metre, stronger every 5 m.
@@ -102,7 +122,7 @@ fn grid(world: vec2<f32>) -> f32 {
 fn fs_main(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     let kind = m.kind.x;
     var n = normalize(in.normal);
-    var base = m.color.rgb;
+    var base = m.color.rgb * in.shade;
     if (kind > 1.5) {
         // Fade the grid out with distance so it never shimmers into noise.
         base = mix(base, base * 0.55, grid(in.world.xy));

@@ -213,6 +213,7 @@ mod tests {
                 normals: vec![[0.0, -1.0, 0.0]; 4],
                 uvs: vec![[0.0, 0.0]; 4],
                 indices: vec![0, 1, 2, 0, 2, 3],
+                shades: vec![],
             },
             leaves: Mesh::default(),
         };

@@ -123,6 +123,9 @@ pub struct Leaf {
     pub shape: LeafShape,
     /// The stem carrying the leaf.
     pub stem: StemId,
+    /// Share of the sky's light reaching the leaf, 0..1 (1 in the open; the growth model's
+    /// light grid sets less inside a crown). Meshes draw it in ten luminance classes.
+    pub light: f32,
 }
 
 /// A whole tree as plain data.

@@ -136,6 +136,13 @@ impl Builder {
         attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
         attributes.insert(Valid(json::mesh::Semantic::Normals), nor);
         attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), uv);
+        if mesh.shades.len() == n {
+            // glTF multiplies the base colour by COLOR_0: the leaves' luminance classes.
+            let colours: Vec<[f32; 3]> = mesh.shades.iter().map(|&s| [s; 3]).collect();
+            let v = self.view(bytes_of(&colours), Target::ArrayBuffer);
+            let colour = self.accessor(v, n, C::F32, T::Vec3, None);
+            attributes.insert(Valid(json::mesh::Semantic::Colors(0)), colour);
+        }
         json::mesh::Primitive {
             attributes,
             extensions: None,

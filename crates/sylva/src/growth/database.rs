@@ -295,6 +295,12 @@ impl Database {
             .iter()
             .filter(|s| s.region == region.code)
             .collect();
+        // Suggestions name only species that can be grown (the palms have no age→DBH fit).
+        let growable: Vec<&SpeciesEntry> = in_region
+            .iter()
+            .copied()
+            .filter(|s| self.equations(&s.region, &s.code).is_ok())
+            .collect();
         let entry = in_region
             .iter()
             .find(|s| {
@@ -303,7 +309,7 @@ impl Database {
                     || normalise(&s.common) == key
             })
             .ok_or_else(|| {
-                let mut close: Vec<String> = in_region
+                let mut close: Vec<String> = growable
                     .iter()
                     .filter(|s| {
                         [&s.code, &s.scientific, &s.common]
@@ -313,7 +319,7 @@ impl Database {
                     .map(|s| format!("{} ({})", s.code, s.common))
                     .collect();
                 if close.is_empty() {
-                    close = in_region
+                    close = growable
                         .iter()
                         .map(|s| format!("{} ({})", s.code, s.common))
                         .collect();

@@ -76,6 +76,18 @@ impl CrownShape {
         }
     }
 
+    /// How far the crown's top falls from the leader to the crown's edge, as a share of the
+    /// crown height: a rounded top for broadleaves. A cone needs none: the reach of its
+    /// scaffolds already narrows to the top (a roof there made its branches dive).
+    pub fn roof(self) -> f32 {
+        match self {
+            CrownShape::Ellipse => 0.4,
+            CrownShape::Cone => 0.0,
+            CrownShape::Dome => 0.35,
+            CrownShape::Vase => 0.2,
+        }
+    }
+
     /// Lower-case name.
     pub fn name(self) -> &'static str {
         match self {
@@ -689,9 +701,21 @@ impl Grower {
                 // (where its leaves would hang out of the measured crown).
                 let direction = if self.age - seg.born < 1.0 {
                     let sag = self.droop as f32 * (1.0 - rel).clamp(0.0, 1.0).powi(2);
-                    let ceiling = top - 0.05;
                     let floor = base + leaf;
-                    within_heights(sag_down(seg.aim, sag), seg.start, length, floor, ceiling)
+                    // The crown's top is rounded: the ceiling falls away from the leader by
+                    // the shape's roof over the crown's radius (once more, for where the bent
+                    // tip ends up).
+                    let radius = (t.crown_diameter * 0.5 * self.spread) as f32;
+                    let roof = self.shape.roof() * (top - base);
+                    let ceiling =
+                        |r: f32| top - 0.05 - roof * (r / radius.max(0.1)).min(1.0).powi(2);
+                    let aimed = sag_down(seg.aim, sag);
+                    let mut d = aimed;
+                    for _ in 0..2 {
+                        let r = (seg.start + d * length).truncate().length();
+                        d = within_heights(aimed, seg.start, length, floor, ceiling(r).max(floor));
+                    }
+                    d
                 } else {
                     seg.direction
                 };
@@ -1181,6 +1205,7 @@ impl Grower {
             });
             self.for_each_leaf(b, leaf_len, top, |position, orientation| {
                 sk.leaves.push(Leaf {
+                    light: self.light.light_at(position),
                     position,
                     orientation,
                     length: leaf_len,

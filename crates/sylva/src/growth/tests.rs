@@ -177,6 +177,9 @@ fn species_are_found_by_code_scientific_or_common_name_and_errors_say_what_exist
     assert!(e.contains("`plane`") && e.contains("PLAC"), "{e}");
     let e = db.find("InlVal", "WARO").unwrap_err().to_string();
     assert!(e.contains("age -> DBH"), "{e}");
+    // Suggestions are species that can be grown: not the palm.
+    let e = db.find("InlVal", "nothing").unwrap_err().to_string();
+    assert!(e.contains("PLAC") && !e.contains("WARO"), "{e}");
 }
 
 #[test]

@@ -327,6 +327,9 @@ impl LodTree {
                     part.positions.push(source.positions[old]);
                     part.normals.push(source.normals[old]);
                     part.uvs.push(source.uvs[old]);
+                    if let Some(&shade) = source.shades.get(old) {
+                        part.shades.push(shade);
+                    }
                 }
                 *index = remap[old];
             }
@@ -358,6 +361,9 @@ impl LodTree {
                     part.positions.push(at.to_array());
                     part.normals.push(source.normals[old]);
                     part.uvs.push(source.uvs[old]);
+                    if let Some(&shade) = source.shades.get(old) {
+                        part.shades.push(shade);
+                    }
                 }
                 part.indices.push(remap[old]);
             }

@@ -64,8 +64,17 @@ pub(super) fn mesh_leaves(skeleton: &Skeleton, mesh: &mut Mesh) {
     }
 }
 
-/// Every leaf's vertices, in skeleton order, without triangles.
+/// Every leaf's vertices, in skeleton order, without triangles; their shades too where any
+/// leaf is out of full light.
 pub(super) fn leaf_vertices(skeleton: &Skeleton, mesh: &mut Mesh) {
+    if skeleton.leaves.iter().any(|l| l.light < 1.0) {
+        mesh.shades.resize(mesh.positions.len(), 1.0);
+        for leaf in &skeleton.leaves {
+            let n = leaf_template(leaf.shape).positions.len();
+            mesh.shades
+                .extend(std::iter::repeat_n(luminance(leaf.light), n));
+        }
+    }
     for leaf in &skeleton.leaves {
         let t = leaf_template(leaf.shape);
         let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
@@ -77,6 +86,17 @@ pub(super) fn leaf_vertices(skeleton: &Skeleton, mesh: &mut Mesh) {
             );
         }
     }
+}
+
+/// Number of luminance classes leaves are drawn in (Rudnick et al.: ten).
+pub const LUMINANCE_CLASSES: u32 = 10;
+
+/// The luminance factor of a leaf receiving `light` (0..1): its class, 1 (darkest) to 10
+/// (open sky), scaled so the darkest class still shows its colour in the sky's ambient.
+pub fn luminance(light: f32) -> f32 {
+    let classes = LUMINANCE_CLASSES as f32;
+    let class = (light.clamp(0.0, 1.0) * classes).ceil().max(1.0);
+    0.3 + 0.7 * class / classes
 }
 
 /// Flat outline in the (x, z) plane, counter-clockwise, triangulated as a fan from `centre`

@@ -5,7 +5,7 @@
 mod leaves;
 mod stems;
 
-pub use leaves::{LeafTemplate, leaf_template, leaf_triangles};
+pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
 pub use stems::{SegmentTriangles, mesh_stems_by_segment, ring_vertices};
 
 use crate::skeleton::Skeleton;
@@ -22,6 +22,9 @@ pub struct Mesh {
     pub uvs: Vec<[f32; 2]>,
     /// Three indices per triangle.
     pub indices: Vec<u32>,
+    /// Luminance factor of each vertex (0..1), or empty where every vertex is fully lit: the
+    /// leaves of a grown crown in their ten light classes. glTF's COLOR_0.
+    pub shades: Vec<f32>,
 }
 
 impl Mesh {
@@ -127,6 +130,7 @@ pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Tre
         part.normals.clear();
         part.uvs.clear();
         part.indices.clear();
+        part.shades.clear();
     }
     // Size every buffer exactly first: growing them by doubling costs more than filling them.
     let (v, i) = stems::count(skeleton, options);

@@ -599,6 +599,7 @@ impl<'a> Generator<'a> {
             let base = pos + q * Vec3::new(0.0, 0.0, stem_offset);
             let q = bend_leaf(q.normalize(), base, p.leaf_bend as f32);
             self.skeleton.leaves.push(Leaf {
+                light: 1.0,
                 position: base,
                 orientation: q,
                 length: leaf_length,
