@@ -444,6 +444,7 @@ impl Grower {
     /// Apical and lateral buds at the end of a year.
     fn end_of_year(&mut self) {
         let t = self.targets_now();
+        self.make_room();
         let live_segments = self.segment_count();
         let mut budget = self.options.max_segments.saturating_sub(live_segments);
         let bifurcation = (t.crown_diameter / t.crown_height.max(0.1)).atan() as f32;
@@ -637,16 +638,52 @@ impl Grower {
         });
     }
 
+    /// Near the segment budget, the darkest side branches die, so the crown keeps renewing
+    /// itself at its lit surface instead of freezing when the budget is spent: the interior
+    /// turnover of a real crown, hastened.
+    fn make_room(&mut self) {
+        let max = self.options.max_segments;
+        let live = self.segment_count();
+        if live * 20 < max * 17 {
+            return;
+        }
+        let goal = max * 4 / 5;
+        let mut dark: Vec<(f32, usize)> = self
+            .branches
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.alive && b.order >= 2)
+            .map(|(i, b)| {
+                let last = &self.segments[*b.segments.last().expect("a segment") as usize];
+                (self.light.light_at(last.end()), i)
+            })
+            .collect();
+        dark.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut left = live;
+        for (_, b) in dark {
+            if left <= goal {
+                break;
+            }
+            if self.branches[b].alive {
+                left -= self.kill(b);
+            }
+        }
+    }
+
     /// Marks a branch and everything on it dead.
-    fn kill(&mut self, b: usize) {
+    /// Returns how many live segments died.
+    fn kill(&mut self, b: usize) -> usize {
         let mut stack = vec![b];
+        let mut segments = 0;
         while let Some(b) = stack.pop() {
             if !self.branches[b].alive {
                 continue;
             }
             self.branches[b].alive = false;
+            segments += self.branches[b].segments.len();
             stack.extend(self.branches[b].children.iter().map(|&c| c as usize));
         }
+        segments
     }
 
     /// Primary growth: the last segment of every growing branch reaches for the branch's
@@ -814,7 +851,8 @@ impl Grower {
                 || p.y + leaf > wood_hi.y
         };
         for (i, b) in self.branches.iter().enumerate() {
-            if !counted(b)
+            // The leader's young shoot carries leaves too: always look at those.
+            if (i > 0 && !counted(b))
                 || !b.segments.iter().any(|&si| {
                     let s = &self.segments[si as usize];
                     self.leaves_on.get(si as usize).is_some_and(|&n| n > 0)
@@ -982,8 +1020,11 @@ impl Grower {
             let mut room = 0usize;
             for (i, s) in self.segments.iter().enumerate() {
                 let b = &self.branches[s.branch as usize];
+                // The leader's young shoot is leafy too, or it would stand bare above the
+                // crown.
+                let leader = b.order == 0 && self.age - s.born <= LEAF_SHOOT_YEARS;
                 let eligible = b.alive
-                    && b.order > 0
+                    && (b.order > 0 || leader)
                     && s.start.z.min(s.end().z) >= floor
                     && (self.age - s.born <= years || tip_shoot[i])
                     && radii[i] <= radius
