@@ -253,9 +253,18 @@ pub struct GrowArgs {
     #[arg(long)]
     pub no_pictures: bool,
 
+    /// Watch the trees grow in a window instead (an age slider, play and pause, the species
+    /// side by side); nothing is written.
+    #[arg(long, conflicts_with_all = ["output", "no_pictures"])]
+    pub view: bool,
+
+    /// Scripted run of the window for tests: pictures at three ages, a report into DIR, close.
+    #[arg(long, value_name = "DIR", hide = true, requires = "view")]
+    pub self_test: Option<PathBuf>,
+
     /// Output folder (created if missing).
-    #[arg(short, long, value_name = "DIR")]
-    pub output: PathBuf,
+    #[arg(short, long, value_name = "DIR", required_unless_present = "view")]
+    pub output: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]

@@ -21,7 +21,7 @@ const MAX_AGES: usize = 400;
 const MAX_AGE: f64 = 300.0;
 
 /// Colours for the pictures and models: bark, and leaves (evergreens darker).
-fn colours(m: &Measured) -> ([f32; 3], [f32; 3]) {
+pub fn colours(m: &Measured) -> ([f32; 3], [f32; 3]) {
     let evergreen = m.species.tree_type.get(1..2) == Some("E");
     let leaves = if evergreen {
         [0.2, 0.36, 0.16]
@@ -77,14 +77,20 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
         );
     }
     let ages: Vec<f64> = (0..count).map(|i| from + i as f64 * args.step).collect();
-    if args.output.exists() && !args.output.is_dir() {
+    if args.view {
+        return crate::viewer::growth::run(species, ages, args.seed, args.self_test.clone());
+    }
+    let output = args
+        .output
+        .as_ref()
+        .context("-o DIR: where to write the models, pictures and charts")?;
+    if output.exists() && !output.is_dir() {
         bail!(
             "-o {}: that is a file; give a folder (it is created if missing)",
-            args.output.display()
+            output.display()
         );
     }
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("creating {}", args.output.display()))?;
+    std::fs::create_dir_all(output).with_context(|| format!("creating {}", output.display()))?;
     let renderer = if args.no_pictures {
         None
     } else {
@@ -130,7 +136,7 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
             let stem = format!("{}-age-{}", m.species.code, age_label(age));
             let (bark, leaves) = colours(m);
             let glb = to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))?;
-            write_atomically(&args.output.join(format!("{stem}.glb")), &glb)?;
+            write_atomically(&output.join(format!("{stem}.glb")), &glb)?;
             if let Some(r) = &renderer {
                 let picture = single_picture(r, &mesh, m, (width, height), tallest, widest)?;
                 let lines = [format!(
@@ -142,7 +148,7 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
                     model.crown_diameter
                 )];
                 let picture = with_caption(&picture, &lines, 18.0);
-                save(&args.output.join(format!("{stem}.png")), &picture)?;
+                save(&output.join(format!("{stem}.png")), &picture)?;
             }
             println!(
                 "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments",
@@ -179,20 +185,14 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
             let lines = [format!("age {}: {}", age_label(age), heights.join(", "))];
             let picture = with_caption(&picture, &lines, 18.0);
             save(
-                &args
-                    .output
-                    .join(format!("compare-age-{}.png", age_label(age))),
+                &output.join(format!("compare-age-{}.png", age_label(age))),
                 &picture,
             )?;
         }
     }
     for (m, h) in species.iter().zip(&history) {
-        write_csv(&args.output.join(format!("{}.csv", m.species.code)), h)?;
-        write_chart(
-            &args.output.join(format!("{}-chart.png", m.species.code)),
-            m,
-            h,
-        )?;
+        write_csv(&output.join(format!("{}.csv", m.species.code)), h)?;
+        write_chart(&output.join(format!("{}-chart.png", m.species.code)), m, h)?;
         let worst = worst_errors(h);
         println!(
             "{}: worst error against the equations: height {:+.1}%, DBH {:+.1}%, crown diameter \
@@ -205,7 +205,7 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
             worst[4] * 100.0
         );
     }
-    println!("wrote {}", args.output.display());
+    println!("wrote {}", output.display());
     Ok(())
 }
 

@@ -892,3 +892,65 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
         "{err}"
     );
 }
+
+#[test]
+fn growth_viewer_shows_ages_side_by_side_and_plays() {
+    let Some(x) = Xvfb::start() else {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "Xvfb is needed for the viewer test in CI"
+        );
+        eprintln!("skipping the growth viewer test: no Xvfb here (apt-get install xvfb)");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_sylva"))
+        .args([
+            "grow",
+            "PLAC",
+            "--compare",
+            "MAGR",
+            "--from",
+            "2",
+            "--to",
+            "8",
+            "--step",
+            "2",
+            "--view",
+            "--self-test",
+            dir.path().to_str().unwrap(),
+        ])
+        .env("DISPLAY", &x.1)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let report: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(dir.path().join("grow-viewer.json")).expect("the viewer wrote its report"),
+    )
+    .unwrap();
+    // The first, middle and last ages were shown; the trees grow between them.
+    let shown = report["shown"].as_array().unwrap();
+    let ages: Vec<f64> = shown.iter().map(|s| s["age"].as_f64().unwrap()).collect();
+    assert_eq!(ages, [2.0, 4.0, 8.0], "{report}");
+    let triangles: Vec<u64> = shown
+        .iter()
+        .map(|s| s["triangles"].as_u64().unwrap())
+        .collect();
+    assert!(
+        triangles[0] < triangles[1] && triangles[1] < triangles[2],
+        "{report}"
+    );
+    // Play ran from the first age to the last.
+    assert_eq!(report["played_to"].as_f64(), Some(8.0), "{report}");
+    // Each picture is the window: the young trees fill less of the sky than the old.
+    let green = |n: usize| {
+        let p = image::open(dir.path().join(format!("grow-viewer-{n}.png")))
+            .unwrap()
+            .to_rgb8();
+        p.pixels()
+            .filter(|q| q[1] as i32 > q[0] as i32 + 15 && q[1] as i32 > q[2] as i32 + 15)
+            .count()
+    };
+    assert!(green(0) < green(2), "foliage grows with age");
+}

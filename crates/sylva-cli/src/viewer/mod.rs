@@ -3,6 +3,7 @@
 //! models and pictures can be loaded, saved and exported.
 
 mod forest;
+pub mod growth;
 mod panel;
 mod worker;
 
