@@ -4,6 +4,7 @@
 //! light behind by the accumulation rule I_c <- I_c + I_r - I_c I_r, then I_r <- I_r D.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// One daylight direction (pointing down into the crown) and the intensity of its rays.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -139,36 +140,52 @@ impl LightGrid {
     /// Sends the sky's rays through the grid: one ray per cell of every face a direction
     /// enters through, each walking its cells until it leaves.
     pub fn illuminate(&mut self, sky: &[Ray]) {
-        self.light.fill(0.0);
+        // I_c <- I_c + I_r - I_c I_r is 1 - I_c <- (1 - I_c)(1 - I_r): each direction darkens
+        // its own copy of the grid on its own thread, and the copies are multiplied in the
+        // sky's order, so the result does not depend on how the work was spread.
+        let shades: Vec<Vec<f32>> = sky.par_iter().map(|ray| self.shade_of(ray)).collect();
+        self.light.fill(1.0);
+        for shade in &shades {
+            for (l, s) in self.light.iter_mut().zip(shade) {
+                *l *= s;
+            }
+        }
+        for l in &mut self.light {
+            *l = 1.0 - *l;
+        }
+    }
+
+    /// The share of each cell's light that one direction of the sky does not supply.
+    fn shade_of(&self, ray: &Ray) -> Vec<f32> {
+        let mut shade = vec![1.0f32; self.density.len()];
         let [nx, ny, nz] = self.size;
-        for ray in sky {
-            let d = ray.direction;
-            // The top face for every direction; a side face where the ray enters through it.
-            // Each face is spanned by two axes (u, v) at a fixed third coordinate.
-            let mut faces = vec![(0, 1, 2, nz as f32 - 1e-3)];
-            if d.x != 0.0 {
-                faces.push((1, 2, 0, if d.x > 0.0 { 1e-3 } else { nx as f32 - 1e-3 }));
-            }
-            if d.y != 0.0 {
-                faces.push((0, 2, 1, if d.y > 0.0 { 1e-3 } else { ny as f32 - 1e-3 }));
-            }
-            for (u, v, w, at) in faces {
-                for j in 0..self.size[v] {
-                    for i in 0..self.size[u] {
-                        let mut start = [0.0f32; 3];
-                        start[u] = i as f32 + 0.5;
-                        start[v] = j as f32 + 0.5;
-                        start[w] = at;
-                        self.trace(Vec3::from_array(start), d, ray.intensity);
-                    }
+        let d = ray.direction;
+        // The top face for every direction; a side face where the ray enters through it.
+        // Each face is spanned by two axes (u, v) at a fixed third coordinate.
+        let mut faces = vec![(0, 1, 2, nz as f32 - 1e-3)];
+        if d.x != 0.0 {
+            faces.push((1, 2, 0, if d.x > 0.0 { 1e-3 } else { nx as f32 - 1e-3 }));
+        }
+        if d.y != 0.0 {
+            faces.push((0, 2, 1, if d.y > 0.0 { 1e-3 } else { ny as f32 - 1e-3 }));
+        }
+        for (u, v, w, at) in faces {
+            for j in 0..self.size[v] {
+                for i in 0..self.size[u] {
+                    let mut start = [0.0f32; 3];
+                    start[u] = i as f32 + 0.5;
+                    start[v] = j as f32 + 0.5;
+                    start[w] = at;
+                    self.trace(Vec3::from_array(start), d, ray.intensity, &mut shade);
                 }
             }
         }
+        shade
     }
 
     /// One ray from `start` (in cell units) along `d`: Amanatides & Woo's 3-D DDA, the
     /// generalisation of Bresenham's walk to every cell a line passes.
-    fn trace(&mut self, start: Vec3, d: Vec3, intensity: f32) {
+    fn trace(&self, start: Vec3, d: Vec3, intensity: f32, shade: &mut [f32]) {
         let size = [
             self.size[0] as i64,
             self.size[1] as i64,
@@ -198,8 +215,7 @@ impl LightGrid {
         let mut ir = intensity;
         while (0..3).all(|a| cell[a] >= 0 && cell[a] < size[a]) && ir > 1e-4 {
             let i = self.index(cell[0] as usize, cell[1] as usize, cell[2] as usize);
-            let ic = self.light[i];
-            self.light[i] = ic + ir - ic * ir;
+            shade[i] *= 1.0 - ir;
             ir *= self.density[i];
             let a = if t_max[0] < t_max[1] {
                 if t_max[0] < t_max[2] { 0 } else { 2 }
