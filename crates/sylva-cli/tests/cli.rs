@@ -438,6 +438,23 @@ impl Xvfb {
         }
         None
     }
+
+    /// Runs a viewer self-test on this display (`args` end with `--self-test`, given `dir`)
+    /// and reads the report it wrote there.
+    fn self_test(&self, args: &[&str], dir: &Path, report: &str) -> serde_json::Value {
+        let run = Command::new(env!("CARGO_BIN_EXE_sylva"))
+            .args(args)
+            .args(["--self-test", dir.to_str().unwrap()])
+            .env("DISPLAY", &self.1)
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        serde_json::from_slice(
+            &std::fs::read(dir.join(report)).expect("the viewer wrote its report"),
+        )
+        .unwrap()
+    }
 }
 
 impl Drop for Xvfb {
@@ -462,17 +479,7 @@ fn viewer_starts_shows_a_tree_and_regenerates_on_an_edit() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("viewer-self-test");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let run = Command::new(env!("CARGO_BIN_EXE_sylva"))
-        .args(["view", "black_tupelo", "--self-test", dir.to_str().unwrap()])
-        .env("DISPLAY", &x.1)
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", text(&run.stderr));
-    let report: serde_json::Value = serde_json::from_slice(
-        &std::fs::read(dir.join("viewer.json")).expect("the viewer wrote its report"),
-    )
-    .unwrap();
+    let report = x.self_test(&["view", "black_tupelo"], &dir, "viewer.json");
     assert!(report["generations"].as_u64().unwrap() >= 2, "{report}");
     let tris = report["triangles"].as_array().unwrap();
     assert_ne!(tris[0], tris[1], "the edit changed the tree: {report}");
@@ -767,22 +774,11 @@ fn forest_viewer_flies_and_draws_fewer_primitives_with_lod() {
         "[forest]\nspecies = [\"quaking_aspen\", \"hazel\"]\ncount = 30\narea = [80, 80]\nvariants = 2\nquality = 0.3\n",
     )
     .unwrap();
-    let run = Command::new(env!("CARGO_BIN_EXE_sylva"))
-        .args([
-            "view",
-            file.to_str().unwrap(),
-            "--self-test",
-            dir.path().to_str().unwrap(),
-        ])
-        .env("DISPLAY", &x.1)
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", text(&run.stderr));
-    let report: serde_json::Value = serde_json::from_slice(
-        &std::fs::read(dir.path().join("forest-viewer.json")).expect("the viewer wrote its report"),
-    )
-    .unwrap();
+    let report = x.self_test(
+        &["view", file.to_str().unwrap()],
+        dir.path(),
+        "forest-viewer.json",
+    );
     let frames = report["frames"].as_array().unwrap();
     assert_eq!(frames.len(), 3, "{report}");
     let prims = |f: &serde_json::Value| {
@@ -904,31 +900,20 @@ fn growth_viewer_shows_ages_side_by_side_and_plays() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let run = Command::new(env!("CARGO_BIN_EXE_sylva"))
-        .args([
-            "grow",
-            "PLAC",
-            "--compare",
-            "MAGR",
-            "--from",
-            "2",
-            "--to",
-            "8",
-            "--step",
-            "2",
-            "--view",
-            "--self-test",
-            dir.path().to_str().unwrap(),
-        ])
-        .env("DISPLAY", &x.1)
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", text(&run.stderr));
-    let report: serde_json::Value = serde_json::from_slice(
-        &std::fs::read(dir.path().join("grow-viewer.json")).expect("the viewer wrote its report"),
-    )
-    .unwrap();
+    let args = [
+        "grow",
+        "PLAC",
+        "--compare",
+        "MAGR",
+        "--from",
+        "2",
+        "--to",
+        "8",
+        "--step",
+        "2",
+        "--view",
+    ];
+    let report = x.self_test(&args, dir.path(), "grow-viewer.json");
     // The first, middle and last ages were shown; the trees grow between them.
     let shown = report["shown"].as_array().unwrap();
     let ages: Vec<f64> = shown.iter().map(|s| s["age"].as_f64().unwrap()).collect();

@@ -403,13 +403,7 @@ impl GrowthViewer {
             return;
         };
         while let Ok((n, image)) = test.shots.try_recv() {
-            let path = test.dir.join(format!("grow-viewer-{n}.png"));
-            let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
-            if let Err(e) =
-                crate::render::encode_png(&path, image.size[0] as u32, image.size[1] as u32, &rgba)
-            {
-                eprintln!("sylva: self-test: {e:#}");
-            }
+            super::save_screenshot(&test.dir.join(format!("grow-viewer-{n}.png")), &image);
             test.waiting_for_shot = false;
             test.step += 1;
         }

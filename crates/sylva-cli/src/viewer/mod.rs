@@ -120,6 +120,17 @@ fn ensure_texture(
     true
 }
 
+/// Writes a self-test's screenshot as PNG (a failure is reported, and the test's report
+/// then lacks the picture).
+fn save_screenshot(path: &std::path::Path, image: &egui::ColorImage) {
+    let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+    if let Err(e) =
+        crate::render::encode_png(path, image.size[0] as u32, image.size[1] as u32, &rgba)
+    {
+        eprintln!("sylva: self-test: {e:#}");
+    }
+}
+
 /// Scripted run for tests: screenshot, change a parameter, screenshot, report, close.
 struct SelfTest {
     dir: PathBuf,
@@ -400,13 +411,7 @@ impl Viewer {
             return;
         };
         while let Ok((n, image)) = test.shots.try_recv() {
-            let path = test.dir.join(format!("viewer-{n}.png"));
-            let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
-            if let Err(e) =
-                crate::render::encode_png(&path, image.size[0] as u32, image.size[1] as u32, &rgba)
-            {
-                eprintln!("sylva: self-test: {e:#}");
-            }
+            save_screenshot(&test.dir.join(format!("viewer-{n}.png")), &image);
             test.waiting_for_shot = false;
             test.step += 1;
         }
