@@ -21,9 +21,10 @@ pub fn bench_growth(runs: u32) -> Result<()> {
     let dt = 1.0 / GrowthOptions::default().steps_per_year as f64;
     println!();
     println!(
-        "growth steps of a London plane (InlVal), 1/20 year each, {STEPS} steps per row, one \
-         thread; mesh = skeleton and mesh (quality 0.6), fastest of {runs}; x copy = step total / \
-         time to copy the tree's skeleton"
+        "growth steps of a London plane (InlVal), 1/20 year each, {STEPS} steps per row; light: \
+         the sky's directions spread over the cores, the rest on one thread; mesh = skeleton and \
+         mesh (quality 0.6), fastest of {runs}; x copy = step total / time to copy the tree's \
+         skeleton"
     );
     println!(
         "{:>9} {:>5} {:>8} {:>10} {:>9} {:>9} {:>13} {:>9} {:>9} {:>7}",
