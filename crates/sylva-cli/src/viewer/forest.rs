@@ -7,7 +7,6 @@ use anyhow::{Result, anyhow};
 use eframe::{egui, egui_wgpu};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 use sylva_render::{FrameStats, Renderer, View};
 
 /// Opens a window flying through the forest of `path` (blocks until it is closed).
@@ -149,16 +148,8 @@ impl ForestViewer {
         scene.use_lod = self.use_lod;
         scene.lod_quality = self.lod_quality;
         scene.show_leaves = self.show_leaves;
-        let t = Instant::now();
-        self.stats =
-            self.renderer
-                .render_into(&scene, &self.view(), &texture.view, size[0], size[1]);
-        // Wait for the GPU so that the time is the frame's, not just its recording.
-        let _ = self
-            .renderer
-            .device()
-            .poll(eframe::wgpu::PollType::wait_indefinitely());
-        self.frame_ms = t.elapsed().as_secs_f64() * 1e3;
+        (self.stats, self.frame_ms) =
+            super::render_timed(&self.renderer, &scene, &self.view(), &texture.view, size);
         self.needs_render = false;
     }
 

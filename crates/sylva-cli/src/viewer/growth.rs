@@ -2,14 +2,13 @@
 //! thread grows every species year by year and hands over each age's skeleton; the window
 //! shows any age grown so far (the slider), or plays the years in turn.
 
-use super::ViewTexture;
+use super::{Screenshots, ViewTexture};
 use crate::grow::colours;
 use anyhow::{Result, anyhow};
 use eframe::{egui, egui_wgpu};
 use glam::{Quat, Vec3};
 use std::borrow::Cow;
 use std::path::PathBuf;
-use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::Instant;
 use sylva::Skeleton;
@@ -92,9 +91,7 @@ fn grow_in_background(species: Vec<Measured>, ages: Vec<f64>, seed: u64, send: S
 struct SelfTest {
     dir: PathBuf,
     step: usize,
-    shots: Receiver<(usize, Arc<egui::ColorImage>)>,
-    send: Sender<(usize, Arc<egui::ColorImage>)>,
-    waiting_for_shot: bool,
+    shots: Screenshots,
     shown: Vec<serde_json::Value>,
     started: Instant,
     play_started: Option<Instant>,
@@ -150,18 +147,13 @@ impl GrowthViewer {
         let (send, receive) = channel();
         grow_in_background(species.clone(), ages.clone(), seed, send);
         let grown = vec![vec![None; ages.len()]; species.len()];
-        let self_test = self_test.map(|dir| {
-            let (send, shots) = channel();
-            SelfTest {
-                dir,
-                step: 0,
-                shots,
-                send,
-                waiting_for_shot: false,
-                shown: Vec::new(),
-                started: Instant::now(),
-                play_started: None,
-            }
+        let self_test = self_test.map(|dir| SelfTest {
+            shots: Screenshots::new(dir.clone(), "grow-viewer"),
+            dir,
+            step: 0,
+            shown: Vec::new(),
+            started: Instant::now(),
+            play_started: None,
         });
         Ok(Self {
             renderer,
@@ -273,15 +265,10 @@ impl GrowthViewer {
         let Some(texture) = &self.texture else {
             return;
         };
-        let t = Instant::now();
         let view = self.view(size[0] as f32 / size[1] as f32);
-        self.renderer
-            .render_into(&self.scene(), &view, &texture.view, size[0], size[1]);
-        let _ = self
-            .renderer
-            .device()
-            .poll(eframe::wgpu::PollType::wait_indefinitely());
-        self.frame_ms = t.elapsed().as_secs_f64() * 1e3;
+        let (_, ms) =
+            super::render_timed(&self.renderer, &self.scene(), &view, &texture.view, size);
+        self.frame_ms = ms;
         self.needs_render = false;
     }
 
@@ -402,11 +389,7 @@ impl GrowthViewer {
         let Some(test) = &mut self.self_test else {
             return;
         };
-        while let Ok((n, image)) = test.shots.try_recv() {
-            super::save_screenshot(&test.dir.join(format!("grow-viewer-{n}.png")), &image);
-            test.waiting_for_shot = false;
-            test.step += 1;
-        }
+        test.step += test.shots.save_arrived() as usize;
         ctx.request_repaint();
         if test.started.elapsed().as_secs() > 240 {
             eprintln!("sylva: self-test timed out at step {}", test.step);
@@ -417,7 +400,7 @@ impl GrowthViewer {
         // Pictures at the first, middle and last age once all are grown, then play.
         let targets = [0, last / 2, last];
         if test.step < 3 {
-            if ready <= last || test.waiting_for_shot {
+            if ready <= last || test.shots.waiting {
                 return;
             }
             let want = targets[test.step];
@@ -433,14 +416,7 @@ impl GrowthViewer {
                 "triangles": triangles,
                 "frame_ms": frame_ms,
             }));
-            let send = test.send.clone();
-            let n = test.step;
-            test.waiting_for_shot = true;
-            ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(
-                egui::ScreenshotCallback::new(move |image| {
-                    let _ = send.send((n, image));
-                }),
-            ));
+            test.shots.take(ctx, test.step as u32);
             return;
         }
         match test.play_started {

@@ -120,25 +120,81 @@ fn ensure_texture(
     true
 }
 
-/// Writes a self-test's screenshot as PNG (a failure is reported, and the test's report
-/// then lacks the picture).
-fn save_screenshot(path: &std::path::Path, image: &egui::ColorImage) {
-    let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
-    if let Err(e) =
-        crate::render::encode_png(path, image.size[0] as u32, image.size[1] as u32, &rgba)
-    {
-        eprintln!("sylva: self-test: {e:#}");
+/// A self-test's screenshots: asked of the window, written as PNG into `dir` as they arrive.
+struct Screenshots {
+    dir: PathBuf,
+    prefix: &'static str,
+    receive: Receiver<(u32, Arc<egui::ColorImage>)>,
+    send: std::sync::mpsc::Sender<(u32, Arc<egui::ColorImage>)>,
+    /// A screenshot was asked for and has not come yet.
+    waiting: bool,
+}
+
+impl Screenshots {
+    fn new(dir: PathBuf, prefix: &'static str) -> Self {
+        let (send, receive) = channel();
+        Self {
+            dir,
+            prefix,
+            receive,
+            send,
+            waiting: false,
+        }
     }
+
+    /// Asks the window for screenshot `n` (`prefix-n.png`).
+    fn take(&mut self, ctx: &egui::Context, n: u32) {
+        let send = self.send.clone();
+        self.waiting = true;
+        ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(
+            egui::ScreenshotCallback::new(move |image| {
+                let _ = send.send((n, image));
+            }),
+        ));
+    }
+
+    /// Writes the screenshots that have come (a failure is reported, and the test's report
+    /// then lacks the picture); how many came.
+    fn save_arrived(&mut self) -> u32 {
+        let mut arrived = 0;
+        while let Ok((n, image)) = self.receive.try_recv() {
+            let path = self.dir.join(format!("{}-{n}.png", self.prefix));
+            let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+            if let Err(e) =
+                crate::render::encode_png(&path, image.size[0] as u32, image.size[1] as u32, &rgba)
+            {
+                eprintln!("sylva: self-test: {e:#}");
+            }
+            self.waiting = false;
+            arrived += 1;
+        }
+        arrived
+    }
+}
+
+/// Draws `scene` into `target` and waits for the GPU, so that the time (ms) is the frame's,
+/// not just its recording.
+fn render_timed(
+    renderer: &Renderer,
+    scene: &Scene,
+    view: &View,
+    target: &eframe::wgpu::TextureView,
+    size: [u32; 2],
+) -> (sylva_render::FrameStats, f64) {
+    let t = Instant::now();
+    let stats = renderer.render_into(scene, view, target, size[0], size[1]);
+    let _ = renderer
+        .device()
+        .poll(eframe::wgpu::PollType::wait_indefinitely());
+    (stats, t.elapsed().as_secs_f64() * 1e3)
 }
 
 /// Scripted run for tests: screenshot, change a parameter, screenshot, report, close.
 struct SelfTest {
     dir: PathBuf,
     step: u32,
-    shots: Receiver<(u32, Arc<egui::ColorImage>)>,
-    send: std::sync::mpsc::Sender<(u32, Arc<egui::ColorImage>)>,
+    shots: Screenshots,
     triangles: Vec<usize>,
-    waiting_for_shot: bool,
     started: Instant,
     /// When the wind was switched on, and the generation count then.
     wind_start: Option<(Instant, u32)>,
@@ -186,18 +242,13 @@ impl Viewer {
         let (renderer, render_state) = renderer_of(cc)?;
         let ctx = cc.egui_ctx.clone();
         let worker = Worker::start(move || ctx.request_repaint());
-        let self_test = self_test.map(|dir| {
-            let (send, shots) = channel();
-            SelfTest {
-                dir,
-                step: 0,
-                shots,
-                send,
-                triangles: Vec::new(),
-                waiting_for_shot: false,
-                started: Instant::now(),
-                wind_start: None,
-            }
+        let self_test = self_test.map(|dir| SelfTest {
+            shots: Screenshots::new(dir.clone(), "viewer"),
+            dir,
+            step: 0,
+            triangles: Vec::new(),
+            started: Instant::now(),
+            wind_start: None,
         });
         let stem = std::path::Path::new(&source)
             .file_stem()
@@ -410,11 +461,7 @@ impl Viewer {
         let Some(test) = &mut self.self_test else {
             return;
         };
-        while let Ok((n, image)) = test.shots.try_recv() {
-            save_screenshot(&test.dir.join(format!("viewer-{n}.png")), &image);
-            test.waiting_for_shot = false;
-            test.step += 1;
-        }
+        test.step += test.shots.save_arrived();
         if test.started.elapsed().as_secs() > 240 {
             eprintln!("sylva: self-test timed out at step {}", test.step);
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
@@ -425,25 +472,16 @@ impl Viewer {
             || self.tree.is_some()
                 && !self.worker.busy()
                 && !self.needs_render
-                && !test.waiting_for_shot;
+                && !test.shots.waiting;
         if !ready {
             ctx.request_repaint();
             return;
         }
-        let shoot = |test: &mut SelfTest, n: u32| {
-            let send = test.send.clone();
-            test.waiting_for_shot = true;
-            ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(
-                egui::ScreenshotCallback::new(move |image| {
-                    let _ = send.send((n, image));
-                }),
-            ));
-        };
         let triangles = self.tree.as_ref().map_or(0, |t| t.triangles);
         match test.step {
             0 => {
                 test.triangles.push(triangles);
-                shoot(test, 1);
+                test.shots.take(ctx, 1);
             }
             1 => {
                 // The edit a user would make: branches steeper and more of them.
@@ -454,7 +492,7 @@ impl Viewer {
             }
             2 => {
                 test.triangles.push(triangles);
-                shoot(test, 2);
+                test.shots.take(ctx, 2);
             }
             3 => {
                 // Wind on: the tree is re-formed continuously while it blows.
