@@ -23,12 +23,14 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod drawing;
 pub mod error;
 pub mod export;
 pub mod forest;
 pub mod growth;
 pub mod lod;
 pub mod mesh;
+pub mod nagel;
 pub mod params;
 pub mod preview;
 pub mod rng;

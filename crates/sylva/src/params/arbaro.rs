@@ -31,7 +31,7 @@ fn leaf_shape_index(value: &str) -> Option<u32> {
     value.parse::<u32>().ok().filter(|&i| i <= 8)
 }
 
-fn line_at(text: &str, byte: u64) -> usize {
+pub(crate) fn line_at(text: &str, byte: u64) -> usize {
     let end = (byte as usize).min(text.len());
     text.as_bytes()[..end]
         .iter()

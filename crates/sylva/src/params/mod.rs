@@ -6,7 +6,7 @@
 //! parameters are written `nX` for n = 0..3; deeper levels reuse level 3. Angles are in degrees,
 //! lengths in metres or as fractions, as each entry of [`PARAMS`] says.
 
-mod arbaro;
+pub(crate) mod arbaro;
 mod table;
 mod toml_io;
 
