@@ -38,6 +38,10 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::View(args) => crate::viewer::run(&args),
         Command::Forest(args) => crate::forest::forest(&args),
         Command::Grow(args) => crate::grow::grow(&args),
+        Command::Fractal(args) => crate::nagel::fractal(&args),
+        Command::Whisk(args) => crate::nagel::whisk(&args),
+        Command::Stick(args) => crate::nagel::stick(&args),
+        Command::Draw(args) => crate::lines::draw(&args),
         Command::Bench(args) => bench(&args),
     }
 }

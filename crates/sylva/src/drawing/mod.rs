@@ -72,7 +72,7 @@ impl LineSource for Skeleton {
 }
 
 /// Polylines as read from a vector file.
-impl LineSource for [Vec<Vec3>] {
+impl LineSource for Vec<Vec<Vec3>> {
     fn lines(&self, sink: &mut dyn LineSink) {
         for line in self {
             for w in line.windows(2) {

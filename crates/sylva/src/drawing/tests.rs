@@ -28,7 +28,7 @@ fn vector_files_round_trip_byte_for_byte() {
         let bytes = write_vec(source, Vec::new()).unwrap();
         let text = String::from_utf8(bytes.clone()).unwrap();
         let lines = read_vec(&text, "t.vec").unwrap();
-        let again = write_vec(lines.as_slice(), Vec::new()).unwrap();
+        let again = write_vec(&lines, Vec::new()).unwrap();
         assert_eq!(bytes, again);
     }
     // Nagel's whisk file: each rib one `P` then an `L` per further profile point; the first rib

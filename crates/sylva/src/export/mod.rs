@@ -9,7 +9,7 @@ mod atomic;
 mod glb;
 mod obj;
 
-pub use atomic::write_atomically;
+pub use atomic::{write_atomically, write_atomically_with};
 pub use glb::{Instance, Materials, to_glb, to_glb_lod, to_glb_scene};
 pub use obj::{to_obj, write_obj};
 

@@ -93,8 +93,11 @@ pub struct FractalSegment {
     pub start: Vec3,
     /// Where it ends.
     pub end: Vec3,
-    /// Pipe-model radius, metres.
+    /// Pipe-model radius at the start, metres.
     pub radius: f32,
+    /// Radius at the end: the daughters' radius, so that stems taper without steps (a tip
+    /// thins to 70% of its start).
+    pub end_radius: f32,
 }
 
 /// Honda's equation: the end C of the daughter of mother A→B turned by `theta` (radians) with
@@ -252,6 +255,15 @@ impl Fractal {
         (self.params.trunk_radius / (self.generation_len(g) as f64).sqrt()) as f32
     }
 
+    /// Radius at the end of a generation-`g` branch.
+    fn end_radius(&self, g: u32) -> f32 {
+        if g < self.params.depth {
+            self.radius(g + 1)
+        } else {
+            0.7 * self.radius(g)
+        }
+    }
+
     /// The leaf at the end of a tip segment, when leaves are asked for.
     fn tip_leaf(&self, s: &FractalSegment) -> Option<Leaf> {
         if !self.params.leaves || s.generation != self.params.depth || s.end == s.start {
@@ -319,6 +331,7 @@ impl Fractal {
                     start: s.0.as_vec3(),
                     end: s.1.as_vec3(),
                     radius: self.radius(g),
+                    end_radius: self.end_radius(g),
                 })
             };
         emit_one(emit, 0, 0, seg[0]);
@@ -367,11 +380,11 @@ impl Fractal {
                 None => Quat::IDENTITY,
             };
             let first = skeleton.sections.len() as u32;
-            for (position, z) in [(s.start, 0.0), (s.end, 1.0)] {
+            for (position, radius, z) in [(s.start, s.radius, 0.0), (s.end, s.end_radius, 1.0)] {
                 skeleton.sections.push(CrossSection {
                     position,
                     orientation,
-                    radius: s.radius,
+                    radius,
                     z,
                 });
             }
@@ -396,7 +409,7 @@ impl LineSource for Fractal {
     /// outlines exactly as a skeleton draws them.
     fn lines(&self, sink: &mut dyn LineSink) {
         self.stream(&mut |s: &FractalSegment| {
-            sink.segment(s.start, s.end, Stroke::wood(2.0 * s.radius));
+            sink.segment(s.start, s.end, Stroke::wood(s.radius + s.end_radius));
         });
         if self.params.leaves {
             // A skeleton draws its leaves after all stems; a second pass keeps that order

@@ -106,6 +106,7 @@ fn in_memory(params: &FractalParams) -> Vec<FractalSegment> {
                 start: s.0.as_vec3(),
                 end: s.1.as_vec3(),
                 radius: fractal.radius(g),
+                end_radius: fractal.end_radius(g),
             });
         }
     };
@@ -166,6 +167,12 @@ fn streamed_vector_file_equals_the_skeletons() {
     let skeleton = fractal.skeleton();
     let stored = write_vec(&skeleton, Vec::new()).unwrap();
     assert_eq!(streamed, stored);
+    // The drawings agree too, stroke widths included.
+    let options = crate::drawing::DrawOptions::default();
+    assert_eq!(
+        crate::drawing::draw_svg(&fractal, &options),
+        crate::drawing::draw_svg(&skeleton, &options)
+    );
     let text = String::from_utf8(streamed).unwrap();
     // Every segment is an `L`; the 256 leaves are closed 4-sided loops.
     let l = text.lines().filter(|l| l.starts_with('L')).count();

@@ -1,0 +1,164 @@
+//! Writing trees that can be drawn as lines (`fractal`, `whisk`, `stick`, `draw`): vector files
+//! and drawings streamed from the model, meshes built from its skeleton.
+
+use crate::args::{DrawArgs, LineOutputArgs, LineView};
+use anyhow::{Context, Result, bail};
+use std::path::{Path, PathBuf};
+use sylva::Skeleton;
+use sylva::drawing::{DrawOptions, LineSource, View, draw_png, write_svg, write_vec};
+use sylva::export::{Materials, to_glb, write_atomically, write_atomically_with, write_obj};
+use sylva::mesh::{MeshOptions, mesh_tree};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LineFormat {
+    Vec,
+    Svg,
+    Png,
+    Glb,
+    Obj,
+}
+
+impl LineFormat {
+    fn of(path: &Path) -> Result<Self> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        Ok(match ext.as_deref() {
+            Some("vec") => Self::Vec,
+            Some("svg") => Self::Svg,
+            Some("png") => Self::Png,
+            Some("glb") => Self::Glb,
+            Some("obj") => Self::Obj,
+            _ => bail!(
+                "output {}: unknown format; use .vec (vector file), .svg or .png (drawing), \
+                 .glb or .obj (mesh)",
+                path.display()
+            ),
+        })
+    }
+
+    fn is_mesh(self) -> bool {
+        matches!(self, Self::Glb | Self::Obj)
+    }
+}
+
+/// Checks every output before anything is written: known formats, no folders, no repeats.
+pub fn plan(out: &LineOutputArgs) -> Result<Vec<(PathBuf, LineFormat)>> {
+    let mut planned: Vec<(PathBuf, LineFormat)> = Vec::new();
+    for path in &out.outputs {
+        let format = LineFormat::of(path)?;
+        if path.is_dir() {
+            bail!("output {}: is a folder; give a file name", path.display());
+        }
+        if planned.iter().any(|(p, _)| p == path) {
+            bail!("output {} is named twice", path.display());
+        }
+        planned.push((path.clone(), format));
+    }
+    Ok(planned)
+}
+
+/// The drawing settings the flags ask for.
+pub fn draw_options(out: &LineOutputArgs) -> DrawOptions {
+    DrawOptions {
+        view: match out.view {
+            LineView::Front => View::Front,
+            LineView::Side => View::Side,
+            LineView::Top => View::Top,
+            LineView::Perspective => View::Perspective,
+            LineView::Overlay => View::Overlay,
+        },
+        width: out.size.0,
+        height: out.size.1,
+        ..Default::default()
+    }
+}
+
+/// Writes every planned output: lines straight from `source`, meshes from `skeleton()` (called
+/// at most once, and only if a mesh is asked for). Returns a line per file for the summary.
+pub fn write(
+    planned: &[(PathBuf, LineFormat)],
+    out: &LineOutputArgs,
+    source: &dyn LineSource,
+    skeleton: &mut dyn FnMut() -> Result<Skeleton>,
+    name: &str,
+) -> Result<Vec<String>> {
+    let options = draw_options(out);
+    let mut built: Option<Skeleton> = None;
+    let mut written = Vec::new();
+    for (path, format) in planned {
+        let what = match format {
+            LineFormat::Vec => {
+                write_atomically_with(path, |w| write_vec(source, w).map(drop))?;
+                "vector file".to_string()
+            }
+            LineFormat::Svg => {
+                write_atomically_with(path, |w| write_svg(source, &options, w).map(drop))?;
+                format!("{} view, SVG", options.view.name())
+            }
+            LineFormat::Png => {
+                write_atomically(path, &draw_png(source, &options))?;
+                format!("{} view, PNG", options.view.name())
+            }
+            LineFormat::Glb | LineFormat::Obj => {
+                if built.is_none() {
+                    built = Some(skeleton()?);
+                }
+                let mesh = mesh_tree(built.as_ref().unwrap(), &MeshOptions::default());
+                let materials = Materials::default();
+                if *format == LineFormat::Glb {
+                    write_atomically(path, &to_glb(&mesh, name, &materials)?)?;
+                } else {
+                    write_obj(path, &mesh, name, &materials)?;
+                }
+                format!("mesh, {} triangles", mesh.triangle_count())
+            }
+        };
+        written.push(format!("{} ({what})", path.display()));
+    }
+    Ok(written)
+}
+
+/// Whether any planned output is a mesh.
+pub fn wants_mesh(planned: &[(PathBuf, LineFormat)]) -> bool {
+    planned.iter().any(|(_, f)| f.is_mesh())
+}
+
+/// `sylva draw`: line drawings of a Weber–Penn species or a vector file.
+pub fn draw(args: &DrawArgs) -> Result<()> {
+    let planned = plan(&args.out)?;
+    let is_vec = Path::new(&args.input)
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("vec"));
+    let written = if is_vec {
+        if wants_mesh(&planned) {
+            bail!(
+                "{}: a vector file has lines but no stem radii; write .vec, .svg or .png",
+                args.input
+            );
+        }
+        let text = std::fs::read_to_string(&args.input)
+            .with_context(|| format!("cannot read {}", args.input))?;
+        let lines = sylva::drawing::read_vec(&text, &args.input)?;
+        if lines.iter().all(|l| l.len() < 2) {
+            bail!("{}: no lines to draw (no `L` after a `P`)", args.input);
+        }
+        write(
+            &planned,
+            &args.out,
+            &lines,
+            &mut || unreachable!(),
+            &args.input,
+        )?
+    } else {
+        let params = crate::commands::load_params(&args.input, &args.tree.set)?;
+        let skeleton = sylva::generate(&params, &args.tree.options())?;
+        let mut again = || Ok(skeleton.clone());
+        write(&planned, &args.out, &skeleton, &mut again, &params.name)?
+    };
+    for line in written {
+        println!("wrote {line}");
+    }
+    Ok(())
+}
