@@ -36,6 +36,10 @@ pub enum Command {
     Whisk(WhiskArgs),
     /// Stick tree (Nagel 1986): drawn branches (CSV) turned about the trunk.
     Stick(StickArgs),
+    /// Lobe-driven tree (Fields 2012): branches grown toward control points on leaf lobes,
+    /// leaves filling the lobes; lobes placed automatically, given, read from a .tree file or
+    /// fitted to a point cloud.
+    Lobes(LobesArgs),
     /// Line drawing of any tree: Nagel's P/L vector file, or a front, side, top, perspective or
     /// front-and-side overlay view as SVG or PNG.
     Draw(DrawArgs),
@@ -47,7 +51,7 @@ pub enum Command {
 #[derive(Args, Debug)]
 pub struct LineOutputArgs {
     /// Output file, by extension: .vec (Nagel's P/L vector file), .svg or .png (a line drawing),
-    /// .glb or .obj (a mesh). Repeat to write several.
+    /// .glb or .obj (a mesh); for `lobes` also .tree. Repeat to write several.
     #[arg(
         short,
         long = "output",
@@ -210,6 +214,48 @@ pub struct StickArgs {
     pub ribs: RibArgs,
     #[command(flatten)]
     pub out: LineOutputArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct LobesArgs {
+    /// A built-in lobe species (black_oak, balsam_fir, weeping_cherry), a rules .toml file, or a
+    /// .tree file (Fields' format: its tree type names the species).
+    #[arg(help_heading = "Input")]
+    pub input: String,
+    /// Fit the trunk and lobes to a point cloud (.ply or .xyz) instead of placing them.
+    #[arg(long, value_name = "FILE", help_heading = "Input")]
+    pub points: Option<PathBuf>,
+    /// The point cloud's up axis.
+    #[arg(long, value_enum, default_value_t = UpAxis::Z, help_heading = "Input")]
+    pub up: UpAxis,
+    /// Number of lobes to fit to the point cloud (default: chosen from 1 to 8).
+    #[arg(long, value_name = "K", help_heading = "Input")]
+    pub fit_lobes: Option<usize>,
+    /// A lobe of your own, centre and radius in metres (Z up); repeat for several. The trunk
+    /// grows to them.
+    #[arg(
+        long = "lobe",
+        value_name = "X,Y,Z,R",
+        allow_hyphen_values = true,
+        help_heading = "Input"
+    )]
+    pub lobes: Vec<String>,
+    /// Random seed (a .tree file carries its own; this overrides it).
+    #[arg(long, help_heading = "Generation")]
+    pub seed: Option<u64>,
+    /// Scale the finished tree (lengths and widths).
+    #[arg(long, default_value_t = 1.0, help_heading = "Generation")]
+    pub scale: f64,
+    #[command(flatten)]
+    pub out: LineOutputArgs,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UpAxis {
+    /// Z is up (most scanners and CAD).
+    Z,
+    /// Y is up (Kinect, game engines).
+    Y,
 }
 
 #[derive(Args, Debug)]

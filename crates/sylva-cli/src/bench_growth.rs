@@ -41,7 +41,10 @@ pub fn bench_growth(runs: u32) -> Result<()> {
     );
     let mut skeleton = grower.skeleton();
     let mut mesh = TreeMesh::default();
-    let options = MeshOptions { quality: 0.6 };
+    let options = MeshOptions {
+        quality: 0.6,
+        ..Default::default()
+    };
     for size in SIZES {
         while grower.segment_count() < size {
             if grower.age() > last_age {

@@ -42,6 +42,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Whisk(args) => crate::nagel::whisk(&args),
         Command::Stick(args) => crate::nagel::stick(&args),
         Command::Draw(args) => crate::lines::draw(&args),
+        Command::Lobes(args) => crate::lobes::lobes(&args),
         Command::Bench(args) => bench(&args),
     }
 }
@@ -96,6 +97,7 @@ pub fn mesh_options(params: &TreeParams, quality: f64) -> MeshOptions {
     // Arbaro's Smooth (0..1, default 0.5) scales the mesh resolution around the default.
     MeshOptions {
         quality: quality * (0.5 + params.smooth),
+        ..Default::default()
     }
 }
 

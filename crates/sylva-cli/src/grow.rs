@@ -132,7 +132,13 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
             let skeleton = g.skeleton();
             let model = measure(&skeleton);
             let measured = g.targets(age);
-            let mesh = mesh_tree(&skeleton, &MeshOptions { quality: 0.6 });
+            let mesh = mesh_tree(
+                &skeleton,
+                &MeshOptions {
+                    quality: 0.6,
+                    ..Default::default()
+                },
+            );
             let stem = format!("{}-age-{}", m.species.code, age_label(age));
             let (bark, leaves) = colours(m);
             let glb = to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))?;

@@ -75,6 +75,13 @@ pub fn draw_options(out: &LineOutputArgs) -> DrawOptions {
     }
 }
 
+/// How meshes are made and coloured.
+#[derive(Default)]
+pub struct MeshLook {
+    pub options: MeshOptions,
+    pub materials: Materials,
+}
+
 /// Writes every planned output: lines straight from `source`, meshes from `skeleton()` (called
 /// at most once, and only if a mesh is asked for). Returns a line per file for the summary.
 pub fn write(
@@ -83,6 +90,7 @@ pub fn write(
     source: &dyn LineSource,
     skeleton: &mut dyn FnMut() -> Result<Skeleton>,
     name: &str,
+    look: &MeshLook,
 ) -> Result<Vec<String>> {
     let options = draw_options(out);
     let mut built: Option<Skeleton> = None;
@@ -105,12 +113,11 @@ pub fn write(
                 if built.is_none() {
                     built = Some(skeleton()?);
                 }
-                let mesh = mesh_tree(built.as_ref().unwrap(), &MeshOptions::default());
-                let materials = Materials::default();
+                let mesh = mesh_tree(built.as_ref().unwrap(), &look.options);
                 if *format == LineFormat::Glb {
-                    write_atomically(path, &to_glb(&mesh, name, &materials)?)?;
+                    write_atomically(path, &to_glb(&mesh, name, &look.materials)?)?;
                 } else {
-                    write_obj(path, &mesh, name, &materials)?;
+                    write_obj(path, &mesh, name, &look.materials)?;
                 }
                 format!("mesh, {} triangles", mesh.triangle_count())
             }
@@ -150,12 +157,24 @@ pub fn draw(args: &DrawArgs) -> Result<()> {
             &lines,
             &mut || unreachable!(),
             &args.input,
+            &MeshLook::default(),
         )?
     } else {
         let params = crate::commands::load_params(&args.input, &args.tree.set)?;
         let skeleton = sylva::generate(&params, &args.tree.options())?;
         let mut again = || Ok(skeleton.clone());
-        write(&planned, &args.out, &skeleton, &mut again, &params.name)?
+        let look = MeshLook {
+            options: crate::commands::mesh_options(&params, args.tree.quality),
+            materials: Materials::from_srgb(params.bark_color, params.leaf_color),
+        };
+        write(
+            &planned,
+            &args.out,
+            &skeleton,
+            &mut again,
+            &params.name,
+            &look,
+        )?
     };
     for line in written {
         println!("wrote {line}");

@@ -8,6 +8,7 @@ mod commands;
 mod forest;
 mod grow;
 mod lines;
+mod lobes;
 mod lod_chain;
 mod nagel;
 mod render;

@@ -1,7 +1,7 @@
 //! `sylva fractal`, `sylva whisk` and `sylva stick`: Nagel's trees for landscape CAD.
 
 use crate::args::{FractalArgs, RibArgs, StickArgs, WhiskArgs};
-use crate::lines::{plan, write};
+use crate::lines::{MeshLook, plan, write};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
 use sylva::nagel::{FractalParams, WhiskParams, read_profile, read_sticks, stick_tree, whisk_tree};
@@ -31,6 +31,7 @@ pub fn fractal(args: &FractalArgs) -> Result<()> {
         &fractal,
         &mut || Ok(fractal.skeleton()),
         "fractal tree",
+        &MeshLook::default(),
     )?;
     println!(
         "fractal tree: theta {}°/{}°, R {}/{}, depth {}: {} segments, {} tips",
@@ -98,6 +99,7 @@ pub fn whisk(args: &WhiskArgs) -> Result<()> {
         &skeleton,
         &mut || Ok(skeleton.clone()),
         "whisk tree",
+        &MeshLook::default(),
     )?;
     report(
         &format!(
@@ -122,6 +124,7 @@ pub fn stick(args: &StickArgs) -> Result<()> {
         &skeleton,
         &mut || Ok(skeleton.clone()),
         "stick tree",
+        &MeshLook::default(),
     )?;
     report(
         &format!(

@@ -20,6 +20,7 @@ fn appendix_species(c: &mut Criterion) {
         let options = GenerateOptions::default();
         let mesh_options = MeshOptions {
             quality: 0.5 + params.smooth,
+            ..Default::default()
         };
         let mut skeleton = Skeleton::default();
         let mut mesh = TreeMesh::default();

@@ -26,6 +26,7 @@
 pub mod drawing;
 pub mod error;
 pub mod export;
+pub mod fields;
 pub mod forest;
 pub mod growth;
 pub mod lod;

@@ -217,7 +217,10 @@ impl GrowthViewer {
         if self.uploaded == Some(self.age) || self.age >= self.ready() {
             return;
         }
-        let options = MeshOptions { quality: 0.6 };
+        let options = MeshOptions {
+            quality: 0.6,
+            ..Default::default()
+        };
         self.trees = self
             .grown
             .iter()

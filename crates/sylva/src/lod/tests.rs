@@ -19,7 +19,13 @@ fn lod(id: &str, quality: f64) -> LodTree {
         },
     )
     .unwrap();
-    LodTree::build_keeping_indices(&sk, &MeshOptions { quality })
+    LodTree::build_keeping_indices(
+        &sk,
+        &MeshOptions {
+            quality,
+            ..Default::default()
+        },
+    )
 }
 
 #[test]
@@ -169,7 +175,13 @@ fn stored_trees_drop_the_duplicate_order_and_rebuild_whole_meshes() {
         },
     )
     .unwrap();
-    let stored = LodTree::build(&sk, &MeshOptions { quality: 0.5 });
+    let stored = LodTree::build(
+        &sk,
+        &MeshOptions {
+            quality: 0.5,
+            ..Default::default()
+        },
+    );
     assert!(stored.mesh.bark.indices.is_empty() && stored.mesh.leaves.indices.is_empty());
     assert_eq!(stored.lists, kept.lists);
     assert!(stored.heap_bytes() < kept.heap_bytes());

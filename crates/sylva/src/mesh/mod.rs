@@ -92,11 +92,27 @@ impl TreeMesh {
 pub struct MeshOptions {
     /// Resolution factor: 1 is the default; ring vertices scale with it (at least 3).
     pub quality: f64,
+    /// Vertices around every stem, whatever its level (Fields' Tessellation rule); `None`: by
+    /// level and quality.
+    pub sides: Option<u32>,
 }
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        Self { quality: 1.0 }
+        Self {
+            quality: 1.0,
+            sides: None,
+        }
+    }
+}
+
+impl MeshOptions {
+    /// Vertices around a stem's rings.
+    pub fn ring_vertices(&self, stem: &crate::skeleton::Stem) -> usize {
+        match self.sides {
+            Some(n) => (n as usize).clamp(3, 256),
+            None => stems::ring_vertices(stem.level as usize, self.quality, stem.lobes),
+        }
     }
 }
 

@@ -34,7 +34,7 @@ pub(super) fn count(skeleton: &Skeleton, options: &MeshOptions) -> (usize, usize
         if sections.len() < 2 {
             continue;
         }
-        let n = ring_vertices(stem.level as usize, options.quality, stem.lobes);
+        let n = options.ring_vertices(stem);
         let (rings, tip_vertices) = if tip_is_point(sections) {
             (sections.len() - 1, n)
         } else {
@@ -92,7 +92,7 @@ pub fn mesh_stems_by_segment(
         if sections.len() < 2 {
             continue;
         }
-        let n = ring_vertices(stem.level as usize, options.quality, stem.lobes);
+        let n = options.ring_vertices(stem);
         if n != unit_n {
             circle(n, &mut unit);
             unit_n = n;
@@ -263,7 +263,14 @@ mod tests {
     #[test]
     fn cone_counts_and_normals() {
         let mut mesh = Mesh::default();
-        mesh_stems(&cone(0), &MeshOptions { quality: 1.0 }, &mut mesh);
+        mesh_stems(
+            &cone(0),
+            &MeshOptions {
+                quality: 1.0,
+                ..Default::default()
+            },
+            &mut mesh,
+        );
         let n = ring_vertices(0, 1.0, 0);
         // Two rings of n + 1, then n apex vertices; n quads and n tip triangles.
         assert_eq!(mesh.vertex_count(), 2 * (n + 1) + n);
@@ -289,7 +296,14 @@ mod tests {
     #[test]
     fn lobes_change_the_radius_around_the_ring() {
         let mut mesh = Mesh::default();
-        mesh_stems(&cone(5), &MeshOptions { quality: 1.0 }, &mut mesh);
+        mesh_stems(
+            &cone(5),
+            &MeshOptions {
+                quality: 1.0,
+                ..Default::default()
+            },
+            &mut mesh,
+        );
         let n = ring_vertices(0, 1.0, 5);
         assert!(n >= 20);
         let radii: Vec<f32> = mesh.positions[..n]
@@ -310,7 +324,14 @@ mod tests {
         let mut sk = cone(0);
         sk.sections[2].radius = 0.1;
         let mut mesh = Mesh::default();
-        mesh_stems(&sk, &MeshOptions { quality: 1.0 }, &mut mesh);
+        mesh_stems(
+            &sk,
+            &MeshOptions {
+                quality: 1.0,
+                ..Default::default()
+            },
+            &mut mesh,
+        );
         let n = ring_vertices(0, 1.0, 0);
         assert_eq!(mesh.triangle_count(), 2 * 2 * n + n);
     }
@@ -323,7 +344,14 @@ mod tests {
             c.radius = 0.0;
         });
         let mut mesh = Mesh::default();
-        mesh_stems(&sk, &MeshOptions { quality: 0.01 }, &mut mesh);
+        mesh_stems(
+            &sk,
+            &MeshOptions {
+                quality: 0.01,
+                ..Default::default()
+            },
+            &mut mesh,
+        );
         assert!(mesh.positions.iter().flatten().all(|v| v.is_finite()));
         assert!(mesh.normals.iter().flatten().all(|v| v.is_finite()));
     }

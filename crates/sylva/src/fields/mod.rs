@@ -1,0 +1,18 @@
+//! Fields' (2012) lobe-driven trees: a species is 25 rules (`TreeRules`), a tree is a trunk
+//! hierarchy and leaf lobes (placed automatically, by the user, from a `.tree` file, or fitted
+//! to a point cloud), grown into branches that reach control points on the lobes' surfaces and
+//! leaves that fill them.
+
+pub mod lobe;
+pub mod pipeline;
+pub mod points;
+pub mod rules;
+pub mod tree_file;
+
+pub use lobe::Lobe;
+pub use pipeline::{LobeTree, Placement, TrunkPiece, auto_placement, grow, placement_for_lobes};
+pub use rules::{TreeRules, builtin, from_toml};
+pub use tree_file::TreeFile;
+
+#[cfg(test)]
+mod tests;

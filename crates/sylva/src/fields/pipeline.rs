@@ -1,0 +1,906 @@
+//! Fields' six-stage pipeline (section 3.1): trunk iterations, leaf lobes, trunks connected to
+//! the lobes, branches grown toward control points on the lobes, leaves filling the lobes, and
+//! branch geometry (a [`Skeleton`] meshed with the Tessellation rule).
+//!
+//! Branches are built backwards from their targets, as the report describes: control points are
+//! grouped (one group per first branch, `NumBranchesOffSplit^(BranchIterations-1)` points each),
+//! a first branch leaves the trunk where it sees its group's centre at `BranchAngle`, covers the
+//! share of the way that `LengthReductionFactor` gives its generation, and splits; the last
+//! generation ends exactly on the control points. Each branch leaves its parent at the rule's
+//! angle and bends toward its target (a quadratic curve), cut into `NumSegmentsInBranch` pieces
+//! whose ends wander by `SegmentOffset` and are kept inside the lobe.
+
+use super::lobe::Lobe;
+use super::rules::{LeafStyle, TreeRules};
+use crate::error::{GenerateError, ParamsError};
+use crate::rng::{Random, StreamKey};
+use crate::skeleton::{CrossSection, Leaf, Skeleton, Stem, StemId};
+use glam::{Mat3, Quat, Vec3};
+use std::f32::consts::TAU;
+
+/// What a stem is, which sets its widths (rules 12–17).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// Trunk iterations and the trunks connected to lobes.
+    Trunk,
+    /// Branches grown toward control points.
+    Branch,
+    /// Twigs carrying leaves.
+    Twig,
+}
+
+/// A trunk piece as the user, a `.tree` file or automatic placement gives it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrunkPiece {
+    /// Index of the parent piece (earlier in the list), `None` for a root.
+    pub parent: Option<usize>,
+    /// Start, metres (Z up).
+    pub start: Vec3,
+    /// End.
+    pub end: Vec3,
+}
+
+/// Trunks and lobes before growth: what stages 1 and 2 make and a `.tree` file stores.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Placement {
+    /// The trunk hierarchy.
+    pub trunks: Vec<TrunkPiece>,
+    /// The leaf lobes.
+    pub lobes: Vec<Lobe>,
+}
+
+/// One stem of the grown tree.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Branch {
+    /// Parent stem, earlier in the list.
+    pub parent: Option<usize>,
+    /// Trunk, branch or twig.
+    pub kind: Kind,
+    /// Generation: 0 trunks, 1 first branches, ...
+    pub level: u8,
+    /// Polyline from base to tip.
+    pub points: Vec<Vec3>,
+    /// Width (diameter) at each point.
+    pub widths: Vec<f32>,
+    /// The lobe it grows in.
+    pub lobe: Option<usize>,
+    /// The control point a last-generation branch was grown to.
+    pub target: Option<Vec3>,
+}
+
+/// A grown lobe tree with everything the stages made, for inspection and tests.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LobeTree {
+    /// The lobes.
+    pub lobes: Vec<Lobe>,
+    /// Branch control points per lobe, after LeafTaper.
+    pub control_points: Vec<Vec<Vec3>>,
+    /// Leaf control points per lobe.
+    pub leaf_points: Vec<Vec<Vec3>>,
+    /// Stems: trunks first, parents before children.
+    pub branches: Vec<Branch>,
+    /// Leaves.
+    pub leaves: Vec<Leaf>,
+    /// Sides of every stem's cylinder (the Tessellation rule).
+    pub tessellation: u32,
+    /// LeafTaper, which shapes the lobes.
+    pub taper: f32,
+}
+
+/// Most stems and leaves a lobe tree may have.
+pub const MAX_STEMS: usize = 200_000;
+/// Most leaves.
+pub const MAX_LEAVES: usize = 2_000_000;
+
+fn rotate_away(dir: Vec3, angle: f32, azimuth: f32) -> Vec3 {
+    // A unit vector at `angle` from `dir`, turned `azimuth` about it.
+    let side = dir.any_orthonormal_vector();
+    let other = dir.cross(side);
+    let across = side * azimuth.cos() + other * azimuth.sin();
+    (dir * angle.cos() + across * angle.sin()).normalize()
+}
+
+/// Stages 1 and 2 done automatically (the paper's button L): the trunk iterations from the
+/// ground and one lobe above them, sized by the rules' layout.
+pub fn auto_placement(rules: &TreeRules, seed: u64) -> Placement {
+    let r = rules.layout.lobe_radius as f32;
+    let base = rules.layout.crown_base as f32;
+    let lobe = Lobe {
+        centre: Vec3::new(0.0, 0.0, base + r),
+        radius: r,
+    };
+    Placement {
+        trunks: trunk_iterations(rules, seed, (0.9 * base).max(0.1 * r)),
+        lobes: vec![lobe],
+    }
+}
+
+/// Stage 1 for lobes the user placed: trunk iterations reaching 90% of the way to the lowest
+/// lobe's bottom.
+pub fn placement_for_lobes(rules: &TreeRules, seed: u64, lobes: Vec<Lobe>) -> Placement {
+    let lowest = lobes
+        .iter()
+        .map(|l| l.centre.z - l.radius)
+        .fold(f32::MAX, f32::min)
+        .max(0.0);
+    let least = lobes.iter().map(|l| l.radius).fold(f32::MAX, f32::min);
+    Placement {
+        trunks: trunk_iterations(rules, seed, (0.9 * lowest).max(0.1 * least)),
+        lobes,
+    }
+}
+
+/// The trunk and its iterations, `height` tall in all: each split gives
+/// `NumTrunkBranchesOffSplit` trunks spread evenly around their parent, `TrunkAngle` apart
+/// (each half of it from the parent's direction), `LengthReductionFactor` as long.
+fn trunk_iterations(rules: &TreeRules, seed: u64, height: f32) -> Vec<TrunkPiece> {
+    let n = rules.num_trunk_iterations;
+    let lrf = rules.length_reduction_factor as f32;
+    let sum: f32 = (0..=n).map(|i| lrf.powi(i as i32)).sum();
+    let first = height / sum;
+    let mut random = StreamKey::from_seed(seed).child(1).stream();
+    let mut pieces = vec![TrunkPiece {
+        parent: None,
+        start: Vec3::ZERO,
+        end: Vec3::new(0.0, 0.0, first),
+    }];
+    let mut tips = vec![0usize];
+    let half = (rules.trunk_angle as f32 / 2.0).to_radians();
+    let k = rules.num_trunk_branches_off_split as usize;
+    for i in 1..=n {
+        let length = first * lrf.powi(i as i32);
+        let mut next = Vec::new();
+        for &t in &tips {
+            let parent = pieces[t];
+            let dir = (parent.end - parent.start).normalize();
+            let phase = random.unit() as f32 * TAU;
+            for j in 0..k {
+                let d = rotate_away(dir, half, phase + TAU * j as f32 / k as f32);
+                pieces.push(TrunkPiece {
+                    parent: Some(t),
+                    start: parent.end,
+                    end: parent.end + d * length,
+                });
+                next.push(pieces.len() - 1);
+            }
+        }
+        tips = next;
+    }
+    pieces
+}
+
+/// Groups points by halving along their widest spread until each group has at most `size`.
+fn group(points: Vec<Vec3>, size: usize, out: &mut Vec<Vec<Vec3>>) {
+    if points.len() <= size.max(1) {
+        if !points.is_empty() {
+            out.push(points);
+        }
+        return;
+    }
+    let (lo, hi) = points.iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), p| {
+        (lo.min(*p), hi.max(*p))
+    });
+    let extent = hi - lo;
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    let mut points = points;
+    points.sort_by(|a, b| a[axis].total_cmp(&b[axis]));
+    // Cut at a multiple of `size` so groups come out full.
+    let groups = points.len().div_ceil(size);
+    let cut = groups.div_ceil(2) * size;
+    let rest = points.split_off(cut.min(points.len()));
+    group(points, size, out);
+    group(rest, size, out);
+}
+
+/// Splits points into `parts` groups around the direction `axis`, by bearing.
+fn split_around(points: &[Vec3], from: Vec3, axis: Vec3, parts: usize) -> Vec<Vec<Vec3>> {
+    let side = axis.any_orthonormal_vector();
+    let other = axis.cross(side);
+    let mut sorted: Vec<(f32, Vec3)> = points
+        .iter()
+        .map(|p| {
+            let d = *p - from;
+            (d.dot(other).atan2(d.dot(side)), *p)
+        })
+        .collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let parts = parts.clamp(1, sorted.len().max(1));
+    let mut out = vec![Vec::new(); parts];
+    for (i, (_, p)) in sorted.into_iter().enumerate() {
+        out[i * parts / points.len()].push(p);
+    }
+    out.retain(|g| !g.is_empty());
+    out
+}
+
+struct Grower<'a> {
+    rules: &'a TreeRules,
+    taper: f32,
+    branches: Vec<Branch>,
+    random: Random,
+}
+
+impl Grower<'_> {
+    fn push(&mut self, branch: Branch) -> Result<usize, GenerateError> {
+        if self.branches.len() >= MAX_STEMS {
+            return Err(GenerateError::Params(ParamsError::Combination(format!(
+                "the tree would have more than {MAX_STEMS} stems; lower NumBranchControlPointsOnLobe, \
+                 BranchIterations, NumBranchesOffSplit or NumLeafPointsOnLobe, or use fewer lobes"
+            ))));
+        }
+        self.branches.push(branch);
+        Ok(self.branches.len() - 1)
+    }
+
+    /// The path of a branch from `start` to `end` that leaves along `dir0`: a quadratic curve
+    /// in `NumSegmentsInBranch` pieces, each end wandering by `SegmentOffset` (a random walk
+    /// pinned to both ends), kept inside `lobe`.
+    fn path(&mut self, start: Vec3, dir0: Vec3, end: Vec3, lobe: Option<&Lobe>) -> Vec<Vec3> {
+        let n = self.rules.num_segments_in_branch.max(1) as usize;
+        let span = start.distance(end);
+        let knee = start + dir0 * (0.45 * span);
+        let piece = span / n as f32;
+        let so = self.rules.segment_offset;
+        let mut walk = vec![Vec3::ZERO; n + 1];
+        for i in 1..=n {
+            let step = Vec3::new(
+                self.random.var(so[0]) as f32,
+                self.random.var(so[1]) as f32,
+                self.random.var(so[2]) as f32,
+            ) * piece;
+            walk[i] = walk[i - 1] + step;
+        }
+        let drift = walk[n];
+        (0..=n)
+            .map(|i| {
+                let t = i as f32 / n as f32;
+                let curve =
+                    start * (1.0 - t) * (1.0 - t) + knee * 2.0 * t * (1.0 - t) + end * t * t;
+                if i == 0 || i == n {
+                    return curve;
+                }
+                let p = curve + walk[i] - drift * t;
+                match lobe {
+                    Some(l) if l.outside(curve, self.taper) <= 0.0 => l.clamp_inside(p, self.taper),
+                    _ => p,
+                }
+            })
+            .collect()
+    }
+
+    /// Where on the parent's axis `a + s·d` (s in `range`) a branch to `target` leaves at
+    /// `angle` from `d`: s = (target − a)·d − ρ / tan(angle), kept in range.
+    fn attach(a: Vec3, d: Vec3, range: (f32, f32), target: Vec3, angle: f32) -> f32 {
+        let rel = target - a;
+        let along = rel.dot(d);
+        let rho = (rel - d * along).length();
+        let s = if angle.tan().abs() < 1e-4 {
+            range.0
+        } else {
+            along - rho / angle.tan()
+        };
+        s.clamp(range.0, range.1)
+    }
+
+    /// Direction leaving axis `d` at `angle`, turned toward `target` from `from`.
+    fn leave(d: Vec3, from: Vec3, target: Vec3, angle: f32) -> Vec3 {
+        let rel = target - from;
+        let perp = rel - d * rel.dot(d);
+        let side = perp
+            .try_normalize()
+            .unwrap_or_else(|| d.any_orthonormal_vector());
+        (d * angle.cos() + side * angle.sin()).normalize()
+    }
+
+    /// Grows the branches for `points` from the parent axis (a, d, range), `m` generations.
+    #[allow(clippy::too_many_arguments)]
+    fn grow(
+        &mut self,
+        parent: usize,
+        axis: (Vec3, Vec3, (f32, f32)),
+        points: Vec<Vec3>,
+        m: u32,
+        angle: f32,
+        level: u8,
+        lobe_index: usize,
+        lobe: &Lobe,
+    ) -> Result<(), GenerateError> {
+        let (a, d, range) = axis;
+        if m <= 1 || points.len() == 1 {
+            // The last generation: one branch onto each control point.
+            for p in points {
+                let s = Self::attach(a, d, range, p, angle);
+                let start = a + d * s;
+                if start.distance(p) < 1e-5 {
+                    continue;
+                }
+                let dir0 = Self::leave(d, start, p, angle);
+                let path = self.path(start, dir0, p, Some(lobe));
+                self.push(Branch {
+                    parent: Some(parent),
+                    kind: Kind::Branch,
+                    level,
+                    widths: vec![0.0; path.len()],
+                    points: path,
+                    lobe: Some(lobe_index),
+                    target: Some(p),
+                })?;
+            }
+            return Ok(());
+        }
+        let centre = points.iter().copied().sum::<Vec3>() / points.len() as f32;
+        let s = Self::attach(a, d, range, centre, angle);
+        let start = a + d * s;
+        // This generation's share of the way: 1 / (1 + LRF + ... + LRF^(m-1)).
+        let lrf = self.rules.length_reduction_factor as f32;
+        let share = 1.0 / (0..m).map(|i| lrf.powi(i as i32)).sum::<f32>();
+        let end = start + (centre - start) * share;
+        let dir0 = Self::leave(d, start, end, angle);
+        let path = self.path(start, dir0, end, Some(lobe));
+        let index = self.push(Branch {
+            parent: Some(parent),
+            kind: Kind::Branch,
+            level,
+            widths: vec![0.0; path.len()],
+            points: path,
+            lobe: Some(lobe_index),
+            target: None,
+        })?;
+        let (n, v) = self.rules.num_branches_off_split;
+        let parts = (n as f64 + self.random.var(v as f64 + 0.999))
+            .floor()
+            .max(1.0) as usize;
+        let dir = (end - start).try_normalize().unwrap_or(d);
+        let half = (self.rules.subsequent_angle as f32 / 2.0).to_radians();
+        let len = start.distance(end);
+        for sub in split_around(&points, end, dir, parts) {
+            // Later generations start at their parent's end (rule 5).
+            self.grow(
+                index,
+                (start, dir, (len, len)),
+                sub,
+                m - 1,
+                half,
+                level + 1,
+                lobe_index,
+                lobe,
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Stages 3 to 5: connects trunks to lobes, grows branches to the control points and adds the
+/// leaves. Stage 6 is [`LobeTree::skeleton`] and the mesher.
+pub fn grow(
+    rules: &TreeRules,
+    seed: u64,
+    placement: &Placement,
+) -> Result<LobeTree, GenerateError> {
+    let taper = rules.leaf_taper as f32;
+    let key = StreamKey::from_seed(seed);
+    let mut g = Grower {
+        rules,
+        taper,
+        branches: Vec::new(),
+        random: key.child(4).stream(),
+    };
+    for t in &placement.trunks {
+        g.push(Branch {
+            parent: t.parent,
+            kind: Kind::Trunk,
+            level: 0,
+            points: vec![t.start, t.end],
+            widths: vec![0.0; 2],
+            lobe: None,
+            target: None,
+        })?;
+    }
+    // Stage 3: every lobe gets a trunk through it.
+    let mut lobe_trunk = Vec::with_capacity(placement.lobes.len());
+    for lobe in &placement.lobes {
+        let inside = |b: &Branch| {
+            let (a, e) = (b.points[0], b.points[1]);
+            let len = a.distance(e);
+            let dir = (e - a).try_normalize()?;
+            lobe.chord(a, dir, len).map(|(t0, t1)| t1 - t0)
+        };
+        let existing = g
+            .branches
+            .iter()
+            .enumerate()
+            .filter_map(|(i, b)| inside(b).map(|l| (i, l)))
+            .filter(|(_, l)| *l > 1e-4 * lobe.radius)
+            .max_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(i, _)| i);
+        let index = match existing {
+            Some(i) => i,
+            None => {
+                // The nearest trunk end grows a trunk toward the lobe's centre, entering at
+                // the near surface and going MaxTrunkHeightPercent of the diameter through.
+                let from = g
+                    .branches
+                    .iter()
+                    .enumerate()
+                    .min_by(|x, y| {
+                        let dx = x.1.points[1].distance(lobe.centre);
+                        let dy = y.1.points[1].distance(lobe.centre);
+                        dx.total_cmp(&dy)
+                    })
+                    .map(|(i, b)| (Some(i), b.points[1]))
+                    .unwrap_or((None, Vec3::new(lobe.centre.x, lobe.centre.y, 0.0)));
+                let dir = (lobe.centre - from.1).try_normalize().unwrap_or(Vec3::Z);
+                let entry = if from.1.distance(lobe.centre) > lobe.radius {
+                    lobe.centre - dir * lobe.radius
+                } else {
+                    from.1
+                };
+                let through = 2.0 * lobe.radius * rules.max_trunk_height_percent as f32;
+                let end = entry + dir * through.max(1e-3 * lobe.radius);
+                g.push(Branch {
+                    parent: from.0,
+                    kind: Kind::Trunk,
+                    level: 0,
+                    points: vec![from.1, end],
+                    widths: vec![0.0; 2],
+                    lobe: None,
+                    target: None,
+                })?
+            }
+        };
+        lobe_trunk.push(index);
+    }
+    // Stage 4: control points and the branches grown toward them.
+    let mut control_points = Vec::new();
+    let mut leaf_points = Vec::new();
+    for (li, lobe) in placement.lobes.iter().enumerate() {
+        let mut random = key.child(2).child(li as u64).stream();
+        let points = lobe.surface_points(
+            rules.num_branch_control_points_on_lobe as usize,
+            rules.create_branch_control_points,
+            taper,
+            &mut random,
+        );
+        let mut random = key.child(3).child(li as u64).stream();
+        leaf_points.push(lobe.surface_points(
+            rules.num_leaf_points_on_lobe as usize,
+            rules.create_leaf_control_points,
+            taper,
+            &mut random,
+        ));
+        let trunk = &g.branches[lobe_trunk[li]];
+        let (a, e) = (trunk.points[0], trunk.points[1]);
+        let len = a.distance(e);
+        let d = (e - a).try_normalize().unwrap_or(Vec3::Z);
+        let range = lobe.chord(a, d, len).unwrap_or((len, len));
+        let per_group = (rules.num_branches_off_split.0 as usize)
+            .saturating_pow(rules.branch_iterations.saturating_sub(1))
+            .max(1);
+        let mut groups = Vec::new();
+        group(points.clone(), per_group, &mut groups);
+        // BranchAngle is read as section 4.1.2 reads the fir's 20: degrees up from the
+        // perpendicular to the trunk (see `TreeRules::branch_angle`).
+        let angle = (90.0 - rules.branch_angle as f32).to_radians();
+        for grp in groups {
+            g.grow(
+                lobe_trunk[li],
+                (a, d, range),
+                grp,
+                rules.branch_iterations,
+                angle,
+                1,
+                li,
+                lobe,
+            )?;
+        }
+        control_points.push(points);
+    }
+    set_widths(rules, &mut g.branches);
+    // Stage 5: leaves.
+    let mut leaves = Vec::new();
+    let mut leaf_random = key.child(5).stream();
+    add_leaves(
+        rules,
+        &placement.lobes,
+        &leaf_points,
+        taper,
+        &mut g,
+        &mut leaves,
+        &mut leaf_random,
+    )?;
+    Ok(LobeTree {
+        lobes: placement.lobes.clone(),
+        control_points,
+        leaf_points,
+        branches: g.branches,
+        leaves,
+        tessellation: rules.tessellation,
+        taper,
+    })
+}
+
+/// Widths: the trunk tapers from `TrunkStartWidth` at the ground by `TrunkTaperPercent` over
+/// its longest path; each limb (a first branch and all it carries) from `BranchStartWidth` (no
+/// wider than the trunk where it starts) by `BranchTaperPercent` over its longest path; twigs
+/// from `TwigStartWidth`. Nothing is thinner than `MinBranchWidth`.
+fn set_widths(rules: &TreeRules, branches: &mut [Branch]) {
+    let n = branches.len();
+    // Path length from the root of each branch's run (trunk: ground; limb: first branch base).
+    let mut base = vec![0.0f32; n];
+    let mut root = vec![0usize; n];
+    for i in 0..n {
+        let b = &branches[i];
+        let parent = b.parent.filter(|&p| branches[p].kind == b.kind);
+        match parent {
+            Some(p) => {
+                base[i] = base[p] + length(&branches[p].points);
+                root[i] = root[p];
+            }
+            None => root[i] = i,
+        }
+    }
+    let mut longest = vec![0.0f32; n];
+    for i in 0..n {
+        let end = base[i] + length(&branches[i].points);
+        longest[root[i]] = longest[root[i]].max(end);
+    }
+    let min = rules.min_branch_width as f32;
+    for i in 0..n {
+        let (start, taper) = match branches[i].kind {
+            Kind::Trunk => (
+                rules.trunk_start_width as f32,
+                rules.trunk_taper_percent as f32,
+            ),
+            Kind::Branch => (
+                rules.branch_start_width as f32,
+                rules.branch_taper_percent as f32,
+            ),
+            Kind::Twig => (
+                rules.twig_start_width as f32,
+                rules.branch_taper_percent as f32,
+            ),
+        };
+        // A limb is never wider than what it grows from.
+        let start = match branches[root[i]].parent {
+            Some(p) if branches[i].kind != Kind::Trunk => {
+                let w = &branches[p].widths;
+                start.min(w.iter().copied().fold(f32::MAX, f32::min).max(min) * 2.0)
+            }
+            _ => start,
+        };
+        let total = longest[root[i]].max(1e-6);
+        let mut along = base[i];
+        let points = branches[i].points.clone();
+        let widths = &mut branches[i].widths;
+        for (k, w) in widths.iter_mut().enumerate() {
+            if k > 0 {
+                along += points[k].distance(points[k - 1]);
+            }
+            *w = (start * (1.0 - (1.0 - taper) * along / total)).max(min);
+        }
+    }
+}
+
+fn length(points: &[Vec3]) -> f32 {
+    points.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
+
+/// A leaf frame: blade along `dir`, its face as near to `up` as the blade allows.
+fn frame(dir: Vec3, up: Vec3) -> Quat {
+    let z = dir.try_normalize().unwrap_or(Vec3::Z);
+    let x = up
+        .cross(z)
+        .try_normalize()
+        .unwrap_or_else(|| z.any_orthonormal_vector());
+    let y = z.cross(x);
+    Quat::from_mat3(&Mat3::from_cols(x, y, z))
+}
+
+/// The nearest point on any branch (not trunk) to `p`, as (branch, point); the trunk if there
+/// are no branches.
+fn nearest_on_branches(branches: &[Branch], p: Vec3) -> Option<(usize, Vec3)> {
+    let mut best: Option<(usize, Vec3, f32)> = None;
+    let any_branch = branches.iter().any(|b| b.kind == Kind::Branch);
+    for (i, b) in branches.iter().enumerate() {
+        if any_branch && b.kind != Kind::Branch {
+            continue;
+        }
+        for w in b.points.windows(2) {
+            let ab = w[1] - w[0];
+            let t = ((p - w[0]).dot(ab) / ab.length_squared().max(1e-12)).clamp(0.0, 1.0);
+            let q = w[0] + ab * t;
+            let d = q.distance_squared(p);
+            if best.is_none_or(|(_, _, bd)| d < bd) {
+                best = Some((i, q, d));
+            }
+        }
+    }
+    best.map(|(i, q, _)| (i, q))
+}
+
+/// Stage 5, by the species' `CreateLeaves` rule.
+fn add_leaves(
+    rules: &TreeRules,
+    lobes: &[Lobe],
+    leaf_points: &[Vec<Vec3>],
+    taper: f32,
+    g: &mut Grower,
+    leaves: &mut Vec<Leaf>,
+    random: &mut Random,
+) -> Result<(), GenerateError> {
+    let look = rules.leaf_texture;
+    let size = rules.layout.leaf_size as f32;
+    let mut put = |leaves: &mut Vec<Leaf>, at: Vec3, dir: Vec3, stem: usize| {
+        if leaves.len() >= MAX_LEAVES {
+            return Err(GenerateError::Params(ParamsError::Combination(format!(
+                "the tree would have more than {MAX_LEAVES} leaves; raise leaf_size in [layout] \
+                 or use smaller or fewer lobes"
+            ))));
+        }
+        leaves.push(Leaf {
+            position: at,
+            orientation: frame(dir, Vec3::Z),
+            length: size,
+            width: size * look.aspect,
+            shape: look.shape,
+            stem: StemId(stem as u32),
+            light: 1.0,
+        });
+        Ok(())
+    };
+    let twig_level = g.branches.iter().map(|b| b.level).max().unwrap_or(0) + 1;
+    match rules.create_leaves {
+        LeafStyle::Needles => {
+            // Needles in pairs all along every branch's outer two thirds.
+            let spacing = 0.5 * size;
+            for i in 0..g.branches.len() {
+                if g.branches[i].kind != Kind::Branch {
+                    continue;
+                }
+                let points = g.branches[i].points.clone();
+                let total = length(&points);
+                let mut along = 0.0;
+                let mut next = total / 3.0;
+                for w in points.windows(2) {
+                    let piece = w[0].distance(w[1]);
+                    let dir = (w[1] - w[0]).try_normalize().unwrap_or(Vec3::X);
+                    while next <= along + piece {
+                        let at = w[0] + dir * (next - along);
+                        for side in [-1.0f32, 1.0] {
+                            let out = rotate_away(dir, 0.8, side * 1.4 + random.var(0.3) as f32);
+                            put(leaves, at, out, i)?;
+                        }
+                        next += spacing;
+                    }
+                    along += piece;
+                }
+            }
+            // Sprays toward the leaf points fill what the branches leave of the lobe's surface.
+            let placed = leaves.len();
+            for (li, pts) in leaf_points.iter().enumerate() {
+                let wanted = wanted_per_point(rules, &lobes[li], pts.len(), placed / lobes.len());
+                for &p in pts {
+                    spray(
+                        g, leaves, &mut put, p, &lobes[li], taper, twig_level, wanted, size, random,
+                    )?;
+                }
+            }
+        }
+        LeafStyle::Clusters => {
+            for (li, pts) in leaf_points.iter().enumerate() {
+                let wanted = wanted_per_point(rules, &lobes[li], pts.len(), 0);
+                for &p in pts {
+                    spray(
+                        g, leaves, &mut put, p, &lobes[li], taper, twig_level, wanted, size, random,
+                    )?;
+                }
+            }
+        }
+        LeafStyle::Hanging => {
+            // Strands from the lobe's upper part fall along its surface to each leaf point.
+            for (li, pts) in leaf_points.iter().enumerate() {
+                let lobe = lobes[li];
+                for &p in pts {
+                    let d = p - lobe.centre;
+                    let bearing = d.y.atan2(d.x);
+                    let polar_end = (d.z / lobe.radius).clamp(-1.0, 1.0).acos();
+                    let polar_start = 0.35f32.min(polar_end);
+                    let on = |polar: f32| {
+                        let r = 0.97 * lobe.radius;
+                        lobe.centre
+                            + Vec3::new(
+                                r * polar.sin() * bearing.cos(),
+                                r * polar.sin() * bearing.sin(),
+                                r * polar.cos(),
+                            )
+                    };
+                    let top = on(polar_start);
+                    let Some((from, q)) = nearest_on_branches(&g.branches, top) else {
+                        continue;
+                    };
+                    let mut strand = vec![q];
+                    let steps = 10;
+                    for k in 0..=steps {
+                        let polar =
+                            polar_start + (polar_end - polar_start) * k as f32 / steps as f32;
+                        let mut s = on(polar);
+                        s.x += random.var(0.02 * lobe.radius as f64) as f32;
+                        s.y += random.var(0.02 * lobe.radius as f64) as f32;
+                        if strand.last().is_some_and(|l: &Vec3| l.distance(s) > 1e-4) {
+                            strand.push(s);
+                        }
+                    }
+                    if strand.len() < 2 {
+                        continue;
+                    }
+                    let index = g.push(Branch {
+                        parent: Some(from),
+                        kind: Kind::Twig,
+                        level: twig_level,
+                        widths: vec![0.0; strand.len()],
+                        points: strand.clone(),
+                        lobe: Some(li),
+                        target: None,
+                    })?;
+                    // Blossoms along the falling part, hanging.
+                    let total = length(&strand[1..]);
+                    let count = ((total / (1.2 * size)) as usize).max(1);
+                    for k in 0..count {
+                        let t = (k as f32 + 0.5) / count as f32;
+                        let at = point_at(&strand[1..], t * total);
+                        let dir = Vec3::new(random.var(0.5) as f32, random.var(0.5) as f32, -1.0);
+                        put(leaves, at, dir, index)?;
+                    }
+                }
+            }
+        }
+    }
+    let widths_needed = g
+        .branches
+        .iter()
+        .any(|b| b.widths.iter().all(|w| *w == 0.0));
+    if widths_needed {
+        set_widths(rules, &mut g.branches);
+    }
+    Ok(())
+}
+
+/// Leaves each leaf point's spray should carry so that the lobe's leaves, laid flat, cover its
+/// sphere's surface about once and a half (a crown the eye reads as full), less `already` placed.
+fn wanted_per_point(rules: &TreeRules, lobe: &Lobe, points: usize, already: usize) -> usize {
+    let size = rules.layout.leaf_size as f32;
+    let leaf_area = 0.6 * size * size * rules.leaf_texture.aspect;
+    let surface = 4.0 * std::f32::consts::PI * lobe.radius * lobe.radius;
+    let total = (1.5 * surface / leaf_area.max(1e-9)) as usize;
+    (total.saturating_sub(already) / points.max(1)).min(2000)
+}
+
+fn point_at(points: &[Vec3], mut s: f32) -> Vec3 {
+    for w in points.windows(2) {
+        let l = w[0].distance(w[1]);
+        if s <= l {
+            return w[0].lerp(w[1], s / l.max(1e-9));
+        }
+        s -= l;
+    }
+    *points.last().unwrap()
+}
+
+/// A leaf spray toward leaf point `p`: a twig from the nearest branch to just inside `p`, and
+/// short twigs from its end into the space around it, leaves in pairs along each, until it
+/// carries `wanted` leaves.
+#[allow(clippy::too_many_arguments)]
+fn spray(
+    g: &mut Grower,
+    leaves: &mut Vec<Leaf>,
+    put: &mut impl FnMut(&mut Vec<Leaf>, Vec3, Vec3, usize) -> Result<(), GenerateError>,
+    p: Vec3,
+    lobe: &Lobe,
+    taper: f32,
+    level: u8,
+    wanted: usize,
+    size: f32,
+    random: &mut Random,
+) -> Result<(), GenerateError> {
+    let Some((from, q)) = nearest_on_branches(&g.branches, p) else {
+        return Ok(());
+    };
+    let end = q.lerp(p, 0.85);
+    if q.distance(end) < 1e-4 {
+        return Ok(());
+    }
+    let twig = g.push(Branch {
+        parent: Some(from),
+        kind: Kind::Twig,
+        level,
+        widths: vec![0.0; 3],
+        points: vec![q, q.lerp(end, 0.5), end],
+        lobe: None,
+        target: None,
+    })?;
+    // Spray as far as leaf points lie apart on the lobe, so neighbouring sprays meet.
+    let reach = 0.35 * lobe.radius;
+    let mut placed = 0;
+    for _ in 0..200 {
+        if placed >= wanted {
+            break;
+        }
+        let offset = Vec3::new(
+            random.var(1.0) as f32,
+            random.var(1.0) as f32,
+            random.var(1.0) as f32,
+        ) * reach;
+        let tip = lobe.clamp_inside(end + offset, taper);
+        if tip.distance(end) < 2.0 * size {
+            continue;
+        }
+        let fork = g.push(Branch {
+            parent: Some(twig),
+            kind: Kind::Twig,
+            level: level + 1,
+            widths: vec![0.0; 2],
+            points: vec![end, tip],
+            lobe: None,
+            target: None,
+        })?;
+        let len = end.distance(tip);
+        let dir = (tip - end) / len;
+        let count = (len / (0.6 * size)) as usize;
+        for k in 0..count {
+            let at = end + dir * (len * (k as f32 + 0.5) / count as f32);
+            let turn = random.unit() as f32 * TAU;
+            for side in [0.0, std::f32::consts::PI] {
+                put(leaves, at, rotate_away(dir, 0.9, turn + side), fork)?;
+                placed += 1;
+            }
+        }
+    }
+    Ok(())
+}
+
+impl LobeTree {
+    /// Stage 6: the stems as a skeleton (widths become radii), with the leaves.
+    pub fn skeleton(&self) -> Skeleton {
+        let mut skeleton = Skeleton::default();
+        for b in &self.branches {
+            let first = skeleton.sections.len() as u32;
+            let total = length(&b.points).max(1e-9);
+            let mut along = 0.0;
+            let mut orientation = Quat::IDENTITY;
+            for (k, p) in b.points.iter().enumerate() {
+                if let Some(next) = b.points.get(k + 1)
+                    && let Some(dir) = (*next - *p).try_normalize()
+                {
+                    orientation = Quat::from_rotation_arc(Vec3::Z, dir);
+                }
+                if k > 0 {
+                    along += p.distance(b.points[k - 1]);
+                }
+                skeleton.sections.push(CrossSection {
+                    position: *p,
+                    orientation,
+                    radius: 0.5 * b.widths[k],
+                    z: along / total,
+                });
+            }
+            skeleton.stems.push(Stem {
+                level: b.level,
+                parent: b.parent.map(|p| StemId(p as u32)),
+                clone_of: None,
+                offset: 0.0,
+                length: total,
+                sections: first..skeleton.sections.len() as u32,
+                lobes: 0,
+                lobe_depth: 0.0,
+            });
+        }
+        skeleton.leaves = self.leaves.clone();
+        skeleton
+    }
+}

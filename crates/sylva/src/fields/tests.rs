@@ -1,0 +1,629 @@
+use super::pipeline::Kind;
+use super::points::{Up, coverage, fit, read_points};
+use super::*;
+use crate::rng::StreamKey;
+use glam::Vec3;
+
+fn oak() -> TreeRules {
+    builtin("black_oak").unwrap()
+}
+
+fn grown(rules: &TreeRules, seed: u64) -> LobeTree {
+    grow(rules, seed, &auto_placement(rules, seed)).unwrap()
+}
+
+#[test]
+fn built_in_species_carry_the_appendix_values() {
+    // (TrunkAngle, BranchAngle, SubsequentAngle, NumTrunkIterations, BranchIterations,
+    //  LeafTaper, NumTrunkBranchesOffSplit, NumBranchesOffSplit (n, ±v), NumSegmentsInBranch,
+    //  LengthReductionFactor, BranchStartWidth, TrunkStartWidth, TwigStartWidth,
+    //  MinBranchWidth, BranchTaperPercent, TrunkTaperPercent, NumBranchControlPointsOnLobe,
+    //  NumLeafPointsOnLobe, MaxTrunkHeightPercent), appendix 8.2.
+    let table: [(&str, &str, [f64; 20]); 3] = [
+        (
+            "black_oak",
+            "Black Oak",
+            [
+                10.0, 45.0, 15.0, 1.0, 3.0, 0.0, 1.0, 2.0, 0.0, 25.0, 0.9, 0.1, 0.2, 0.005, 0.005,
+                0.05, 0.4, 15.0, 30.0, 0.5,
+            ],
+        ),
+        (
+            "balsam_fir",
+            "Balsam Fir",
+            [
+                0.0, 20.0, 15.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 25.0, 0.9, 0.1, 0.2, 0.005, 0.005,
+                0.05, 0.4, 55.0, 30.0, 1.0,
+            ],
+        ),
+        (
+            "weeping_cherry",
+            "Weeping Cherry Tree",
+            [
+                3.0, 45.0, 15.0, 2.0, 1.0, 0.0, 1.0, 2.0, 1.0, 4.0, 0.2, 0.1, 0.25, 0.005, 0.005,
+                0.2, 0.3, 6.0, 50.0, 1.0,
+            ],
+        ),
+    ];
+    for (id, name, row) in table {
+        let r = builtin(id).unwrap();
+        assert_eq!(r.name, name);
+        let got = [
+            r.trunk_angle,
+            r.branch_angle,
+            r.subsequent_angle,
+            r.num_trunk_iterations as f64,
+            r.branch_iterations as f64,
+            r.leaf_taper,
+            r.num_trunk_branches_off_split as f64,
+            r.num_branches_off_split.0 as f64,
+            r.num_branches_off_split.1 as f64,
+            r.num_segments_in_branch as f64,
+            r.length_reduction_factor,
+            r.branch_start_width,
+            r.trunk_start_width,
+            r.twig_start_width,
+            r.min_branch_width,
+            r.branch_taper_percent,
+            r.trunk_taper_percent,
+            r.num_branch_control_points_on_lobe as f64,
+            r.num_leaf_points_on_lobe as f64,
+            r.max_trunk_height_percent,
+        ];
+        assert_eq!(got, row, "{id}");
+        assert_eq!(r.segment_offset, [0.4, 0.4, 0.4]);
+        assert_eq!(r.tessellation, 36);
+    }
+    // The paper's names and its file's "Cherry Tree" find them too.
+    assert_eq!(builtin("Cherry Tree").unwrap().name, "Weeping Cherry Tree");
+    assert_eq!(builtin("Balsam Fir").unwrap().name, "Balsam Fir");
+    assert!(builtin("birch").is_none());
+}
+
+#[test]
+fn bad_rules_files_name_the_rule_and_line() {
+    let text = include_str!("../../../../species/fields/black_oak.toml");
+    let cases = [
+        (
+            text.replace("BranchAngle = 45", "BranchAngle = 400"),
+            "BranchAngle",
+            "line 6",
+        ),
+        (
+            text.replace("Tessellation = 36", "Tessellation = 2"),
+            "Tessellation",
+            "line 29",
+        ),
+        (
+            text.replace("TrunkAngle = 10\n", ""),
+            "TrunkAngle",
+            "lacks 1 of the 25",
+        ),
+        (
+            text.replace("LeafTaper = 0", "LeafTapper = 0"),
+            "LeafTapper",
+            "line 10",
+        ),
+        (
+            text.replace("\"oak\"", "\"palm\""),
+            "LeafTexture",
+            "line 28",
+        ),
+        (
+            text.replace("= 2\nNumSegments", "= \"2 +- 2\"\nNumSegments"),
+            "NumBranchesOffSplit",
+            "line 12",
+        ),
+        (
+            text.replace("[0.4, 0.4, 0.4]", "[0.4, 0.4]"),
+            "SegmentOffset",
+            "line 14",
+        ),
+        (
+            text.replace("lobe_radius = 1.0", "lobe_radius = -1"),
+            "lobe_radius",
+            "line 34",
+        ),
+    ];
+    for (t, rule, place) in cases {
+        let e = from_toml(&t, "oak.toml").unwrap_err().to_string();
+        assert!(e.contains(rule) && e.contains(place), "{rule}: {e}");
+    }
+    let e = from_toml("[rules\n", "x.toml").unwrap_err().to_string();
+    assert!(e.contains("x.toml") && e.contains("line 1"), "{e}");
+}
+
+#[test]
+fn trunks_split_at_the_trunk_angle_and_reach_into_their_lobe() {
+    let cherry = builtin("weeping_cherry").unwrap();
+    let p = auto_placement(&cherry, 0);
+    // The trunk and two iterations of one trunk each, each turned half of 3 degrees.
+    assert_eq!(p.trunks.len(), 3);
+    for w in p.trunks.windows(2) {
+        let (a, b) = (
+            (w[0].end - w[0].start).normalize(),
+            (w[1].end - w[1].start).normalize(),
+        );
+        assert!((a.angle_between(b).to_degrees() - 1.5).abs() < 1e-3);
+        assert_eq!(w[1].start, w[0].end);
+    }
+    // Two trunks off each split stand TrunkAngle apart.
+    let mut two = oak();
+    two.num_trunk_branches_off_split = 2;
+    two.trunk_angle = 40.0;
+    let p = auto_placement(&two, 3);
+    let (a, b) = (p.trunks[1], p.trunks[2]);
+    let angle = (a.end - a.start)
+        .angle_between(b.end - b.start)
+        .to_degrees();
+    assert!((angle - 40.0).abs() < 1e-3, "{angle}");
+    // MaxTrunkHeightPercent: the oak's trunk stops at its lobe's centre, the fir's and the
+    // cherry's at the far side.
+    for (rules, depth) in [
+        (oak(), 0.5f32),
+        (builtin("balsam_fir").unwrap(), 1.0),
+        (cherry, 1.0),
+    ] {
+        let t = grown(&rules, 1);
+        let lobe = t.lobes[0];
+        let connector = t.branches.iter().rfind(|b| b.kind == Kind::Trunk).unwrap();
+        let end = *connector.points.last().unwrap();
+        let entry = lobe.centre - Vec3::Z * lobe.radius;
+        let went = (end - entry).dot(Vec3::Z) / (2.0 * lobe.radius);
+        assert!((went - depth).abs() < 0.02, "{}: {went}", rules.name);
+    }
+}
+
+#[test]
+fn every_branch_ends_on_a_control_point_inside_its_lobe() {
+    for id in ["black_oak", "balsam_fir", "weeping_cherry"] {
+        let rules = builtin(id).unwrap();
+        for seed in [0, 7] {
+            let t = grown(&rules, seed);
+            let lobe = t.lobes[0];
+            let points = &t.control_points[0];
+            assert_eq!(
+                points.len(),
+                rules.num_branch_control_points_on_lobe as usize
+            );
+            let tol = 0.01 * lobe.radius;
+            // Last-generation branches end on their control point; every point is reached.
+            let ends: Vec<Vec3> = t
+                .branches
+                .iter()
+                .filter(|b| b.target.is_some())
+                .map(|b| {
+                    let end = *b.points.last().unwrap();
+                    assert!(end.distance(b.target.unwrap()) < 1e-4, "{id}");
+                    end
+                })
+                .collect();
+            for p in points {
+                assert!(
+                    ends.iter().any(|e| e.distance(*p) < tol),
+                    "{id}: {p} unreached"
+                );
+            }
+            // Branches without children are exactly those ending on control points.
+            for (i, b) in t.branches.iter().enumerate() {
+                let has_child = t
+                    .branches
+                    .iter()
+                    .any(|c| c.parent == Some(i) && c.kind == Kind::Branch);
+                if b.kind == Kind::Branch && !has_child {
+                    let end = *b.points.last().unwrap();
+                    assert!(
+                        points.iter().any(|p| p.distance(end) < tol),
+                        "{id}: a branch ends off its points"
+                    );
+                }
+            }
+            // No branch or twig leaves the (tapered) lobe by more than 1% of its radius.
+            for b in t.branches.iter().filter(|b| b.kind != Kind::Trunk) {
+                for p in &b.points {
+                    let out = lobe.outside(*p, t.taper);
+                    assert!(out <= tol, "{id} seed {seed}: {:?} {out} m outside", b.kind);
+                }
+            }
+            for leaf in &t.leaves {
+                assert!(
+                    lobe.outside(leaf.position, t.taper) <= tol,
+                    "{id}: a leaf outside"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn first_branches_leave_the_trunk_at_the_branch_angle() {
+    let mut rules = oak();
+    rules.segment_offset = [0.0; 3];
+    rules.num_segments_in_branch = 40;
+    let t = grown(&rules, 2);
+    let trunk = t.branches.iter().rfind(|b| b.kind == Kind::Trunk).unwrap();
+    let axis = (trunk.points[1] - trunk.points[0]).normalize();
+    let mut checked = 0;
+    for b in t
+        .branches
+        .iter()
+        .filter(|b| b.kind == Kind::Branch && b.level == 1)
+    {
+        let first = (b.points[1] - b.points[0]).normalize();
+        // BranchAngle 45 up from the perpendicular: 45 degrees from the trunk.
+        let angle = axis.angle_between(first).to_degrees();
+        assert!((angle - 45.0).abs() < 3.0, "{angle}");
+        checked += 1;
+    }
+    // 15 control points in groups of 2^(3-1) = 4: four first branches.
+    assert_eq!(checked, 4);
+}
+
+/// Widest horizontal reach of leaves in `bins` slices of the lobe's height, from the bottom.
+fn profile(t: &LobeTree, bins: usize) -> Vec<f32> {
+    let lobe = t.lobes[0];
+    let mut reach = vec![0.0f32; bins];
+    for leaf in &t.leaves {
+        let d = leaf.position - lobe.centre;
+        let k = (((d.z + lobe.radius) / (2.0 * lobe.radius)) * bins as f32) as usize;
+        let k = k.min(bins - 1);
+        reach[k] = reach[k].max(d.truncate().length());
+    }
+    reach
+}
+
+#[test]
+fn leaf_taper_one_makes_a_cone() {
+    let mut rules = oak();
+    rules.num_leaf_points_on_lobe = 200;
+    rules.num_branch_control_points_on_lobe = 60;
+    let bins = 10;
+    rules.leaf_taper = 1.0;
+    let cone = profile(&grown(&rules, 4), bins);
+    rules.leaf_taper = 0.0;
+    let round = profile(&grown(&rules, 4), bins);
+    // A cone: the crown's reach falls in a straight line from the bottom to the apex. Fit a
+    // line through the bins' reach against height.
+    let xs: Vec<f32> = (0..bins).map(|k| (k as f32 + 0.5) / bins as f32).collect();
+    let (mx, my) = (
+        xs.iter().sum::<f32>() / bins as f32,
+        cone.iter().sum::<f32>() / bins as f32,
+    );
+    let sxy: f32 = xs.iter().zip(&cone).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f32 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+    let syy: f32 = cone.iter().map(|y| (y - my).powi(2)).sum();
+    let slope = sxy / sxx;
+    let r2 = sxy * sxy / (sxx * syy);
+    // Reach 2R at the bottom to 0 at the top: slope -2R per lobe height (R = 1).
+    assert!(r2 > 0.95, "cone profile {cone:?}: r² {r2}");
+    assert!((slope + 2.0).abs() < 0.4, "slope {slope}, {cone:?}");
+    assert!(cone[0] > 1.6 && cone[bins - 1] < 0.4, "{cone:?}");
+    // Without taper the crown is round: widest in the middle, narrow at both ends.
+    let widest = (0..bins)
+        .max_by(|a, b| round[*a].total_cmp(&round[*b]))
+        .unwrap();
+    assert!((3..=6).contains(&widest), "{round:?}");
+    assert!(
+        round[0] < 0.7 * round[widest] && round[bins - 1] < 0.7 * round[widest],
+        "{round:?}"
+    );
+}
+
+#[test]
+fn tessellation_sets_the_sides_of_every_branch() {
+    let t = grown(&builtin("weeping_cherry").unwrap(), 0);
+    let skeleton = t.skeleton();
+    let tris = |sides| {
+        let options = crate::mesh::MeshOptions {
+            sides: Some(sides),
+            ..Default::default()
+        };
+        crate::mesh::mesh_tree(&skeleton, &options)
+            .bark
+            .triangle_count() as f64
+    };
+    let (high, low) = (tris(36), tris(5));
+    assert!(
+        (high / low - 36.0 / 5.0).abs() < 0.01 * 36.0 / 5.0,
+        "{high} / {low}"
+    );
+}
+
+#[test]
+fn growth_is_seeded() {
+    let rules = oak();
+    assert_eq!(grown(&rules, 5), grown(&rules, 5));
+    assert_ne!(grown(&rules, 5).branches, grown(&rules, 6).branches);
+}
+
+const APPENDIX: &str = "Cherry Tree
+100
+#BRANCHES
+0 -1 1.110022 -1.582516 4.728205 1.14952 -0.8700994 4.896452 1
+1 0 1.14952 -0.8700994 4.896452 1.800362 -0.3780254 4.764441 1
+2 0 1.14952 -0.8700994 4.896452 0.7252637 -0.7159721 4.99926 1
+3 2 0.7252637 -0.7159721 4.99926 0.5519101 0.02624928 5.070594 1
+#LEAF LOBES
+2.307282 0.5082518 4.534246 1
+0.4439276 1.201943 4.939856 1
+";
+
+#[test]
+fn tree_files_round_trip_byte_for_byte() {
+    let file = TreeFile::parse(APPENDIX, "cherry.tree").unwrap();
+    assert_eq!(file.tree_type, "Cherry Tree");
+    assert_eq!(file.seed, 100);
+    assert_eq!(file.branches.len(), 4);
+    assert_eq!(file.branches[3].parent, 2);
+    assert_eq!(file.branches[1].end, [1.800362, -0.3780254, 4.764441]);
+    assert_eq!(file.lobes[1].radius, 1.0);
+    assert_eq!(file.to_text(), APPENDIX);
+    // Windows line endings, no final newline, and spacing of its own survive too.
+    let crlf = APPENDIX
+        .replace('\n', "\r\n")
+        .replace("1.110022 ", "1.110022   ");
+    let crlf = crlf.trim_end().to_string();
+    assert_eq!(TreeFile::parse(&crlf, "c.tree").unwrap().to_text(), crlf);
+    // A changed value is written fresh; the rest stays as read.
+    let mut edited = TreeFile::parse(APPENDIX, "cherry.tree").unwrap();
+    edited.lobes[0].radius = 1.5;
+    let text = edited.to_text();
+    assert!(
+        text.contains("\n2.307282 0.5082518 4.534246 1.5\n"),
+        "{text}"
+    );
+    assert_eq!(text.lines().count(), APPENDIX.lines().count());
+    // What Sylva saves reads back to the same placement and the same bytes.
+    let rules = oak();
+    let placement = auto_placement(&rules, 9);
+    let saved = TreeFile::from_placement(&rules.name, 9, &placement).to_text();
+    let again = TreeFile::parse(&saved, "oak.tree").unwrap();
+    assert_eq!(again.to_text(), saved);
+    let back = again.placement();
+    for (a, b) in back.trunks.iter().zip(&placement.trunks) {
+        assert!(a.start.distance(b.start) < 1e-6 && a.end.distance(b.end) < 1e-6);
+        assert_eq!(a.parent, b.parent);
+    }
+    assert_eq!(back.lobes, placement.lobes);
+}
+
+#[test]
+fn the_appendix_tree_grows_with_its_species() {
+    let file = TreeFile::parse(APPENDIX, "cherry.tree").unwrap();
+    let rules = builtin(file.tree_type.trim()).unwrap();
+    let placement = file.placement();
+    // Y-up room coordinates become Z-up, the first trunk starting at the origin and rising.
+    assert_eq!(placement.trunks[0].start, Vec3::ZERO);
+    assert!(placement.trunks[0].end.z > 0.5);
+    let t = grow(&rules, file.seed as u64, &placement).unwrap();
+    assert_eq!(t.lobes.len(), 2);
+    // Neither lobe holds a trunk, so each gets one connected to the nearest trunk end.
+    let trunks = t.branches.iter().filter(|b| b.kind == Kind::Trunk).count();
+    assert_eq!(trunks, 4 + 2);
+    for (i, lobe) in t.lobes.iter().enumerate() {
+        let reached = t
+            .branches
+            .iter()
+            .filter(|b| b.lobe == Some(i) && b.target.is_some())
+            .count();
+        assert_eq!(reached, 6, "lobe {i}");
+        assert!(
+            t.leaves
+                .iter()
+                .any(|l| l.position.distance(lobe.centre) <= lobe.radius * 1.01)
+        );
+    }
+}
+
+#[test]
+fn malformed_tree_files_name_the_line() {
+    let cases = [
+        (
+            APPENDIX.replace("#BRANCHES", "#BRANCH"),
+            "line 3",
+            "#BRANCHES",
+        ),
+        (APPENDIX.replace("100", "ten"), "line 2", "seed"),
+        (
+            APPENDIX.replace("3 2 0.7252637", "3 9 0.7252637"),
+            "line 7",
+            "parent 9",
+        ),
+        (
+            APPENDIX.replace("4.99926 1\n3", "4.99926 x\n3"),
+            "line 6",
+            "ninth value",
+        ),
+        (
+            APPENDIX.replace(
+                "0.4439276 1.201943 4.939856 1",
+                "0.4439276 1.201943 4.939856 0",
+            ),
+            "line 10",
+            "radius",
+        ),
+        (
+            APPENDIX.replace(
+                "1 0 1.14952 -0.8700994 4.896452 1.800362 -0.3780254",
+                "1 0 1.14952 -0.8700994 4.896452",
+            ),
+            "line 5",
+            "found 7 values",
+        ),
+        (
+            APPENDIX.replace(
+                "#LEAF LOBES\n2.307282 0.5082518 4.534246 1\n0.4439276 1.201943 4.939856 1\n",
+                "",
+            ),
+            "line 8",
+            "LEAF LOBES",
+        ),
+        ("Cherry Tree\n".to_string(), "line 2", "seed"),
+    ];
+    for (text, line, what) in cases {
+        let e = TreeFile::parse(&text, "t.tree").unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("t.tree, {line}")) && e.contains(what),
+            "{line}: {e}"
+        );
+    }
+}
+
+/// Points filling a sphere.
+fn ball(centre: Vec3, r: f32, n: usize, seed: u64) -> Vec<Vec3> {
+    let mut random = StreamKey::from_seed(seed).stream();
+    let mut out = Vec::new();
+    while out.len() < n {
+        let v = Vec3::new(
+            random.var(1.0) as f32,
+            random.var(1.0) as f32,
+            random.var(1.0) as f32,
+        );
+        if v.length() <= 1.0 {
+            out.push(centre + v * r);
+        }
+    }
+    out
+}
+
+#[test]
+fn a_known_tree_s_point_cloud_gives_its_trunk_and_lobes() {
+    // A trunk 2 m tall and 0.2 m across, three lobes of crown above it.
+    let truth = [
+        Lobe {
+            centre: Vec3::new(0.0, 0.0, 3.0),
+            radius: 1.0,
+        },
+        Lobe {
+            centre: Vec3::new(1.6, 0.3, 3.7),
+            radius: 0.8,
+        },
+        Lobe {
+            centre: Vec3::new(-1.4, 0.5, 3.6),
+            radius: 0.7,
+        },
+    ];
+    let mut random = StreamKey::from_seed(1).stream();
+    let mut cloud: Vec<Vec3> = (0..600)
+        .map(|i| {
+            let a = random.unit() as f32 * std::f32::consts::TAU;
+            Vec3::new(
+                5.0 + 0.1 * a.cos(),
+                -2.0 + 0.1 * a.sin(),
+                2.0 * i as f32 / 600.0,
+            )
+        })
+        .collect();
+    for (i, l) in truth.iter().enumerate() {
+        let n = (3000.0 * l.radius.powi(3)) as usize;
+        cloud.extend(ball(
+            l.centre + Vec3::new(5.0, -2.0, 0.0),
+            l.radius,
+            n,
+            i as u64,
+        ));
+    }
+    let f = fit(&cloud, None, 0);
+    assert!(
+        (f.crown_base - 2.0).abs() < 0.25,
+        "crown base {}",
+        f.crown_base
+    );
+    let trunk = f.placement.trunks[0];
+    assert_eq!(trunk.start, Vec3::ZERO);
+    assert!(trunk.end.truncate().length() < 0.05 && (trunk.end.z - f.crown_base).abs() < 1e-4);
+    let lobes = &f.placement.lobes;
+    let cover = coverage(&f.canopy, lobes);
+    assert!(cover >= 0.9, "lobes cover {cover} of the canopy");
+    assert_eq!(lobes.len(), 3, "{lobes:?}");
+    for l in &truth {
+        let nearest = lobes
+            .iter()
+            .map(|m| m.centre.distance(l.centre))
+            .fold(f32::MAX, f32::min);
+        assert!(nearest < 0.35 * l.radius, "{l:?}: {nearest}");
+    }
+    let volume: f32 = lobes.iter().map(|l| l.radius.powi(3)).sum();
+    assert!(volume < 1.5 * truth.iter().map(|l| l.radius.powi(3)).sum::<f32>());
+
+    // A grown lobe tree sampled at its leaves: the fitted lobes hold at least 90% of them.
+    let rules = oak();
+    let t = grow(&rules, 3, &placement_for_lobes(&rules, 3, truth.to_vec())).unwrap();
+    let mut cloud: Vec<Vec3> = t.leaves.iter().map(|l| l.position).collect();
+    for b in t
+        .branches
+        .iter()
+        .filter(|b| b.kind == Kind::Trunk && b.parent.is_none())
+    {
+        for k in 0..200 {
+            cloud.push(b.points[0].lerp(b.points[1], k as f32 / 200.0));
+        }
+    }
+    let f = fit(&cloud, None, 0);
+    let leaves: Vec<Vec3> = t.leaves.iter().map(|l| l.position).collect();
+    let cover = coverage(&leaves, &f.placement.lobes);
+    assert!(cover >= 0.9, "{cover}: {:?}", f.placement.lobes);
+}
+
+#[test]
+fn point_files_read_ply_and_xyz_and_report_bad_lines() {
+    let pts: Vec<[f32; 3]> = (0..12).map(|i| [i as f32, 2.0 * i as f32, 0.5]).collect();
+    let ascii = format!(
+        "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nend_header\n{}",
+        pts.iter()
+            .map(|p| format!("{} {} {} 200\n", p[0], p[1], p[2]))
+            .collect::<String>()
+    );
+    let a = read_points("c.ply", ascii.as_bytes(), Up::Z).unwrap();
+    assert_eq!(a[3], Vec3::new(3.0, 6.0, 0.5));
+    let mut binary = b"ply\nformat binary_little_endian 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
+    for p in &pts {
+        for c in p {
+            binary.extend(c.to_le_bytes());
+        }
+        binary.push(7);
+    }
+    assert_eq!(read_points("c.ply", &binary, Up::Z).unwrap(), a);
+    // Y up becomes Z up.
+    let y = read_points("c.ply", &binary, Up::Y).unwrap();
+    assert_eq!(y[3], Vec3::new(3.0, -0.5, 6.0));
+    let xyz: String = pts
+        .iter()
+        .map(|p| format!("{} {} {}\n", p[0], p[1], p[2]))
+        .collect();
+    assert_eq!(read_points("c.xyz", xyz.as_bytes(), Up::Z).unwrap(), a);
+    // Bad input.
+    let e = read_points("c.ply", &binary[..binary.len() - 5], Up::Z)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("ends early"), "{e}");
+    let bad = ascii.replace("5 10 0.5 200", "5 ten 0.5 200");
+    let e = read_points("c.ply", bad.as_bytes(), Up::Z)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("c.ply, line 14") && e.contains("`ten`"), "{e}");
+    let e = read_points("c.xyz", b"1 2 3\n4 5\n", Up::Z)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("c.xyz, line 2"), "{e}");
+    let e = read_points(
+        "c.ply",
+        b"ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n1\n2\n",
+        Up::Z,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("`x`, `y` and `z`"), "{e}");
+}
+
+#[test]
+fn runaway_rules_stop_at_a_budget_with_a_message() {
+    let mut r = oak();
+    r.num_leaf_points_on_lobe = 5000;
+    r.layout.leaf_size = 0.002;
+    let e = grow(&r, 0, &auto_placement(&r, 0)).unwrap_err().to_string();
+    assert!(
+        e.contains("2000000 leaves") && e.contains("leaf_size"),
+        "{e}"
+    );
+}
