@@ -1124,6 +1124,18 @@ fn draw_makes_every_view_of_a_species() {
     assert!(sizes[4] > sizes[0] && sizes[4] > sizes[1], "{sizes:?}");
 }
 
+/// Writes an input file `in-NAME` (which [`refuses`] does not count as output); its path.
+fn scratch_input(dir: &Path, name: &str, body: &str) -> String {
+    let path = dir.join(format!("in-{name}"));
+    std::fs::write(&path, body).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+/// Path of an output file in `dir`, as text.
+fn scratch(dir: &Path, name: &str) -> String {
+    dir.join(name).to_string_lossy().into_owned()
+}
+
 /// A command that must fail: non-zero exit, every needle in the message, no file, no temp file.
 fn refuses(args: &[&str], needles: &[&str], dir: &Path) {
     let run = sylva(args);
@@ -1145,12 +1157,10 @@ fn refuses(args: &[&str], needles: &[&str], dir: &Path) {
 fn nagel_commands_refuse_bad_input_with_line_numbers() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let input = |name: &str, body: &str| {
-        let path = d.join(format!("in-{name}"));
-        std::fs::write(&path, body).unwrap();
-        path.to_string_lossy().into_owned()
-    };
-    let out = |n: &str| d.join(n).to_string_lossy().into_owned();
+    let (input, out) = (
+        |n: &str, body: &str| scratch_input(d, n, body),
+        |n: &str| scratch(d, n),
+    );
     let bad_csv = input("p.csv", "radius,height\n0,2\n1,3\n2,abc\n");
     refuses(
         &[
@@ -1357,12 +1367,10 @@ fn lobes_fit_a_point_cloud() {
 fn lobes_refuses_bad_input_with_line_numbers() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let input = |name: &str, body: &str| {
-        let path = d.join(format!("in-{name}"));
-        std::fs::write(&path, body).unwrap();
-        path.to_string_lossy().into_owned()
-    };
-    let out = |n: &str| d.join(n).to_string_lossy().into_owned();
+    let (input, out) = (
+        |n: &str, body: &str| scratch_input(d, n, body),
+        |n: &str| scratch(d, n),
+    );
     let bad_tree = input(
         "t.tree",
         "Black Oak\n1\n#BRANCHES\n0 -1 0 0 0 0 1\n#LEAF LOBES\n0 2 0 1\n",

@@ -53,6 +53,16 @@ pub enum ParamsError {
 }
 
 impl ParamsError {
+    /// A value outside `allowed`, for parameters given directly (no file).
+    pub fn out_of_range(name: &str, value: f64, allowed: &str) -> Self {
+        ParamsError::OutOfRange {
+            name: name.into(),
+            value,
+            allowed: allowed.into(),
+            source_name: None,
+        }
+    }
+
     /// Adds a file/line location to errors that carry one.
     pub fn at(mut self, place: impl Into<String>) -> Self {
         match &mut self {

@@ -153,6 +153,50 @@ pub struct SkeletonStats {
 }
 
 impl Skeleton {
+    /// Appends a stem through `points` (consecutive ones distinct) with a radius per point,
+    /// each section framed along the segment that starts there (the last like the one before),
+    /// and returns its id. For models that think in polylines (Nagel's, Fields').
+    pub fn push_polyline(
+        &mut self,
+        points: &[Vec3],
+        radii: &[f32],
+        level: u8,
+        parent: Option<StemId>,
+    ) -> StemId {
+        debug_assert_eq!(points.len(), radii.len());
+        let first = self.sections.len() as u32;
+        let total: f32 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let mut along = 0.0;
+        let mut orientation = Quat::IDENTITY;
+        for (i, (&p, &radius)) in points.iter().zip(radii).enumerate() {
+            if let Some(next) = points.get(i + 1)
+                && let Some(dir) = (*next - p).try_normalize()
+            {
+                orientation = Quat::from_rotation_arc(Vec3::Z, dir);
+            }
+            if i > 0 {
+                along += p.distance(points[i - 1]);
+            }
+            self.sections.push(CrossSection {
+                position: p,
+                orientation,
+                radius,
+                z: if total > 0.0 { along / total } else { 0.0 },
+            });
+        }
+        self.stems.push(Stem {
+            level,
+            parent,
+            clone_of: None,
+            offset: 0.0,
+            length: total,
+            sections: first..self.sections.len() as u32,
+            lobes: 0,
+            lobe_depth: 0.0,
+        });
+        StemId(self.stems.len() as u32 - 1)
+    }
+
     /// Cross-sections of a stem.
     pub fn sections_of(&self, id: StemId) -> &[CrossSection] {
         let r = &self.stems[id.0 as usize].sections;

@@ -14,7 +14,7 @@ use super::lobe::Lobe;
 use super::rules::{LeafStyle, TreeRules};
 use crate::error::{GenerateError, ParamsError};
 use crate::rng::{Random, StreamKey};
-use crate::skeleton::{CrossSection, Leaf, Skeleton, Stem, StemId};
+use crate::skeleton::{Leaf, Skeleton, StemId};
 use glam::{Mat3, Quat, Vec3};
 use std::f32::consts::TAU;
 
@@ -681,27 +681,8 @@ fn add_leaves(
                     along += piece;
                 }
             }
-            // Sprays toward the leaf points fill what the branches leave of the lobe's surface.
-            let placed = leaves.len();
-            for (li, pts) in leaf_points.iter().enumerate() {
-                let wanted = wanted_per_point(rules, &lobes[li], pts.len(), placed / lobes.len());
-                for &p in pts {
-                    spray(
-                        g, leaves, &mut put, p, &lobes[li], taper, twig_level, wanted, size, random,
-                    )?;
-                }
-            }
         }
-        LeafStyle::Clusters => {
-            for (li, pts) in leaf_points.iter().enumerate() {
-                let wanted = wanted_per_point(rules, &lobes[li], pts.len(), 0);
-                for &p in pts {
-                    spray(
-                        g, leaves, &mut put, p, &lobes[li], taper, twig_level, wanted, size, random,
-                    )?;
-                }
-            }
-        }
+        LeafStyle::Clusters => {}
         LeafStyle::Hanging => {
             // Strands from the lobe's upper part fall along its surface to each leaf point.
             for (li, pts) in leaf_points.iter().enumerate() {
@@ -758,6 +739,19 @@ fn add_leaves(
                         put(leaves, at, dir, index)?;
                     }
                 }
+            }
+        }
+    }
+    if rules.create_leaves != LeafStyle::Hanging {
+        // Sprays toward the leaf points fill what needles on the branches leave of the lobe's
+        // surface (all of it, for clusters).
+        let placed = leaves.len();
+        for (li, pts) in leaf_points.iter().enumerate() {
+            let wanted = wanted_per_point(rules, &lobes[li], pts.len(), placed / lobes.len());
+            for &p in pts {
+                spray(
+                    g, leaves, &mut put, p, &lobes[li], taper, twig_level, wanted, size, random,
+                )?;
             }
         }
     }
@@ -869,36 +863,13 @@ impl LobeTree {
     pub fn skeleton(&self) -> Skeleton {
         let mut skeleton = Skeleton::default();
         for b in &self.branches {
-            let first = skeleton.sections.len() as u32;
-            let total = length(&b.points).max(1e-9);
-            let mut along = 0.0;
-            let mut orientation = Quat::IDENTITY;
-            for (k, p) in b.points.iter().enumerate() {
-                if let Some(next) = b.points.get(k + 1)
-                    && let Some(dir) = (*next - *p).try_normalize()
-                {
-                    orientation = Quat::from_rotation_arc(Vec3::Z, dir);
-                }
-                if k > 0 {
-                    along += p.distance(b.points[k - 1]);
-                }
-                skeleton.sections.push(CrossSection {
-                    position: *p,
-                    orientation,
-                    radius: 0.5 * b.widths[k],
-                    z: along / total,
-                });
-            }
-            skeleton.stems.push(Stem {
-                level: b.level,
-                parent: b.parent.map(|p| StemId(p as u32)),
-                clone_of: None,
-                offset: 0.0,
-                length: total,
-                sections: first..skeleton.sections.len() as u32,
-                lobes: 0,
-                lobe_depth: 0.0,
-            });
+            let radii: Vec<f32> = b.widths.iter().map(|w| 0.5 * w).collect();
+            skeleton.push_polyline(
+                &b.points,
+                &radii,
+                b.level,
+                b.parent.map(|p| StemId(p as u32)),
+            );
         }
         skeleton.leaves = self.leaves.clone();
         skeleton

@@ -117,15 +117,6 @@ pub fn honda_daughter(a: DVec3, b: DVec3, theta: f64, r: f64) -> DVec3 {
     b + r * (m * theta.cos() + l * side * theta.sin())
 }
 
-fn out_of_range(name: &str, value: f64, allowed: &str) -> ParamsError {
-    ParamsError::OutOfRange {
-        name: name.into(),
-        value,
-        allowed: allowed.into(),
-        source_name: None,
-    }
-}
-
 impl FractalParams {
     /// Checks every control and the segment budget.
     pub fn build(&self) -> Result<Fractal, ParamsError> {
@@ -133,7 +124,7 @@ impl FractalParams {
             if v.is_finite() && (lo..=hi).contains(&v) {
                 Ok(())
             } else {
-                Err(out_of_range(name, v, allowed))
+                Err(ParamsError::out_of_range(name, v, allowed))
             }
         };
         check("theta1", self.theta1, -180.0, 180.0, "-180..180 degrees")?;
@@ -169,14 +160,14 @@ impl FractalParams {
             "0..90 degrees",
         )?;
         if self.depth > MAX_DEPTH {
-            return Err(out_of_range(
+            return Err(ParamsError::out_of_range(
                 "depth",
                 self.depth as f64,
                 &format!("0..{MAX_DEPTH}"),
             ));
         }
         if !(2..=64).contains(&self.tip_daughters) {
-            return Err(out_of_range(
+            return Err(ParamsError::out_of_range(
                 "tip-daughters",
                 self.tip_daughters as f64,
                 "2..64",

@@ -8,8 +8,8 @@
 
 use super::profile::Profile;
 use crate::error::ParamsError;
-use crate::skeleton::{CrossSection, Skeleton, Stem, StemId};
-use glam::{Quat, Vec3};
+use crate::skeleton::{Skeleton, StemId};
+use glam::Vec3;
 use std::f64::consts::TAU;
 
 /// How a profile becomes a whisk tree.
@@ -44,24 +44,19 @@ pub fn density_ribs(density: u32) -> Option<u32> {
     (1..=5).contains(&density).then_some(3 * density + 3)
 }
 
-fn out_of_range(name: &str, value: f64, allowed: &str) -> ParamsError {
-    ParamsError::OutOfRange {
-        name: name.into(),
-        value,
-        allowed: allowed.into(),
-        source_name: None,
-    }
-}
-
 fn check_counts(p: &WhiskParams) -> Result<(), ParamsError> {
     if !(1..=360).contains(&p.ribs) {
-        return Err(out_of_range("ribs", p.ribs as f64, "1..360"));
+        return Err(ParamsError::out_of_range("ribs", p.ribs as f64, "1..360"));
     }
     if p.rings > 500 {
-        return Err(out_of_range("rings", p.rings as f64, "0..500"));
+        return Err(ParamsError::out_of_range("rings", p.rings as f64, "0..500"));
     }
     if p.spokes > 500 {
-        return Err(out_of_range("spokes", p.spokes as f64, "0..500 per rib"));
+        return Err(ParamsError::out_of_range(
+            "spokes",
+            p.spokes as f64,
+            "0..500 per rib",
+        ));
     }
     for (name, v) in [
         ("wire-radius", p.wire_radius),
@@ -70,7 +65,7 @@ fn check_counts(p: &WhiskParams) -> Result<(), ParamsError> {
         if let Some(v) = v
             && !(v.is_finite() && (0.0..=10.0).contains(&v))
         {
-            return Err(out_of_range(name, v, "0..10 metres"));
+            return Err(ParamsError::out_of_range(name, v, "0..10 metres"));
         }
     }
     Ok(())
@@ -81,7 +76,7 @@ fn turn([r, h]: [f64; 2], angle: f64) -> Vec3 {
     Vec3::new((r * angle.cos()) as f32, (r * angle.sin()) as f32, h as f32)
 }
 
-/// Appends a stem through `points` (at least two, consecutive ones distinct).
+/// Appends a wire of one radius through `points`.
 fn push_polyline(
     skeleton: &mut Skeleton,
     points: &[Vec3],
@@ -89,36 +84,7 @@ fn push_polyline(
     parent: Option<StemId>,
     radius: f32,
 ) -> StemId {
-    let first = skeleton.sections.len() as u32;
-    let lengths: Vec<f32> = points.windows(2).map(|w| w[0].distance(w[1])).collect();
-    let total: f32 = lengths.iter().sum();
-    let mut along = 0.0;
-    let mut orientation = Quat::IDENTITY;
-    for (i, &p) in points.iter().enumerate() {
-        if let Some(next) = points.get(i + 1)
-            && let Some(dir) = (*next - p).try_normalize()
-        {
-            orientation = Quat::from_rotation_arc(Vec3::Z, dir);
-        }
-        skeleton.sections.push(CrossSection {
-            position: p,
-            orientation,
-            radius,
-            z: if total > 0.0 { along / total } else { 0.0 },
-        });
-        along += lengths.get(i).copied().unwrap_or(0.0);
-    }
-    skeleton.stems.push(Stem {
-        level,
-        parent,
-        clone_of: None,
-        offset: 0.0,
-        length: total,
-        sections: first..skeleton.sections.len() as u32,
-        lobes: 0,
-        lobe_depth: 0.0,
-    });
-    StemId(skeleton.stems.len() as u32 - 1)
+    skeleton.push_polyline(points, &vec![radius; points.len()], level, parent)
 }
 
 /// The point at `t` (0..1) of the profile's length.
