@@ -8,6 +8,10 @@
 //!                              mesh::mesh_tree -> TreeMesh -> export::{to_glb, write_obj}
 //! ```
 //!
+//! Every model family ends in the same Skeleton: [`weber_penn`], [`growth`] (street trees over
+//! the years), [`nagel`] (fractal, whisk and stick trees) and [`fields`] (lobe-driven trees), so
+//! meshes, exports, [`drawing`]s (vector files, SVG and PNG views) and the renderer take them all.
+//!
 //! Conventions: metres; Z up in the model with the trunk base at the origin (exporters convert
 //! to Y up); degrees in parameter files, radians inside. The same parameters and seed always give
 //! the same bytes.

@@ -1,4 +1,4 @@
-//! Meshing a [`Skeleton`](crate::Skeleton): stems become closed-around tubes, leaves become
+//! Meshing a [`Skeleton`]: stems become closed-around tubes, leaves become
 //! their outlines. Output is flat buffers (positions, normals, UVs, 32-bit indices), one mesh for
 //! bark and one for leaves, in the skeleton's Z-up metres; exporters convert the axes.
 

@@ -23,7 +23,7 @@ const KEY_CLONE: u64 = 3;
 const KEY_LEAF: u64 = 4;
 const KEY_WIND: u64 = 5;
 
-/// One step of one-dimensional error diffusion (the paper's [FLOY76]): how many whole items
+/// One step of one-dimensional error diffusion (the paper's \[FLOY76\]): how many whole items
 /// to make where `expected` are due, carrying the rounding error to the next step.
 pub fn diffuse(expected: f64, error: &mut f64) -> usize {
     let k = (expected + *error + 0.5).floor().max(0.0);
