@@ -3,6 +3,7 @@
 //! to a point cloud), grown into branches that reach control points on the lobes' surfaces and
 //! leaves that fill them.
 
+mod leaves;
 pub mod lobe;
 pub mod pipeline;
 pub mod points;
