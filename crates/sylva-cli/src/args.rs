@@ -25,7 +25,8 @@ pub enum Command {
     /// Grow a street tree from the USDA Urban Tree Database year by year: a GLB and a picture
     /// per age, modelled against measured dimensions (CSV and charts), species side by side.
     Grow(GrowArgs),
-    /// Open the interactive editor: every parameter live, orbit camera, wind, load/save/export.
+    /// Open the interactive editor: every parameter live, orbit camera, wind, load/save/export;
+    /// or fly through a forest file, or look at a .glb.
     View(ViewArgs),
     /// Honda's fractal tree (Nagel 1986): every branch forks into two daughters turned by
     /// theta and shortened by R. Vector files and drawings stream in constant memory.
@@ -246,6 +247,10 @@ pub struct LobesArgs {
     /// Scale the finished tree (lengths and widths).
     #[arg(long, default_value_t = 1.0, help_heading = "Generation")]
     pub scale: f64,
+    /// Sides of every branch's cylinder, instead of the species' Tessellation rule (the paper
+    /// compares 36 with 5 and 10).
+    #[arg(long, value_name = "N", help_heading = "Generation")]
+    pub tessellation: Option<u32>,
     #[command(flatten)]
     pub out: LineOutputArgs,
 }
@@ -549,7 +554,8 @@ pub struct ForestArgs {
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Built-in species or species file to start from.
+    /// Built-in species or species file to start from; a forest file to fly through; or a .glb
+    /// to look at (any model Sylva wrote: fractal, whisk, lobes, grown, generated).
     #[arg(default_value = "quaking_aspen")]
     pub species: String,
 

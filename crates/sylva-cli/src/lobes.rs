@@ -136,12 +136,17 @@ pub fn lobes(args: &LobesArgs) -> Result<()> {
             (rules, seed, p, "lobes as given".to_string())
         }
     };
+    let sides = match args.tessellation {
+        Some(t) if !(3..=64).contains(&t) => bail!("--tessellation {t}: expected 3..64 sides"),
+        Some(t) => t,
+        None => rules.tessellation,
+    };
     let tree = sylva::fields::grow(&rules, seed, &placement)?;
     let mut skeleton = tree.skeleton();
     scale_skeleton(&mut skeleton, args.scale as f32);
     let look = MeshLook {
         options: MeshOptions {
-            sides: Some(rules.tessellation),
+            sides: Some(sides),
             ..Default::default()
         },
         materials: Materials::from_srgb([0.36, 0.28, 0.22], rules.leaf_texture.color),

@@ -1419,4 +1419,75 @@ fn lobes_refuses_bad_input_with_line_numbers() {
         &["--scale 0"],
         d,
     );
+    refuses(
+        &[
+            "lobes",
+            "black_oak",
+            "--tessellation",
+            "2",
+            "-o",
+            &out("a.glb"),
+        ],
+        &["--tessellation 2", "3..64"],
+        d,
+    );
+}
+
+#[test]
+fn model_viewer_shows_a_lobe_tree_glb_from_two_sides() {
+    let Some(x) = Xvfb::start() else {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "Xvfb is needed for the viewer test in CI"
+        );
+        eprintln!("skipping the model viewer test: no Xvfb here (apt-get install xvfb)");
+        return;
+    };
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("model-viewer-self-test");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // Two lobes side by side along x: from the front they stand apart, from the side they
+    // overlap, so a quarter turn narrows the crown.
+    let glb = dir.join("two-lobes.glb");
+    let run = sylva(&[
+        "lobes",
+        "black_oak",
+        "--lobe",
+        "-1.6,0,3,1",
+        "--lobe",
+        "1.6,0,3,1",
+        "--tessellation",
+        "8",
+        "-o",
+        glb.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let report = x.self_test(&["view", glb.to_str().unwrap()], &dir, "model-viewer.json");
+    assert!(report["triangles"].as_u64().unwrap() > 10_000, "{report}");
+    assert_eq!(report["azimuth"], 90.0);
+    let widths: Vec<u32> = [1, 2]
+        .iter()
+        .map(|n| {
+            let img = image::open(dir.join(format!("model-viewer-{n}.png")))
+                .unwrap()
+                .to_rgb8();
+            // Columns holding leaf-green pixels: the crown's width on screen.
+            let green = |x: u32| {
+                (0..img.height()).any(|y| {
+                    let p = img.get_pixel(x, y);
+                    p[1] as f32 > p[0] as f32 * 1.2 && p[1] as f32 > p[2] as f32 * 1.2
+                })
+            };
+            let cols: Vec<u32> = (0..img.width()).filter(|&x| green(x)).collect();
+            assert!(cols.len() > 50, "screenshot {n}: no crown");
+            cols.last().unwrap() - cols.first().unwrap()
+        })
+        .collect();
+    assert!(
+        (widths[1] as f32) < 0.7 * widths[0] as f32,
+        "front {} px, side {} px",
+        widths[0],
+        widths[1]
+    );
+    println!("model viewer screenshots: {}", dir.display());
 }

@@ -4,6 +4,7 @@
 
 mod forest;
 pub mod growth;
+mod model;
 mod panel;
 mod worker;
 
@@ -22,8 +23,15 @@ use worker::Worker;
 
 /// Opens the viewer window (blocks until it is closed).
 pub fn run(args: &ViewArgs) -> Result<()> {
-    if crate::forest::is_forest_file(std::path::Path::new(&args.species)) {
-        return forest::run(std::path::Path::new(&args.species), args.self_test.clone());
+    let path = std::path::Path::new(&args.species);
+    if crate::forest::is_forest_file(path) {
+        return forest::run(path, args.self_test.clone());
+    }
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"))
+    {
+        return model::run(path, args.self_test.clone());
     }
     let params = crate::commands::load_params(&args.species, &[])?;
     let self_test = args.self_test.clone();

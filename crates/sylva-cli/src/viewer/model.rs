@@ -1,0 +1,202 @@
+//! `sylva view tree.glb`: look at any model Sylva wrote (a fractal, whisk or lobe tree, a grown
+//! street tree, a species) from every side. Drag turns and tilts, the wheel zooms.
+
+use super::{Screenshots, ViewTexture};
+use anyhow::{Result, anyhow};
+use eframe::{egui, egui_wgpu};
+use glam::{Quat, Vec3};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use sylva_render::{GpuTree, Renderer, Scene, View};
+
+/// Opens the window (blocks until it is closed).
+pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
+    let model = crate::render::read_glb(path)?;
+    let title = format!("Sylva: {}", path.display());
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title(title)
+            .with_inner_size([1100.0, 800.0]),
+        renderer: eframe::Renderer::Wgpu,
+        ..Default::default()
+    };
+    eframe::run_native(
+        "sylva-model",
+        options,
+        Box::new(move |cc| Ok(Box::new(ModelViewer::new(cc, model, self_test)?))),
+    )
+    .map_err(|e| anyhow!("the viewer window failed: {e}"))
+}
+
+/// Scripted run for tests: a picture from the front, one turned a quarter, a report, close.
+struct SelfTest {
+    dir: PathBuf,
+    step: u32,
+    shots: Screenshots,
+    started: Instant,
+}
+
+struct ModelViewer {
+    renderer: Renderer,
+    render_state: egui_wgpu::RenderState,
+    tree: GpuTree,
+    bark: [f32; 3],
+    leaves: [f32; 3],
+    show_leaves: bool,
+    azimuth: f32,
+    elevation: f32,
+    zoom: f32,
+    texture: Option<ViewTexture>,
+    needs_render: bool,
+    frame_ms: f64,
+    self_test: Option<SelfTest>,
+}
+
+impl ModelViewer {
+    fn new(
+        cc: &eframe::CreationContext<'_>,
+        model: crate::render::GlbTree,
+        self_test: Option<PathBuf>,
+    ) -> Result<Self> {
+        let (renderer, render_state) = super::renderer_of(cc)?;
+        let tree = renderer.upload(&model.mesh);
+        Ok(Self {
+            renderer,
+            render_state,
+            tree,
+            bark: model.bark,
+            leaves: model.leaves,
+            show_leaves: true,
+            azimuth: 0.0,
+            elevation: 10.0,
+            zoom: 1.0,
+            texture: None,
+            needs_render: true,
+            frame_ms: 0.0,
+            self_test: self_test.map(|dir| SelfTest {
+                shots: Screenshots::new(dir.clone(), "model-viewer"),
+                dir,
+                step: 0,
+                started: Instant::now(),
+            }),
+        })
+    }
+
+    /// Frames the model's bounds whatever its size, turned and zoomed by the user.
+    fn view(&self, aspect: f32) -> View {
+        let fov = 30.0f32;
+        let half = (fov / 2.0).to_radians().tan();
+        let (lo, hi) = (self.tree.lo, self.tree.hi);
+        let size = hi - lo;
+        let across = size.x.max(size.y).max(0.5) * 1.2;
+        let h = hi.z.max(1.9) + 0.3;
+        let distance = (h / 2.0 / half).max(across / 2.0 / (half * aspect)) * 1.1 / self.zoom;
+        let target = Vec3::new(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), h / 2.0);
+        let turn = Quat::from_rotation_z(self.azimuth.to_radians())
+            * Quat::from_rotation_x(-self.elevation.to_radians());
+        View::look_at(target + turn * Vec3::new(0.0, -distance, 0.0), target, fov)
+    }
+
+    fn draw(&mut self, size: [u32; 2]) {
+        let size = [size[0].clamp(16, 4096), size[1].clamp(16, 4096)];
+        if super::ensure_texture(&self.render_state, &mut self.texture, size) {
+            self.needs_render = true;
+        }
+        let Some(texture) = &self.texture else {
+            return;
+        };
+        if !self.needs_render {
+            return;
+        }
+        let mut scene = Scene::new(&self.tree, self.bark, self.leaves);
+        scene.show_leaves = self.show_leaves;
+        let view = self.view(size[0] as f32 / size[1] as f32);
+        let (_, ms) = super::render_timed(&self.renderer, &scene, &view, &texture.view, size);
+        self.frame_ms = ms;
+        self.needs_render = false;
+    }
+
+    fn self_test_step(&mut self, ctx: &egui::Context) {
+        let settled = self.texture.is_some() && !self.needs_render;
+        let (triangles, frame_ms) = (self.tree.triangles, self.frame_ms);
+        let Some(test) = &mut self.self_test else {
+            return;
+        };
+        test.step += test.shots.save_arrived();
+        ctx.request_repaint();
+        if test.started.elapsed().as_secs() > 120 {
+            eprintln!("sylva: self-test timed out at step {}", test.step);
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            self.self_test = None;
+            return;
+        }
+        if test.shots.waiting || !settled {
+            return;
+        }
+        match test.step {
+            0 => test.shots.take(ctx, 1),
+            1 => {
+                // A quarter turn, as a drag would make it.
+                self.azimuth = 90.0;
+                self.needs_render = true;
+                test.step = 2;
+            }
+            2 => test.shots.take(ctx, 2),
+            _ => {
+                let report = serde_json::json!({
+                    "triangles": triangles,
+                    "frame_ms": frame_ms,
+                    "azimuth": self.azimuth,
+                    "adapter": self.renderer.adapter_name,
+                });
+                let _ = std::fs::write(test.dir.join("model-viewer.json"), report.to_string());
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+                self.self_test = None;
+            }
+        }
+    }
+}
+
+impl eframe::App for ModelViewer {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        egui::Panel::top("model controls").show(ui, |ui| {
+            ui.horizontal(|ui| {
+                if ui.checkbox(&mut self.show_leaves, "leaves").changed() {
+                    self.needs_render = true;
+                }
+                let (lo, hi) = (self.tree.lo, self.tree.hi);
+                ui.label(format!(
+                    "{} triangles   |   {:.2} m tall, {:.2} x {:.2} m across   |   {:.0} ms a frame   |   drag: turn and tilt   wheel: zoom",
+                    self.tree.triangles,
+                    hi.z,
+                    hi.x - lo.x,
+                    hi.y - lo.y,
+                    self.frame_ms
+                ));
+            });
+        });
+        egui::CentralPanel::default().show(ui, |ui| {
+            let rect = ui.available_rect_before_wrap();
+            let ppp = ui.ctx().pixels_per_point();
+            let response = ui.allocate_rect(rect, egui::Sense::drag());
+            if response.dragged_by(egui::PointerButton::Primary) {
+                let d = response.drag_delta();
+                self.azimuth -= d.x * 0.3;
+                self.elevation = (self.elevation + d.y * 0.2).clamp(-5.0, 85.0);
+                self.needs_render = true;
+            }
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+            if response.hovered() && scroll != 0.0 {
+                self.zoom = (self.zoom * (1.0 + scroll * 0.002)).clamp(0.3, 10.0);
+                self.needs_render = true;
+            }
+            self.draw([(rect.width() * ppp) as u32, (rect.height() * ppp) as u32]);
+            if let Some(t) = &self.texture {
+                let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+                ui.painter().image(t.id, rect, uv, egui::Color32::WHITE);
+            }
+        });
+        let ctx = ui.ctx().clone();
+        self.self_test_step(&ctx);
+    }
+}
