@@ -265,9 +265,21 @@ pub enum UpAxis {
 
 #[derive(Args, Debug)]
 pub struct DrawArgs {
-    /// Built-in species, a .toml or Arbaro .xml species file, or a .vec vector file.
+    /// Built-in species, a .toml or Arbaro .xml species file, or a .vec vector file; with
+    /// --age, a street tree of the Urban Tree Database (code or name, as `sylva grow`).
     #[arg(help_heading = "Input")]
     pub input: String,
+    /// Grow the street tree to this age (years) and draw it, as `sylva grow` grows it.
+    #[arg(long, value_name = "YEARS", help_heading = "Input")]
+    pub age: Option<f64>,
+    /// Climate region of the street tree (with --age).
+    #[arg(
+        long,
+        default_value = "InlVal",
+        requires = "age",
+        help_heading = "Input"
+    )]
+    pub region: String,
     /// Generation flags (species input only).
     #[command(flatten)]
     pub tree: TreeArgs,

@@ -18,7 +18,7 @@ use sylva_render::{Picture, Placement, Renderer, Scene, Stand, View};
 /// Most ages one run writes.
 const MAX_AGES: usize = 400;
 /// Oldest age asked for, years.
-const MAX_AGE: f64 = 300.0;
+pub const MAX_AGE: f64 = 300.0;
 
 /// Colours for the pictures and models: bark, and leaves (evergreens darker).
 pub fn colours(m: &Measured) -> ([f32; 3], [f32; 3]) {

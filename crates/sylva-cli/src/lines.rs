@@ -138,6 +138,12 @@ pub fn draw(args: &DrawArgs) -> Result<()> {
     let is_vec = Path::new(&args.input)
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("vec"));
+    if is_vec && args.age.is_some() {
+        bail!(
+            "{}: --age grows a street tree; a vector file is drawn as it is",
+            args.input
+        );
+    }
     let written = if is_vec {
         if wants_mesh(&planned) {
             bail!(
@@ -158,6 +164,47 @@ pub fn draw(args: &DrawArgs) -> Result<()> {
             &mut || unreachable!(),
             &args.input,
             &MeshLook::default(),
+        )?
+    } else if let Some(age) = args.age {
+        let db = sylva::growth::Database::builtin();
+        let measured = db.find(&args.region, &args.input)?;
+        if !(0.0..=crate::grow::MAX_AGE).contains(&age) {
+            bail!(
+                "--age {age}: expected 0..{} years (the data for {} cover {:.0} to {:.0})",
+                crate::grow::MAX_AGE,
+                measured.label(),
+                measured.ages.0,
+                measured.ages.1
+            );
+        }
+        let (bark, leaves) = crate::grow::colours(&measured);
+        let name = format!("{} at {age} years", measured.species.common);
+        let mut grower = sylva::growth::Grower::new(
+            measured,
+            sylva::growth::GrowthOptions {
+                seed: args.tree.seed,
+                ..Default::default()
+            },
+        );
+        grower.advance_to(age);
+        let mut skeleton = grower.skeleton();
+        if args.tree.no_leaves {
+            skeleton.leaves.clear();
+        }
+        let look = MeshLook {
+            options: MeshOptions {
+                quality: 0.6,
+                ..Default::default()
+            },
+            materials: Materials::from_srgb(bark, leaves),
+        };
+        write(
+            &planned,
+            &args.out,
+            &skeleton,
+            &mut || Ok(skeleton.clone()),
+            &name,
+            &look,
         )?
     } else {
         let params = crate::commands::load_params(&args.input, &args.tree.set)?;

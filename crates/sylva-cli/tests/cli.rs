@@ -1491,3 +1491,63 @@ fn model_viewer_shows_a_lobe_tree_glb_from_two_sides() {
     );
     println!("model viewer screenshots: {}", dir.display());
 }
+
+#[test]
+fn draw_grows_a_street_tree_to_an_age_for_plans() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let plan = d.join("plac-10.png");
+    let run = sylva(&[
+        "draw",
+        "PLAC",
+        "--age",
+        "10",
+        "--view",
+        "top",
+        "--size",
+        "400x400",
+        "-o",
+        plan.to_str().unwrap(),
+        "-o",
+        &scratch(d, "plac-10.vec"),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    // The plan of a ten-year-old plane: a round crown, about as wide as it is deep.
+    let img = image::open(&plan).unwrap().to_rgb8();
+    let ink: Vec<(u32, u32)> = img
+        .enumerate_pixels()
+        .filter(|(_, _, p)| p.0.iter().any(|&c| c < 160))
+        .map(|(x, y, _)| (x, y))
+        .collect();
+    let span = |f: fn(&(u32, u32)) -> u32| {
+        ink.iter().map(f).max().unwrap() - ink.iter().map(f).min().unwrap()
+    };
+    let (w, h) = (span(|p| p.0), span(|p| p.1));
+    assert!(
+        ink.len() > 5_000 && (w as f32 / h as f32 - 1.0).abs() < 0.25,
+        "{w} x {h}"
+    );
+    let (moves, draws) = pen_moves(&d.join("plac-10.vec"));
+    assert!(moves > 100 && draws > 1_000);
+    let empty = tempfile::tempdir().unwrap();
+    let d = empty.path();
+    refuses(
+        &["draw", "PLAC", "--age", "900", "-o", &scratch(d, "a.png")],
+        &["--age 900", "London planetree"],
+        d,
+    );
+    refuses(
+        &[
+            "draw",
+            "PLAC",
+            "--age",
+            "5",
+            "--region",
+            "Atlantis",
+            "-o",
+            &scratch(d, "a.png"),
+        ],
+        &["Atlantis"],
+        d,
+    );
+}
