@@ -65,7 +65,7 @@ impl<W: Write> VecWriter<W> {
 fn fixed4(v: f32, out: &mut [u8]) -> usize {
     let n = (v as f64 * 1e4).round();
     // Beyond ±9e14 (90 billion metres) fall back to the formatter; a tree never gets there.
-    if !(n.abs() < 9e14) {
+    if !n.is_finite() || n.abs() >= 9e14 {
         let text = format!("{:.4}", v);
         let len = text.len().min(out.len());
         out[..len].copy_from_slice(&text.as_bytes()[..len]);
