@@ -412,29 +412,42 @@ struct Xvfb(std::process::Child, String);
 
 impl Xvfb {
     fn start() -> Option<Self> {
-        // One display per test: tests of one process run in parallel.
+        // One display per test: tests of one process run in parallel. Displays whose lock file
+        // or socket is left from an X server that was killed are skipped, and a server that
+        // exits at once (its display taken after all) makes way for the next number.
         static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
-        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let display = format!(":{}", 90 + (std::process::id() % 400) * 4 + n);
-        let child = Command::new("Xvfb")
-            .args([
-                display.as_str(),
-                "-screen",
-                "0",
-                "1280x1024x24",
-                "-nolisten",
-                "tcp",
-            ])
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .ok()?;
-        let socket = format!("/tmp/.X11-unix/X{}", &display[1..]);
-        for _ in 0..100 {
-            if Path::new(&socket).exists() {
-                return Some(Self(child, display));
+        for _ in 0..32 {
+            let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let number = 90 + (std::process::id() % 400) * 8 + n;
+            let socket = format!("/tmp/.X11-unix/X{number}");
+            if Path::new(&format!("/tmp/.X{number}-lock")).exists() || Path::new(&socket).exists() {
+                continue;
             }
-            std::thread::sleep(std::time::Duration::from_millis(50));
+            let display = format!(":{number}");
+            let mut child = Command::new("Xvfb")
+                .args([
+                    display.as_str(),
+                    "-screen",
+                    "0",
+                    "1280x1024x24",
+                    "-nolisten",
+                    "tcp",
+                ])
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::null())
+                .spawn()
+                .ok()?;
+            for _ in 0..100 {
+                if !matches!(child.try_wait(), Ok(None)) {
+                    break;
+                }
+                if Path::new(&socket).exists() {
+                    return Some(Self(child, display));
+                }
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+            let _ = child.kill();
+            let _ = child.wait();
         }
         None
     }
