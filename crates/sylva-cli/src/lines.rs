@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use sylva::Skeleton;
 use sylva::drawing::{DrawOptions, LineSource, View, draw_png, write_svg, write_vec};
 use sylva::export::{Materials, to_glb, write_atomically, write_atomically_with, write_obj};
-use sylva::mesh::{MeshOptions, mesh_tree};
+use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LineFormat {
@@ -82,18 +82,28 @@ pub struct MeshLook {
     pub materials: Materials,
 }
 
-/// Writes every planned output: lines straight from `source`, meshes from `skeleton()` (called
-/// at most once, and only if a mesh is asked for). Returns a line per file for the summary.
+/// Where a mesh output's skeleton comes from.
+pub enum Meshable<'a> {
+    /// At hand: the same skeleton the lines are drawn from.
+    Skeleton(&'a Skeleton),
+    /// Built only if a mesh is asked for (the fractal streams its lines without one).
+    Build(&'a dyn Fn() -> Skeleton),
+    /// Nothing to mesh (a vector file has no radii); callers refuse mesh outputs first.
+    Nothing,
+}
+
+/// Writes every planned output: lines straight from `source`, a mesh (made at most once, and
+/// only if asked for) from `mesh`. Returns a line per file for the summary.
 pub fn write(
     planned: &[(PathBuf, LineFormat)],
     out: &LineOutputArgs,
     source: &dyn LineSource,
-    skeleton: &mut dyn FnMut() -> Result<Skeleton>,
+    mesh: Meshable,
     name: &str,
     look: &MeshLook,
 ) -> Result<Vec<String>> {
     let options = draw_options(out);
-    let mut built: Option<Skeleton> = None;
+    let mut meshed: Option<TreeMesh> = None;
     let mut written = Vec::new();
     for (path, format) in planned {
         let what = match format {
@@ -110,14 +120,18 @@ pub fn write(
                 format!("{} view, PNG", options.view.name())
             }
             LineFormat::Glb | LineFormat::Obj => {
-                if built.is_none() {
-                    built = Some(skeleton()?);
+                if meshed.is_none() {
+                    meshed = Some(match &mesh {
+                        Meshable::Skeleton(s) => mesh_tree(s, &look.options),
+                        Meshable::Build(build) => mesh_tree(&build(), &look.options),
+                        Meshable::Nothing => bail!("{name}: lines only, nothing to mesh"),
+                    });
                 }
-                let mesh = mesh_tree(built.as_ref().unwrap(), &look.options);
+                let mesh = meshed.as_ref().expect("made above");
                 if *format == LineFormat::Glb {
-                    write_atomically(path, &to_glb(&mesh, name, &look.materials)?)?;
+                    write_atomically(path, &to_glb(mesh, name, &look.materials)?)?;
                 } else {
-                    write_obj(path, &mesh, name, &look.materials)?;
+                    write_obj(path, mesh, name, &look.materials)?;
                 }
                 format!("mesh, {} triangles", mesh.triangle_count())
             }
@@ -125,6 +139,24 @@ pub fn write(
         written.push(format!("{} ({what})", path.display()));
     }
     Ok(written)
+}
+
+/// [`write`] for a model held as a skeleton.
+pub fn write_skeleton(
+    planned: &[(PathBuf, LineFormat)],
+    out: &LineOutputArgs,
+    skeleton: &Skeleton,
+    name: &str,
+    look: &MeshLook,
+) -> Result<Vec<String>> {
+    write(
+        planned,
+        out,
+        skeleton,
+        Meshable::Skeleton(skeleton),
+        name,
+        look,
+    )
 }
 
 /// Whether any planned output is a mesh.
@@ -161,7 +193,7 @@ pub fn draw(args: &DrawArgs) -> Result<()> {
             &planned,
             &args.out,
             &lines,
-            &mut || unreachable!(),
+            Meshable::Nothing,
             &args.input,
             &MeshLook::default(),
         )?
@@ -198,30 +230,15 @@ pub fn draw(args: &DrawArgs) -> Result<()> {
             },
             materials: Materials::from_srgb(bark, leaves),
         };
-        write(
-            &planned,
-            &args.out,
-            &skeleton,
-            &mut || Ok(skeleton.clone()),
-            &name,
-            &look,
-        )?
+        write_skeleton(&planned, &args.out, &skeleton, &name, &look)?
     } else {
         let params = crate::commands::load_params(&args.input, &args.tree.set)?;
         let skeleton = sylva::generate(&params, &args.tree.options())?;
-        let mut again = || Ok(skeleton.clone());
         let look = MeshLook {
             options: crate::commands::mesh_options(&params, args.tree.quality),
             materials: Materials::from_srgb(params.bark_color, params.leaf_color),
         };
-        write(
-            &planned,
-            &args.out,
-            &skeleton,
-            &mut again,
-            &params.name,
-            &look,
-        )?
+        write_skeleton(&planned, &args.out, &skeleton, &params.name, &look)?
     };
     for line in written {
         println!("wrote {line}");

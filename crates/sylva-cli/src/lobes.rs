@@ -1,7 +1,7 @@
 //! `sylva lobes`: Fields' lobe-driven trees.
 
 use crate::args::{LineOutputArgs, LobesArgs, UpAxis};
-use crate::lines::{MeshLook, plan, write};
+use crate::lines::{MeshLook, plan, write_skeleton};
 use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
 use sylva::export::{Materials, write_atomically};
@@ -151,14 +151,7 @@ pub fn lobes(args: &LobesArgs) -> Result<()> {
         },
         materials: Materials::from_srgb([0.36, 0.28, 0.22], rules.leaf_texture.color),
     };
-    let mut written = write(
-        &planned,
-        &out,
-        &skeleton,
-        &mut || Ok(skeleton.clone()),
-        &rules.name,
-        &look,
-    )?;
+    let mut written = write_skeleton(&planned, &out, &skeleton, &rules.name, &look)?;
     for path in &tree_outputs {
         let mut scaled = placement.clone();
         let s = args.scale as f32;

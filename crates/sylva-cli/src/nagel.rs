@@ -1,9 +1,10 @@
 //! `sylva fractal`, `sylva whisk` and `sylva stick`: Nagel's trees for landscape CAD.
 
+use crate::args::LineOutputArgs;
 use crate::args::{FractalArgs, RibArgs, StickArgs, WhiskArgs};
-use crate::lines::{MeshLook, plan, write};
+use crate::lines::{LineFormat, MeshLook, Meshable, plan, write, write_skeleton};
 use anyhow::{Context, Result, bail};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use sylva::nagel::{FractalParams, WhiskParams, read_profile, read_sticks, stick_tree, whisk_tree};
 
 pub fn fractal(args: &FractalArgs) -> Result<()> {
@@ -29,7 +30,7 @@ pub fn fractal(args: &FractalArgs) -> Result<()> {
         &planned,
         &args.out,
         &fractal,
-        &mut || Ok(fractal.skeleton()),
+        Meshable::Build(&|| fractal.skeleton()),
         "fractal tree",
         &MeshLook::default(),
     )?;
@@ -74,10 +75,18 @@ fn rib_params(ribs: &RibArgs, rings: u32, spokes: u32) -> Result<WhiskParams> {
     })
 }
 
-fn report(kind: &str, skeleton: &sylva::Skeleton, written: Vec<String>) {
+/// Writes a whisk or stick tree's outputs and prints what was made.
+fn finish(
+    planned: &[(PathBuf, LineFormat)],
+    out: &LineOutputArgs,
+    skeleton: &sylva::Skeleton,
+    name: &str,
+    summary: String,
+) -> Result<()> {
+    let written = write_skeleton(planned, out, skeleton, name, &MeshLook::default())?;
     let stats = skeleton.stats();
     println!(
-        "{kind}: {} stems, {:.2} m tall, crown {:.2} m across",
+        "{summary}: {} stems, {:.2} m tall, crown {:.2} m across",
         skeleton.stems.len(),
         stats.height,
         stats.crown_width
@@ -85,6 +94,7 @@ fn report(kind: &str, skeleton: &sylva::Skeleton, written: Vec<String>) {
     for line in written {
         println!("wrote {line}");
     }
+    Ok(())
 }
 
 pub fn whisk(args: &WhiskArgs) -> Result<()> {
@@ -93,23 +103,11 @@ pub fn whisk(args: &WhiskArgs) -> Result<()> {
     let name = args.profile.display().to_string();
     let profile = read_profile(&name, &read(&args.profile)?, args.ribs.height)?;
     let skeleton = whisk_tree(&profile, &params)?;
-    let written = write(
-        &planned,
-        &args.out,
-        &skeleton,
-        &mut || Ok(skeleton.clone()),
-        "whisk tree",
-        &MeshLook::default(),
-    )?;
-    report(
-        &format!(
-            "whisk tree: {} ribs, {} rings, {} spokes per rib",
-            params.ribs, params.rings, params.spokes
-        ),
-        &skeleton,
-        written,
+    let summary = format!(
+        "whisk tree: {} ribs, {} rings, {} spokes per rib",
+        params.ribs, params.rings, params.spokes
     );
-    Ok(())
+    finish(&planned, &args.out, &skeleton, "whisk tree", summary)
 }
 
 pub fn stick(args: &StickArgs) -> Result<()> {
@@ -118,22 +116,10 @@ pub fn stick(args: &StickArgs) -> Result<()> {
     let name = args.branches.display().to_string();
     let branches = read_sticks(&name, &read(&args.branches)?, args.ribs.height)?;
     let skeleton = stick_tree(&branches, &params)?;
-    let written = write(
-        &planned,
-        &args.out,
-        &skeleton,
-        &mut || Ok(skeleton.clone()),
-        "stick tree",
-        &MeshLook::default(),
-    )?;
-    report(
-        &format!(
-            "stick tree: {} branches x {} ribs",
-            branches.len(),
-            params.ribs
-        ),
-        &skeleton,
-        written,
+    let summary = format!(
+        "stick tree: {} branches x {} ribs",
+        branches.len(),
+        params.ribs
     );
-    Ok(())
+    finish(&planned, &args.out, &skeleton, "stick tree", summary)
 }

@@ -227,10 +227,7 @@ impl eframe::App for ForestViewer {
             let response = ui.allocate_rect(rect, egui::Sense::drag());
             self.input(&response, ui);
             self.draw([(rect.width() * ppp) as u32, (rect.height() * ppp) as u32]);
-            if let Some(t) = &self.texture {
-                let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                ui.painter().image(t.id, rect, uv, egui::Color32::WHITE);
-            }
+            super::show_texture(ui, rect, &self.texture);
         });
         let ctx = ui.ctx().clone();
         self.self_test_step(&ctx);

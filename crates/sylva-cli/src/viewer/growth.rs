@@ -2,11 +2,11 @@
 //! thread grows every species year by year and hands over each age's skeleton; the window
 //! shows any age grown so far (the slider), or plays the years in turn.
 
-use super::{Screenshots, ViewTexture};
+use super::{Screenshots, Turntable, ViewTexture};
 use crate::grow::colours;
 use anyhow::{Result, anyhow};
 use eframe::{egui, egui_wgpu};
-use glam::{Quat, Vec3};
+use glam::Vec3;
 use std::borrow::Cow;
 use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, Sender, channel};
@@ -114,9 +114,7 @@ struct GrowthViewer {
     /// Fraction of a year played since the last step.
     play_clock: f32,
     /// Orbit about the row of trees, degrees, and zoom.
-    azimuth: f32,
-    elevation: f32,
-    zoom: f32,
+    turntable: Turntable,
     /// Tallest and widest tree the data predict over the ages, m: a fixed frame, so that
     /// ages compare.
     tallest: f32,
@@ -168,9 +166,7 @@ impl GrowthViewer {
             playing: false,
             years_per_second: 2.0,
             play_clock: 0.0,
-            azimuth: 0.0,
-            elevation: 8.0,
-            zoom: 1.0,
+            turntable: Turntable::new(8.0),
             tallest: tallest * 1.1,
             widest: widest * 1.15,
             texture: None,
@@ -201,15 +197,10 @@ impl GrowthViewer {
 
     /// The fixed frame, turned and zoomed by the user.
     fn view(&self, aspect: f32) -> View {
-        let fov = 30.0f32;
-        let half = (fov / 2.0).to_radians().tan();
         let across = (self.widest + 1.0) * self.species.len() as f32 + 2.0;
-        let h = self.tallest + 0.5;
-        let distance = (h / 2.0 / half).max(across / 2.0 / (half * aspect)) * 1.05 / self.zoom;
-        let target = Vec3::new(0.0, 0.0, h / 2.0);
-        let turn = Quat::from_rotation_z(self.azimuth.to_radians())
-            * Quat::from_rotation_x(-self.elevation.to_radians());
-        View::look_at(target + turn * Vec3::new(0.0, -distance, 0.0), target, fov)
+        let height = self.tallest + 0.5;
+        self.turntable
+            .view(glam::Vec2::ZERO, across, height, aspect, 1.05)
     }
 
     /// Meshes and uploads the shown age when it is ready and not yet on the GPU.
@@ -457,22 +448,11 @@ impl eframe::App for GrowthViewer {
             let rect = ui.available_rect_before_wrap();
             let ppp = ui.ctx().pixels_per_point();
             let response = ui.allocate_rect(rect, egui::Sense::drag());
-            if response.dragged_by(egui::PointerButton::Primary) {
-                let d = response.drag_delta();
-                self.azimuth -= d.x * 0.3;
-                self.elevation = (self.elevation + d.y * 0.2).clamp(-5.0, 80.0);
-                self.needs_render = true;
-            }
-            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-            if response.hovered() && scroll != 0.0 {
-                self.zoom = (self.zoom * (1.0 + scroll * 0.002)).clamp(0.3, 8.0);
+            if self.turntable.handle(&response, ui) {
                 self.needs_render = true;
             }
             self.draw([(rect.width() * ppp) as u32, (rect.height() * ppp) as u32]);
-            if let Some(t) = &self.texture {
-                let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                ui.painter().image(t.id, rect, uv, egui::Color32::WHITE);
-            }
+            super::show_texture(ui, rect, &self.texture);
             self.labels(ui, rect);
         });
         let ctx = ui.ctx().clone();

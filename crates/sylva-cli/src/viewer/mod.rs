@@ -128,6 +128,68 @@ fn ensure_texture(
     true
 }
 
+/// A camera turning about a fixed frame: drag turns and tilts, the wheel zooms. The growth and
+/// model viewers use it; the editor adds panning, the forest viewer flies instead.
+struct Turntable {
+    /// Degrees about the vertical.
+    azimuth: f32,
+    /// Degrees above the horizon.
+    elevation: f32,
+    zoom: f32,
+}
+
+impl Turntable {
+    fn new(elevation: f32) -> Self {
+        Self {
+            azimuth: 0.0,
+            elevation,
+            zoom: 1.0,
+        }
+    }
+
+    /// Applies a drag or a wheel turn over `response`; true when the view changed.
+    fn handle(&mut self, response: &egui::Response, ui: &egui::Ui) -> bool {
+        let mut changed = false;
+        if response.dragged_by(egui::PointerButton::Primary) {
+            let d = response.drag_delta();
+            self.azimuth -= d.x * 0.3;
+            self.elevation = (self.elevation + d.y * 0.2).clamp(-5.0, 80.0);
+            changed = true;
+        }
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if response.hovered() && scroll != 0.0 {
+            self.zoom = (self.zoom * (1.0 + scroll * 0.002)).clamp(0.3, 8.0);
+            changed = true;
+        }
+        changed
+    }
+
+    /// A 30-degree camera that fits a frame `across` metres wide and `height` tall, standing
+    /// on the ground below `centre`, with `margin` to spare, then turned and zoomed.
+    fn view(&self, centre: glam::Vec2, across: f32, height: f32, aspect: f32, margin: f32) -> View {
+        let fov = 30.0f32;
+        let half = (fov / 2.0).to_radians().tan();
+        let distance =
+            (height / 2.0 / half).max(across / 2.0 / (half * aspect)) * margin / self.zoom;
+        let target = centre.extend(height / 2.0);
+        let turn = glam::Quat::from_rotation_z(self.azimuth.to_radians())
+            * glam::Quat::from_rotation_x(-self.elevation.to_radians());
+        View::look_at(
+            target + turn * glam::Vec3::new(0.0, -distance, 0.0),
+            target,
+            fov,
+        )
+    }
+}
+
+/// Shows the 3-D view's texture over `rect`; false when there is none yet.
+fn show_texture(ui: &egui::Ui, rect: egui::Rect, texture: &Option<ViewTexture>) -> bool {
+    let Some(t) = texture else { return false };
+    let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+    ui.painter().image(t.id, rect, uv, egui::Color32::WHITE);
+    true
+}
+
 /// A self-test's screenshots: asked of the window, written as PNG into `dir` as they arrive.
 struct Screenshots {
     dir: PathBuf,
@@ -629,14 +691,8 @@ impl eframe::App for Viewer {
                 size
             };
             self.draw_view(draft);
-            match &self.texture {
-                Some(t) => {
-                    let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                    ui.painter().image(t.id, rect, uv, egui::Color32::WHITE);
-                }
-                None => {
-                    ui.centered_and_justified(|ui| ui.label("growing the tree..."));
-                }
+            if !show_texture(ui, rect, &self.texture) {
+                ui.centered_and_justified(|ui| ui.label("growing the tree..."));
             }
         });
         if changed {

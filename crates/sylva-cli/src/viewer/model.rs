@@ -1,10 +1,9 @@
 //! `sylva view tree.glb`: look at any model Sylva wrote (a fractal, whisk or lobe tree, a grown
 //! street tree, a species) from every side. Drag turns and tilts, the wheel zooms.
 
-use super::{Screenshots, ViewTexture};
+use super::{Screenshots, Turntable, ViewTexture};
 use anyhow::{Result, anyhow};
 use eframe::{egui, egui_wgpu};
-use glam::{Quat, Vec3};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use sylva_render::{GpuTree, Renderer, Scene, View};
@@ -43,9 +42,7 @@ struct ModelViewer {
     bark: [f32; 3],
     leaves: [f32; 3],
     show_leaves: bool,
-    azimuth: f32,
-    elevation: f32,
-    zoom: f32,
+    turntable: Turntable,
     texture: Option<ViewTexture>,
     needs_render: bool,
     frame_ms: f64,
@@ -67,9 +64,7 @@ impl ModelViewer {
             bark: model.bark,
             leaves: model.leaves,
             show_leaves: true,
-            azimuth: 0.0,
-            elevation: 10.0,
-            zoom: 1.0,
+            turntable: Turntable::new(10.0),
             texture: None,
             needs_render: true,
             frame_ms: 0.0,
@@ -84,17 +79,12 @@ impl ModelViewer {
 
     /// Frames the model's bounds whatever its size, turned and zoomed by the user.
     fn view(&self, aspect: f32) -> View {
-        let fov = 30.0f32;
-        let half = (fov / 2.0).to_radians().tan();
         let (lo, hi) = (self.tree.lo, self.tree.hi);
         let size = hi - lo;
         let across = size.x.max(size.y).max(0.5) * 1.2;
-        let h = hi.z.max(1.9) + 0.3;
-        let distance = (h / 2.0 / half).max(across / 2.0 / (half * aspect)) * 1.1 / self.zoom;
-        let target = Vec3::new(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), h / 2.0);
-        let turn = Quat::from_rotation_z(self.azimuth.to_radians())
-            * Quat::from_rotation_x(-self.elevation.to_radians());
-        View::look_at(target + turn * Vec3::new(0.0, -distance, 0.0), target, fov)
+        let height = hi.z.max(1.9) + 0.3;
+        let centre = 0.5 * (lo + hi).truncate();
+        self.turntable.view(centre, across, height, aspect, 1.1)
     }
 
     fn draw(&mut self, size: [u32; 2]) {
@@ -137,7 +127,7 @@ impl ModelViewer {
             0 => test.shots.take(ctx, 1),
             1 => {
                 // A quarter turn, as a drag would make it.
-                self.azimuth = 90.0;
+                self.turntable.azimuth = 90.0;
                 self.needs_render = true;
                 test.step = 2;
             }
@@ -146,7 +136,7 @@ impl ModelViewer {
                 let report = serde_json::json!({
                     "triangles": triangles,
                     "frame_ms": frame_ms,
-                    "azimuth": self.azimuth,
+                    "azimuth": self.turntable.azimuth,
                     "adapter": self.renderer.adapter_name,
                 });
                 let _ = std::fs::write(test.dir.join("model-viewer.json"), report.to_string());
@@ -179,22 +169,11 @@ impl eframe::App for ModelViewer {
             let rect = ui.available_rect_before_wrap();
             let ppp = ui.ctx().pixels_per_point();
             let response = ui.allocate_rect(rect, egui::Sense::drag());
-            if response.dragged_by(egui::PointerButton::Primary) {
-                let d = response.drag_delta();
-                self.azimuth -= d.x * 0.3;
-                self.elevation = (self.elevation + d.y * 0.2).clamp(-5.0, 85.0);
-                self.needs_render = true;
-            }
-            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-            if response.hovered() && scroll != 0.0 {
-                self.zoom = (self.zoom * (1.0 + scroll * 0.002)).clamp(0.3, 10.0);
+            if self.turntable.handle(&response, ui) {
                 self.needs_render = true;
             }
             self.draw([(rect.width() * ppp) as u32, (rect.height() * ppp) as u32]);
-            if let Some(t) = &self.texture {
-                let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                ui.painter().image(t.id, rect, uv, egui::Color32::WHITE);
-            }
+            super::show_texture(ui, rect, &self.texture);
         });
         let ctx = ui.ctx().clone();
         self.self_test_step(&ctx);

@@ -298,6 +298,33 @@ impl Grower<'_> {
         (d * angle.cos() + side * angle.sin()).normalize()
     }
 
+    /// One branch from `start` on a parent running along `d` to `end`, leaving at `angle`.
+    #[allow(clippy::too_many_arguments)]
+    fn branch(
+        &mut self,
+        parent: usize,
+        d: Vec3,
+        start: Vec3,
+        end: Vec3,
+        angle: f32,
+        level: u8,
+        lobe_index: usize,
+        lobe: &Lobe,
+        target: Option<Vec3>,
+    ) -> Result<usize, GenerateError> {
+        let dir0 = Self::leave(d, start, end, angle);
+        let path = self.path(start, dir0, end, Some(lobe));
+        self.push(Branch {
+            parent: Some(parent),
+            kind: Kind::Branch,
+            level,
+            widths: vec![0.0; path.len()],
+            points: path,
+            lobe: Some(lobe_index),
+            target,
+        })
+    }
+
     /// Grows the branches for `points` from the parent axis (a, d, range), `m` generations.
     #[allow(clippy::too_many_arguments)]
     fn grow(
@@ -315,43 +342,21 @@ impl Grower<'_> {
         if m <= 1 || points.len() == 1 {
             // The last generation: one branch onto each control point.
             for p in points {
-                let s = Self::attach(a, d, range, p, angle);
-                let start = a + d * s;
+                let start = a + d * Self::attach(a, d, range, p, angle);
                 if start.distance(p) < 1e-5 {
                     continue;
                 }
-                let dir0 = Self::leave(d, start, p, angle);
-                let path = self.path(start, dir0, p, Some(lobe));
-                self.push(Branch {
-                    parent: Some(parent),
-                    kind: Kind::Branch,
-                    level,
-                    widths: vec![0.0; path.len()],
-                    points: path,
-                    lobe: Some(lobe_index),
-                    target: Some(p),
-                })?;
+                self.branch(parent, d, start, p, angle, level, lobe_index, lobe, Some(p))?;
             }
             return Ok(());
         }
         let centre = points.iter().copied().sum::<Vec3>() / points.len() as f32;
-        let s = Self::attach(a, d, range, centre, angle);
-        let start = a + d * s;
+        let start = a + d * Self::attach(a, d, range, centre, angle);
         // This generation's share of the way: 1 / (1 + LRF + ... + LRF^(m-1)).
         let lrf = self.rules.length_reduction_factor as f32;
         let share = 1.0 / (0..m).map(|i| lrf.powi(i as i32)).sum::<f32>();
         let end = start + (centre - start) * share;
-        let dir0 = Self::leave(d, start, end, angle);
-        let path = self.path(start, dir0, end, Some(lobe));
-        let index = self.push(Branch {
-            parent: Some(parent),
-            kind: Kind::Branch,
-            level,
-            widths: vec![0.0; path.len()],
-            points: path,
-            lobe: Some(lobe_index),
-            target: None,
-        })?;
+        let index = self.branch(parent, d, start, end, angle, level, lobe_index, lobe, None)?;
         let (n, v) = self.rules.num_branches_off_split;
         let parts = (n as f64 + self.random.var(v as f64 + 0.999))
             .floor()
