@@ -52,12 +52,14 @@ fn table(renderer: &Renderer, scene: &mut Scene, target: Vec3, runs: u32) -> Res
 }
 
 pub fn bench_forest(runs: u32) -> Result<()> {
-    let renderer = Renderer::new_headless()?;
+    let renderer = crate::render::headless()?;
     println!();
     println!(
         "drawing with and without range degradation on {} ({}x{}, {FOV} degree lens; frames \
          include shadow pass and read-back; x faster = full / LOD frame time)",
-        renderer.adapter_name, SIZE.0, SIZE.1
+        renderer.adapter_name(),
+        SIZE.0,
+        SIZE.1
     );
     // Baseline in the same run: an empty scene.
     let empty = renderer.upload(&Default::default());

@@ -7,7 +7,6 @@ use std::time::Instant;
 use sylva::export::{Materials, to_glb, write_atomically, write_obj};
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use sylva::params::{PARAMS, format_value};
-use sylva::preview::{PreviewOptions, View, render_preview};
 use sylva::{GenerateOptions, TreeParams};
 
 /// The paper's four appendix species: the benchmark set.
@@ -153,9 +152,7 @@ fn generate(args: &GenerateArgs) -> Result<()> {
         }
         Format::Obj => write_obj(&args.output, &mesh, &params.name, &materials)?,
     }
-    if let Some(png) = &args.preview {
-        write_preview(png, &mesh, &params, args.view)?;
-    }
+    // The model and its summary come first: a picture that fails cannot take them away.
     let stats = skeleton.stats();
     if args.json {
         let summary = serde_json::json!({
@@ -175,6 +172,12 @@ fn generate(args: &GenerateArgs) -> Result<()> {
     } else {
         print_summary(&params, args, &stats, &mesh, generate_ms, mesh_ms);
     }
+    if let Some(png) = &args.preview {
+        write_preview(png, &mesh, &params, args.view)?;
+        if !args.json {
+            println!("  picture          {}", png.display());
+        }
+    }
     Ok(())
 }
 
@@ -184,33 +187,9 @@ fn write_preview(
     params: &TreeParams,
     view: RenderView,
 ) -> Result<()> {
-    match crate::render::picture(mesh, params.bark_color, params.leaf_color, view, 1024, 768) {
-        Ok(picture) => {
-            crate::render::encode_png(path, picture.width, picture.height, &picture.rgba)
-        }
-        Err(e) => {
-            // No adapter at all: the CPU rasteriser still shows the tree, without shadows.
-            eprintln!("sylva: warning: {e:#}; drawing the preview with the CPU rasteriser instead");
-            let view = match view {
-                RenderView::Side => View::Side,
-                RenderView::Top => View::Top,
-                RenderView::Front | RenderView::Iso => View::Front,
-            };
-            let options = PreviewOptions {
-                view,
-                bark: params.bark_color,
-                leaves: params.leaf_color,
-                ..Default::default()
-            };
-            let p = render_preview(mesh, &options);
-            let rgba: Vec<u8> = p
-                .rgb
-                .chunks(3)
-                .flat_map(|c| [c[0], c[1], c[2], 255])
-                .collect();
-            crate::render::encode_png(path, p.width, p.height, &rgba)
-        }
-    }
+    let picture =
+        crate::render::picture(mesh, params.bark_color, params.leaf_color, view, 1024, 768)?;
+    crate::render::encode_png(path, picture.width, picture.height, &picture.rgba)
 }
 
 fn round3(x: f32) -> f64 {
@@ -244,9 +223,6 @@ fn print_summary(
     );
     println!("  time             generate {generate_ms:.1} ms, mesh {mesh_ms:.1} ms");
     println!("  wrote            {}", args.output.display());
-    if let Some(png) = &args.preview {
-        println!("  picture          {}", png.display());
-    }
 }
 
 fn species_list() -> Result<()> {
@@ -438,8 +414,8 @@ fn bench_lod() -> Result<()> {
 
 /// Frame times at 1280x720 and the cost of an edit: what the viewer feels.
 fn bench_render(runs: u32) -> Result<()> {
-    use sylva_render::{Renderer, Scene, View, ViewKind};
-    let renderer = Renderer::new_headless()?;
+    use sylva_render::{Scene, View, ViewKind};
+    let renderer = crate::render::headless()?;
     let view = View::named(ViewKind::Front);
     // Baseline in the same run: a frame of an empty tree (ground, person, shadow pass, readback).
     let empty = renderer.upload(&TreeMesh::default());
@@ -451,7 +427,7 @@ fn bench_render(runs: u32) -> Result<()> {
     println!();
     println!(
         "rendering on {} at 1280x720 (fastest of {runs}; frame includes read-back)",
-        renderer.adapter_name
+        renderer.adapter_name()
     );
     println!(
         "{:<15} {:>9} {:>10} {:>9} {:>9}",

@@ -94,7 +94,7 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
     let renderer = if args.no_pictures {
         None
     } else {
-        Some(Renderer::new_headless()?)
+        Some(crate::render::headless()?)
     };
     // One frame for every age and species: the tallest and widest they reach.
     let mut tallest = 2.0f64;

@@ -56,7 +56,7 @@ pub fn bake_impostor(
 /// Writes the chain of `lod` to `path`; returns a one-line description of its levels.
 pub fn write_lod_chain(path: &Path, lod: &LodTree, params: &TreeParams) -> Result<String> {
     let chain = lod.engine_chain();
-    let impostor = match Renderer::new_headless() {
+    let impostor = match crate::render::headless() {
         Ok(renderer) => Some(bake_impostor(&renderer, &chain[0].0, params)?),
         Err(e) => {
             eprintln!("sylva: warning: {e}; writing the LOD chain without its impostor");

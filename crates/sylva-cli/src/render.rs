@@ -204,6 +204,15 @@ impl TreeSource {
     }
 }
 
+/// The headless renderer `SYLVA_RENDERER` asks for (by default the first that works: Vulkan,
+/// OpenGL, the CPU), saying on stderr when pictures are drawn on the CPU instead of a GPU.
+pub fn headless() -> Result<Renderer> {
+    let choice = sylva_render::Choice::from_env()?;
+    Ok(Renderer::headless(choice, |note| {
+        eprintln!("sylva: {note}")
+    })?)
+}
+
 /// One picture of a tree mesh from a named view, with ground and person (the `--preview` of
 /// `sylva generate`).
 pub fn picture(
@@ -214,7 +223,7 @@ pub fn picture(
     width: u32,
     height: u32,
 ) -> Result<Picture> {
-    let renderer = Renderer::new_headless()?;
+    let renderer = headless()?;
     let tree = renderer.upload(mesh);
     let scene = Scene::new(&tree, bark, leaves);
     Ok(renderer.render(&scene, &view_of(view), width, height)?)
@@ -247,7 +256,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     if is_glb && (args.frames.is_some() || args.wind != 0.0 || args.gust != 0.0) {
         bail!("wind needs the species, not a finished .glb: render the species instead");
     }
-    let renderer = Renderer::new_headless()?;
+    let renderer = headless()?;
     if crate::forest::is_forest_file(Path::new(&args.input)) {
         return crate::render_forest::render_forest(
             args,
@@ -301,7 +310,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             picture.width,
             picture.height,
             tree.triangles,
-            renderer.adapter_name
+            renderer.adapter_name()
         );
     }
     Ok(())

@@ -12,7 +12,9 @@ use std::path::Path;
 use std::time::Instant;
 use sylva::forest::ForestSpec;
 use sylva::lod::LodTree;
-use sylva_render::{Camera, FrameStats, GpuTree, Picture, Placement, Renderer, Scene, Stand, View};
+use sylva_render::{
+    Camera, FrameStats, Picture, Placement, RenderTree, Renderer, Scene, Stand, View,
+};
 
 /// Thousands separators: 1234567 -> "1,234,567".
 pub fn grouped(n: usize) -> String {
@@ -43,7 +45,7 @@ pub fn describe(stats: &FrameStats, ms: f64) -> String {
 
 /// GPU trees for every variant of a forest file, and where their copies stand.
 pub struct ForestOnGpu {
-    pub trees: Vec<GpuTree>,
+    pub trees: Vec<RenderTree>,
     pub colours: Vec<([f32; 3], [f32; 3])>,
     pub placements: Vec<Vec<Placement>>,
     pub stored_bytes: usize,
@@ -212,7 +214,7 @@ pub fn render_forest(
         forest.trees.len(),
         forest.grow_seconds,
         forest.stored_bytes as f64 / 1e6,
-        renderer.adapter_name
+        renderer.adapter_name()
     );
     Ok(())
 }

@@ -1,6 +1,6 @@
 //! What a picture shows and from where: stands of placed trees, the props, the sun, the camera.
 
-use crate::GpuTree;
+use crate::RenderTree;
 use crate::camera::Camera;
 use crate::props::PERSON_HEIGHT;
 use glam::Vec3;
@@ -90,7 +90,7 @@ impl Placement {
 #[derive(Clone, Debug)]
 pub struct Stand<'a> {
     /// The tree.
-    pub tree: &'a GpuTree,
+    pub tree: &'a RenderTree,
     /// Bark colour, sRGB 0..1.
     pub bark: [f32; 3],
     /// Leaf colour, sRGB 0..1.
@@ -134,7 +134,7 @@ pub struct Scene<'a> {
 impl<'a> Scene<'a> {
     /// One tree at the origin, with ground, person, leaves and an afternoon sun from the
     /// south-west.
-    pub fn new(tree: &'a GpuTree, bark: [f32; 3], leaves: [f32; 3]) -> Self {
+    pub fn new(tree: &'a RenderTree, bark: [f32; 3], leaves: [f32; 3]) -> Self {
         Self {
             show_person: true,
             ..Self::forest(vec![Stand {

@@ -156,13 +156,7 @@ struct FlatOut {
     @location(3) size: vec3<f32>,
 };
 
-@vertex
-fn vs_flat(
-    @location(0) position: vec3<f32>,
-    @location(1) size: f32,
-    @location(2) direction: vec4<f32>,
-    i: Instance,
-) -> FlatOut {
+fn flat_vertex(position: vec3<f32>, size: f32, direction: vec4<f32>, i: Instance) -> FlatOut {
     var out: FlatOut;
     let world = placed(i, position);
     out.clip = g.view_proj * vec4<f32>(world, 1.0);
@@ -171,6 +165,16 @@ fn vs_flat(
     out.direction = turned(i, direction.xyz);
     out.size = vec3<f32>(size, i.stands_for.x, i.place.w);
     return out;
+}
+
+@vertex
+fn vs_flat(
+    @location(0) position: vec3<f32>,
+    @location(1) size: f32,
+    @location(2) direction: vec4<f32>,
+    i: Instance,
+) -> FlatOut {
+    return flat_vertex(position, size, direction, i);
 }
 
 @vertex
@@ -193,15 +197,19 @@ fn hash(v: u32) -> u32 {
     return (word >> 22u) ^ word;
 }
 
-@fragment
-fn fs_flat(in: FlatOut) -> FlatColour {
+// How a line or point is lit, and the share of a pixel it covers.
+struct FlatShade {
+    lit: vec3<f32>,
+    cover: f32,
+};
+
+fn flat_shade(in: FlatOut) -> FlatShade {
     let l = g.sun_dir.xyz;
     let sun = g.sun_color.rgb * sunlit(in.light_clip);
     let base = m.color.rgb;
     let to_eye = g.eye.xyz - in.world;
     let pixels_per_metre = g.eye.w * in.size.z / max(length(to_eye), 1e-3);
-    var lit: vec3<f32>;
-    var cover: f32;
+    var out: FlatShade;
     if (m.kind.x > 0.5) {
         // A leaf: two-sided, facing the eye.
         var n = normalize(in.direction);
@@ -210,26 +218,90 @@ fn fs_flat(in: FlatOut) -> FlatColour {
         }
         let ndl = dot(n, l);
         let hemi = mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.5 + 0.5 * n.z);
-        lit = base * (hemi + sun * max(ndl, 0.0) + sun * max(-ndl, 0.0) * 0.45);
-        cover = in.size.x * pixels_per_metre * pixels_per_metre * in.size.y;
+        out.lit = base * (hemi + sun * max(ndl, 0.0) + sun * max(-ndl, 0.0) * 0.45);
+        out.cover = in.size.x * pixels_per_metre * pixels_per_metre * in.size.y;
     } else {
         // A stem: a cylinder about its axis, half of it towards the sun.
         let t = normalize(in.direction);
         let across = sqrt(max(1.0 - dot(t, l) * dot(t, l), 0.0));
-        lit = base * (mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.6) + sun * across * 0.5);
-        cover = in.size.x * pixels_per_metre * in.size.y;
+        out.lit = base * (mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.6) + sun * across * 0.5);
+        out.cover = in.size.x * pixels_per_metre * in.size.y;
     }
-    // Cover that share of the pixel's 4 samples, chosen afresh for each line or point so that
-    // overlapping ones fill a pixel as the leaves they stand for would (one fixed pattern per
-    // share would let them all land on the same samples); the share is rounded up or down at
-    // random, so that on average it is exact.
-    let seed = hash(bitcast<u32>(in.world.x) ^ hash(bitcast<u32>(in.world.y) ^ hash(bitcast<u32>(in.world.z))));
+    return out;
+}
+
+// Which of a pixel's 4 samples a line or point covers: that share of them, chosen afresh for
+// each line or point so that overlapping ones fill a pixel as the leaves they stand for would
+// (one fixed pattern per share would let them all land on the same samples); the share is
+// rounded up or down at random, so that on average it is exact.
+fn coverage_mask(cover: f32, seed: u32) -> u32 {
     let jitter = f32(seed & 0xffffu) / 65536.0;
     let samples = u32(clamp(floor(cover * 4.0 + jitter), 0.0, 4.0));
     let first = (seed >> 16u) & 3u;
     let run = (1u << samples) - 1u;
+    return ((run << first) | (run >> (4u - first))) & 15u;
+}
+
+fn world_seed(world: vec3<f32>) -> u32 {
+    return hash(bitcast<u32>(world.x) ^ hash(bitcast<u32>(world.y) ^ hash(bitcast<u32>(world.z))));
+}
+
+@fragment
+fn fs_flat(in: FlatOut) -> FlatColour {
+    let shade = flat_shade(in);
     var out: FlatColour;
-    out.colour = vec4<f32>(lit, 1.0);
-    out.mask = ((run << first) | (run >> (4u - first))) & 15u;
+    out.colour = vec4<f32>(shade.lit, 1.0);
+    out.mask = coverage_mask(shade.cover, world_seed(in.world));
     return out;
+}
+
+// The same for OpenGL, which cannot write the sample mask: the fragment shader runs once per
+// sample (the `sample` interpolation asks for that) and drops the samples outside the mask.
+// The seed comes from the pixel and the primitive's first vertex, so every sample of a pixel
+// draws the same mask.
+struct FlatSampleOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) light_clip: vec4<f32>,
+    @location(1) @interpolate(perspective, sample) world: vec3<f32>,
+    @location(2) direction: vec3<f32>,
+    @location(3) size: vec3<f32>,
+    @location(4) @interpolate(flat) seed_world: vec3<f32>,
+};
+
+@vertex
+fn vs_flat_per_sample(
+    @location(0) position: vec3<f32>,
+    @location(1) size: f32,
+    @location(2) direction: vec4<f32>,
+    i: Instance,
+) -> FlatSampleOut {
+    let f = flat_vertex(position, size, direction, i);
+    var out: FlatSampleOut;
+    out.clip = f.clip;
+    out.light_clip = f.light_clip;
+    out.world = f.world;
+    out.direction = f.direction;
+    out.size = f.size;
+    out.seed_world = f.world;
+    return out;
+}
+
+@fragment
+fn fs_flat_per_sample(in: FlatSampleOut) -> @location(0) vec4<f32> {
+    var f: FlatOut;
+    f.clip = in.clip;
+    f.light_clip = in.light_clip;
+    f.world = in.world;
+    f.direction = in.direction;
+    f.size = in.size;
+    let shade = flat_shade(f);
+    let pixel = vec2<u32>(floor(in.clip.xy));
+    let seed = world_seed(in.seed_world) ^ hash(pixel.x ^ hash(pixel.y));
+    // The standard 4-sample pattern has one sample in each quarter of the pixel.
+    let offset = fract(in.clip.xy);
+    let sample = u32(offset.x * 2.0) + 2u * u32(offset.y * 2.0);
+    if ((coverage_mask(shade.cover, seed) & (1u << sample)) == 0u) {
+        discard;
+    }
+    return vec4<f32>(shade.lit, 1.0);
 }

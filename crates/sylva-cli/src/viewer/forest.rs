@@ -3,7 +3,7 @@
 
 use super::ViewTexture;
 use crate::render_forest::{ForestOnGpu, describe};
-use anyhow::{Result, anyhow};
+use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
@@ -19,12 +19,9 @@ pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
         ..Default::default()
     };
     let path = path.to_path_buf();
-    eframe::run_native(
-        "sylva-forest",
-        options,
-        Box::new(move |cc| Ok(Box::new(ForestViewer::new(cc, &path, self_test)?))),
-    )
-    .map_err(|e| anyhow!("the viewer window failed: {e}"))
+    super::window("sylva-forest", options, move |cc| {
+        ForestViewer::new(cc, &path, self_test)
+    })
 }
 
 struct ForestViewer {
@@ -214,7 +211,7 @@ impl eframe::App for ForestViewer {
             ui.label(format!(
                 "{}   |   {}",
                 describe(&self.stats, self.frame_ms),
-                self.renderer.adapter_name
+                self.renderer.adapter_name()
             ));
             ui.label(
                 "drag: look   W A S D / arrows: move   Q E: down, up   wheel: forward   \

@@ -4,7 +4,7 @@
 
 use super::{Screenshots, Turntable, ViewTexture};
 use crate::grow::colours;
-use anyhow::{Result, anyhow};
+use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use glam::Vec3;
 use std::borrow::Cow;
@@ -14,7 +14,7 @@ use std::time::Instant;
 use sylva::Skeleton;
 use sylva::growth::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
 use sylva::mesh::{MeshOptions, mesh_tree};
-use sylva_render::{GpuTree, Placement, Renderer, Scene, Stand, View};
+use sylva_render::{Placement, RenderTree, Renderer, Scene, Stand, View};
 
 /// One species at one age, as the worker sends it.
 struct Grown {
@@ -39,16 +39,9 @@ pub fn run(
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    eframe::run_native(
-        "sylva-grow",
-        options,
-        Box::new(move |cc| {
-            Ok(Box::new(GrowthViewer::new(
-                cc, species, ages, seed, self_test,
-            )?))
-        }),
-    )
-    .map_err(|e| anyhow!("the viewer window failed: {e}"))
+    super::window("sylva-grow", options, move |cc| {
+        GrowthViewer::new(cc, species, ages, seed, self_test)
+    })
 }
 
 /// Grows every species through the ages in step, sending each as it is reached; stops when
@@ -108,7 +101,7 @@ struct GrowthViewer {
     /// The age index on screen, and the one the GPU trees are of.
     age: usize,
     uploaded: Option<usize>,
-    trees: Vec<GpuTree>,
+    trees: Vec<RenderTree>,
     playing: bool,
     years_per_second: f32,
     /// Fraction of a year played since the last step.
@@ -427,7 +420,7 @@ impl GrowthViewer {
                     "ages": self.ages,
                     "shown": test.shown,
                     "played_to": self.ages[self.age],
-                    "adapter": self.renderer.adapter_name,
+                    "adapter": self.renderer.adapter_name(),
                 });
                 let _ = std::fs::write(test.dir.join("grow-viewer.json"), report.to_string());
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);

@@ -9,16 +9,16 @@ mod panel;
 mod worker;
 
 use crate::args::ViewArgs;
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result, anyhow, bail};
 use eframe::{egui, egui_wgpu};
 use std::path::PathBuf;
-use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
+use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 use sylva::export::{Materials, to_glb, write_atomically, write_obj};
 use sylva::mesh::TreeMesh;
 use sylva::{GenerateOptions, SkeletonStats, TreeParams, Wind};
-use sylva_render::{GpuTree, Renderer, Scene, View};
+use sylva_render::{RenderTree, Renderer, Scene, View};
 use worker::Worker;
 
 /// Opens the viewer window (blocks until it is closed).
@@ -43,12 +43,51 @@ pub fn run(args: &ViewArgs) -> Result<()> {
         ..Default::default()
     };
     let source = args.species.clone();
-    eframe::run_native(
-        "sylva",
+    window("sylva", options, move |cc| {
+        Viewer::new(cc, params, source, self_test)
+    })
+}
+
+/// A GPU failure while a window is open: the window closes and the command fails with it.
+static GPU_FAILURE: OnceLock<String> = OnceLock::new();
+
+/// A viewer that closes its window once the GPU has failed.
+struct Guarded<A>(A);
+
+impl<A: eframe::App> eframe::App for Guarded<A> {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        if GPU_FAILURE.get().is_some() {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+            return;
+        }
+        self.0.ui(ui, frame);
+    }
+}
+
+/// Opens a window running the app `make` builds, until it is closed. A window that cannot
+/// open, or a GPU that fails while it is open, is an error saying what the viewer needs: a
+/// viewer cannot fall back to the CPU as pictures do.
+fn window<A: eframe::App + 'static>(
+    name: &str,
+    options: eframe::NativeOptions,
+    make: impl FnOnce(&eframe::CreationContext<'_>) -> Result<A> + 'static,
+) -> Result<()> {
+    let opened = eframe::run_native(
+        name,
         options,
-        Box::new(move |cc| Ok(Box::new(Viewer::new(cc, params, source, self_test)?))),
-    )
-    .map_err(|e| anyhow!("the viewer window failed: {e}"))
+        Box::new(move |cc| Ok(Box::new(Guarded(make(cc)?)))),
+    );
+    if let Some(failure) = GPU_FAILURE.get() {
+        bail!("the viewer closed because the GPU failed: {failure}");
+    }
+    opened.map_err(|e| {
+        anyhow!(
+            "cannot open the viewer window: {e}. The viewer needs a display (X11 or Wayland; \
+             Xvfb where there is none) and a graphics driver (a GPU, or Mesa's software ones: \
+             Debian's mesa-vulkan-drivers or libgl1-mesa-dri); `sylva render` draws pictures \
+             without either"
+        )
+    })
 }
 
 /// The 3-D view's texture, registered with egui.
@@ -69,8 +108,8 @@ fn renderer_of(cc: &eframe::CreationContext<'_>) -> Result<(Renderer, egui_wgpu:
         render_state.device.clone(),
         render_state.queue.clone(),
         sylva_render::PICTURE_FORMAT,
-        render_state.adapter.get_info().name,
-    );
+        &render_state.adapter.get_info(),
+    )?;
     Ok((renderer, render_state))
 }
 
@@ -252,10 +291,16 @@ fn render_timed(
     size: [u32; 2],
 ) -> (sylva_render::FrameStats, f64) {
     let t = Instant::now();
-    let stats = renderer.render_into(scene, view, target, size[0], size[1]);
-    let _ = renderer
-        .device()
-        .poll(eframe::wgpu::PollType::wait_indefinitely());
+    let stats = match renderer.render_into(scene, view, target, size[0], size[1]) {
+        Ok(stats) => stats,
+        Err(e) => {
+            let _ = GPU_FAILURE.set(e.to_string());
+            Default::default()
+        }
+    };
+    if let Some(device) = renderer.device() {
+        let _ = device.poll(eframe::wgpu::PollType::wait_indefinitely());
+    }
     (stats, t.elapsed().as_secs_f64() * 1e3)
 }
 
@@ -284,7 +329,7 @@ pub struct Viewer {
     worker: Worker,
     renderer: Renderer,
     render_state: egui_wgpu::RenderState,
-    tree: Option<GpuTree>,
+    tree: Option<RenderTree>,
     mesh: Option<TreeMesh>,
     stats: Option<SkeletonStats>,
     generate_ms: f64,
@@ -407,7 +452,7 @@ impl Viewer {
         }
     }
 
-    fn scene<'a>(&self, tree: &'a GpuTree) -> Scene<'a> {
+    fn scene<'a>(&self, tree: &'a RenderTree) -> Scene<'a> {
         let mut scene = Scene::new(tree, self.params.bark_color, self.params.leaf_color);
         scene.show_leaves = self.show_leaves;
         scene
@@ -424,8 +469,7 @@ impl Viewer {
             && let Some(texture) = &self.texture
         {
             let scene = self.scene(tree);
-            self.renderer
-                .render_into(&scene, &self.view, &texture.view, size[0], size[1]);
+            render_timed(&self.renderer, &scene, &self.view, &texture.view, size);
             self.needs_render = false;
         }
     }
@@ -521,7 +565,10 @@ impl Viewer {
             ));
             ui.label(format!(
                 "generate {:.1} ms   mesh {:.1} ms   frame {:.1} ms   {}",
-                self.generate_ms, self.mesh_ms, self.frame_ms, self.renderer.adapter_name
+                self.generate_ms,
+                self.mesh_ms,
+                self.frame_ms,
+                self.renderer.adapter_name()
             ));
         }
     }
@@ -586,7 +633,7 @@ impl Viewer {
                     "generations": self.generations,
                     "wind_generations": wind_generations,
                     "triangles": test.triangles,
-                    "adapter": self.renderer.adapter_name,
+                    "adapter": self.renderer.adapter_name(),
                 });
                 let _ = std::fs::write(test.dir.join("viewer.json"), report.to_string());
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);

@@ -2,11 +2,11 @@
 //! street tree, a species) from every side. Drag turns and tilts, the wheel zooms.
 
 use super::{Screenshots, Turntable, ViewTexture};
-use anyhow::{Result, anyhow};
+use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use sylva_render::{GpuTree, Renderer, Scene, View};
+use sylva_render::{RenderTree, Renderer, Scene, View};
 
 /// Opens the window (blocks until it is closed).
 pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
@@ -19,12 +19,9 @@ pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    eframe::run_native(
-        "sylva-model",
-        options,
-        Box::new(move |cc| Ok(Box::new(ModelViewer::new(cc, model, self_test)?))),
-    )
-    .map_err(|e| anyhow!("the viewer window failed: {e}"))
+    super::window("sylva-model", options, move |cc| {
+        ModelViewer::new(cc, model, self_test)
+    })
 }
 
 /// Scripted run for tests: a picture from the front, one turned a quarter, a report, close.
@@ -38,7 +35,7 @@ struct SelfTest {
 struct ModelViewer {
     renderer: Renderer,
     render_state: egui_wgpu::RenderState,
-    tree: GpuTree,
+    tree: RenderTree,
     bark: [f32; 3],
     leaves: [f32; 3],
     show_leaves: bool,
@@ -137,7 +134,7 @@ impl ModelViewer {
                     "triangles": triangles,
                     "frame_ms": frame_ms,
                     "azimuth": self.turntable.azimuth,
-                    "adapter": self.renderer.adapter_name,
+                    "adapter": self.renderer.adapter_name(),
                 });
                 let _ = std::fs::write(test.dir.join("model-viewer.json"), report.to_string());
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);

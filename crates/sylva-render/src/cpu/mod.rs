@@ -1,0 +1,416 @@
+//! The CPU backend: draws a [`Frame`] with no graphics driver at all, as the GPU draws it.
+//!
+//! A shadow map is rasterised from the sun; then every triangle, line and point is rasterised
+//! into a visibility buffer of 4 samples per pixel (depth, and which primitive won), and each
+//! pixel is shaded once per primitive it shows, at the pixel's centre, as 4x multisampling
+//! does. Far stems and leaves (lines and points) are shaded as they are rasterised, since each
+//! covers only the samples its share of the pixel chooses.
+
+mod raster;
+mod shade;
+
+use crate::frame::{Draw, Frame, InstanceData, Part, Primitive, SHADOW_SIZE};
+use crate::props::Vertex;
+use crate::tree::FlatVertex;
+use glam::{Mat4, Vec2, Vec3, Vec4};
+use raster::{Grid, SAMPLE_POSITIONS, Setup};
+use rayon::prelude::*;
+use shade::{Fragment, Light, ShadowMap};
+
+const SAMPLES: usize = 4;
+/// A sample no primitive covers.
+const EMPTY: u64 = u64::MAX;
+/// Keys with this bit hold the index of a colour shaded while rasterising (lines, points);
+/// others hold a batch (draw and copy) and a triangle.
+const FLAT: u64 = 1 << 63;
+
+/// The vertices (and indices) one draw reads.
+enum Geometry<'a> {
+    Mesh {
+        vertices: &'a [Vertex],
+        indices: &'a [u32],
+    },
+    Flat(&'a [FlatVertex]),
+}
+
+fn geometry<'a>(frame: &'a Frame<'a>, d: &Draw<'a>) -> Geometry<'a> {
+    let mesh = |m: &'a crate::tree::MeshData| Geometry::Mesh {
+        vertices: &m.vertices,
+        indices: &m.indices,
+    };
+    match d.part {
+        Part::Mesh { tree, leaves } => mesh(if leaves {
+            &tree.data.leaves
+        } else {
+            &tree.data.bark
+        }),
+        Part::LodTriangles { tree, list } => Geometry::Mesh {
+            vertices: if list == 3 {
+                &tree.data.leaves.vertices
+            } else {
+                &tree.data.bark.vertices
+            },
+            indices: tree.data.lod.as_ref().map_or(&[], |l| &l.indices[list]),
+        },
+        Part::LodFlat { tree, list } => {
+            Geometry::Flat(tree.data.lod.as_ref().map_or(&[], |l| &l.points[list]))
+        }
+        Part::Ground => Geometry::Mesh {
+            vertices: &frame.ground.vertices,
+            indices: &frame.ground.indices,
+        },
+        Part::Person => Geometry::Mesh {
+            vertices: &frame.person.vertices,
+            indices: &frame.person.indices,
+        },
+    }
+}
+
+/// Clip positions of one copy's vertices, computed on first use.
+struct ClipCache {
+    clip: Vec<Vec4>,
+    stamp: Vec<u32>,
+    now: u32,
+}
+
+impl ClipCache {
+    fn new() -> Self {
+        Self {
+            clip: Vec::new(),
+            stamp: Vec::new(),
+            now: 0,
+        }
+    }
+
+    /// Forgets the last copy; `n` vertices follow.
+    fn reset(&mut self, n: usize) {
+        if self.stamp.len() < n {
+            self.stamp.resize(n, 0);
+            self.clip.resize(n, Vec4::ZERO);
+        }
+        self.now = self.now.wrapping_add(1);
+        if self.now == 0 {
+            self.stamp.fill(0);
+            self.now = 1;
+        }
+    }
+
+    #[inline]
+    fn get(&mut self, i: usize, f: impl FnOnce() -> Vec4) -> Vec4 {
+        if self.stamp[i] != self.now {
+            self.stamp[i] = self.now;
+            self.clip[i] = f();
+        }
+        self.clip[i]
+    }
+}
+
+fn shadow_map(frame: &Frame, light: Mat4) -> ShadowMap {
+    let size = SHADOW_SIZE;
+    let grid = Grid {
+        width: size,
+        height: size,
+        samples: 1,
+    };
+    let mut depth = vec![1.0f32; (size * size) as usize];
+    let mut cache = ClipCache::new();
+    for d in frame.draws.iter().filter(|d| !d.shadow.is_empty()) {
+        let geometry = geometry(frame, d);
+        for copy in d.instances.clone() {
+            let instance = &frame.instances[copy as usize];
+            let mut write = |i: usize, z: f32| {
+                if z < depth[i] {
+                    depth[i] = z;
+                }
+            };
+            match geometry {
+                Geometry::Mesh { vertices, indices } => {
+                    cache.reset(vertices.len());
+                    let range = clamp_range(&d.shadow, indices.len());
+                    for t in indices[range].chunks_exact(3) {
+                        let c = [t[0], t[1], t[2]].map(|i| {
+                            cache.get(i as usize, || {
+                                let p = Vec3::from(vertices[i as usize].position);
+                                light * instance.place(p).extend(1.0)
+                            })
+                        });
+                        let Some(setup) = Setup::new(c) else { continue };
+                        // The pipeline's slope bias: 2 units of the depth format's precision
+                        // at this depth, plus twice the plane's steepest slope per texel.
+                        let zmax = c.iter().map(|v| v.z.abs()).fold(0.0f32, f32::max);
+                        let unit = (2.0f32).powi(exponent(zmax) - 23);
+                        let slope = setup.depth_slope() * (2.0 / size as f32);
+                        let bias = 2.0 * unit + 2.0 * slope.x.abs().max(slope.y.abs());
+                        grid.triangle(&setup, &c, |i, z, _| write(i, z + bias));
+                    }
+                }
+                Geometry::Flat(points) => {
+                    let range = clamp_range(&d.shadow, points.len());
+                    let clip =
+                        |v: &FlatVertex| light * instance.place(Vec3::from(v.position)).extend(1.0);
+                    let size = size as usize;
+                    if d.primitive == Primitive::Lines {
+                        for pair in points[range].chunks_exact(2) {
+                            grid.line(clip(&pair[0]), clip(&pair[1]), |x, y, z, _| {
+                                write(y as usize * size + x as usize, z)
+                            });
+                        }
+                    } else {
+                        for p in &points[range] {
+                            if let Some((x, y, z)) = grid.point(clip(p)) {
+                                write(y as usize * size + x as usize, z);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    ShadowMap { size, depth }
+}
+
+/// The binary exponent of a positive float (0 for 0).
+fn exponent(x: f32) -> i32 {
+    if x <= 0.0 {
+        0
+    } else {
+        ((x.to_bits() >> 23) & 0xff) as i32 - 127
+    }
+}
+
+/// `range` cut to a list of `len` items (a stale range never reads past the end).
+fn clamp_range(range: &std::ops::Range<u32>, len: usize) -> std::ops::Range<usize> {
+    let end = (range.end as usize).min(len);
+    (range.start as usize).min(end)..end
+}
+
+/// The visibility buffer: per sample, the nearest depth and what lies there.
+struct Samples {
+    depth: Vec<f32>,
+    key: Vec<u64>,
+}
+
+impl Samples {
+    #[inline]
+    fn test(&mut self, i: usize, z: f32, key: u64) {
+        if z < self.depth[i] {
+            self.depth[i] = z;
+            self.key[i] = key;
+        }
+    }
+}
+
+/// Draws `frame` into a `width` x `height` picture (RGBA, sRGB, rows from the top).
+pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
+    let g = &frame.globals;
+    let view_proj = Mat4::from_cols_array_2d(&g.view_proj);
+    let light_view_proj = Mat4::from_cols_array_2d(&g.light_view_proj);
+    let shadow = shadow_map(frame, light_view_proj);
+    let light = Light {
+        globals: g,
+        light_view_proj,
+        shadow: &shadow,
+    };
+    let grid = Grid {
+        width,
+        height,
+        samples: SAMPLES,
+    };
+    let n = (width * height) as usize * SAMPLES;
+    let mut samples = Samples {
+        depth: vec![1.0; n],
+        key: vec![EMPTY; n],
+    };
+    let mut flat_colours: Vec<Vec3> = Vec::new();
+    let mut batches: Vec<(usize, u32)> = Vec::new();
+    let mut cache = ClipCache::new();
+    for (draw_index, d) in frame.draws.iter().enumerate() {
+        if d.range.is_empty() {
+            continue;
+        }
+        let geometry = geometry(frame, d);
+        let material = &frame.materials[d.material];
+        for copy in d.instances.clone() {
+            let instance = &frame.instances[copy as usize];
+            let batch = batches.len() as u64;
+            batches.push((draw_index, copy));
+            match geometry {
+                Geometry::Mesh { vertices, indices } => {
+                    cache.reset(vertices.len());
+                    let range = clamp_range(&d.range, indices.len());
+                    let first = range.start / 3;
+                    for (k, t) in indices[range].chunks_exact(3).enumerate() {
+                        let c = [t[0], t[1], t[2]].map(|i| {
+                            cache.get(i as usize, || {
+                                let p = Vec3::from(vertices[i as usize].position);
+                                view_proj * instance.place(p).extend(1.0)
+                            })
+                        });
+                        let Some(setup) = Setup::new(c) else { continue };
+                        let key = batch << 32 | (first + k) as u64;
+                        grid.triangle(&setup, &c, |i, z, _| samples.test(i, z, key));
+                    }
+                }
+                Geometry::Flat(points) => {
+                    let range = clamp_range(&d.range, points.len());
+                    let stands_for = instance.stands_for[0];
+                    let mut fragment = |x: u32, y: u32, z: f32, world: Vec3, v: &FlatVertex| {
+                        let direction = instance.turn(
+                            Vec3::new(v.normal[0] as f32, v.normal[1] as f32, v.normal[2] as f32)
+                                / 127.0,
+                        );
+                        let size = Vec3::new(v.size, stands_for, instance.place[3]);
+                        let (lit, cover) = light.flat(material, world, direction, size);
+                        let mask = shade::coverage_mask(cover, shade::world_seed(world));
+                        if mask == 0 {
+                            return;
+                        }
+                        let key = FLAT | flat_colours.len() as u64;
+                        flat_colours.push(lit);
+                        let base = (y * width + x) as usize * SAMPLES;
+                        for s in 0..SAMPLES {
+                            if mask & (1 << s) != 0 {
+                                samples.test(base + s, z, key);
+                            }
+                        }
+                    };
+                    let world = |v: &FlatVertex| instance.place(Vec3::from(v.position));
+                    if d.primitive == Primitive::Lines {
+                        for pair in points[range].chunks_exact(2) {
+                            let (a, b) = (world(&pair[0]), world(&pair[1]));
+                            let (ca, cb) = (view_proj * a.extend(1.0), view_proj * b.extend(1.0));
+                            grid.line(ca, cb, |x, y, z, t| {
+                                fragment(x, y, z, a + (b - a) * t, &pair[0])
+                            });
+                        }
+                    } else {
+                        for p in &points[range] {
+                            let w = world(p);
+                            if let Some((x, y, z)) = grid.point(view_proj * w.extend(1.0)) {
+                                fragment(x, y, z, w, p);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let shader = Shader {
+        frame,
+        light: &light,
+        view_proj,
+        grid,
+        batches: &batches,
+        flat_colours: &flat_colours,
+    };
+    let mut rgba = vec![0u8; (width * height * 4) as usize];
+    rgba.par_chunks_mut(width as usize * 4)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for x in 0..width {
+                let base = (y * width as usize + x as usize) * SAMPLES;
+                let colour = shader.pixel(x, y as u32, &samples.key[base..base + SAMPLES]);
+                row[x as usize * 4..][..4].copy_from_slice(&encode_srgb(colour));
+            }
+        });
+    rgba
+}
+
+fn encode_srgb(c: Vec4) -> [u8; 4] {
+    let s = |c: f32| {
+        let c = c.clamp(0.0, 1.0);
+        let e = if c <= 0.0031308 {
+            c * 12.92
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        };
+        (e * 255.0).round() as u8
+    };
+    [
+        s(c.x),
+        s(c.y),
+        s(c.z),
+        (c.w.clamp(0.0, 1.0) * 255.0).round() as u8,
+    ]
+}
+
+/// Shades the visibility buffer.
+struct Shader<'a> {
+    frame: &'a Frame<'a>,
+    light: &'a Light<'a>,
+    view_proj: Mat4,
+    grid: Grid,
+    batches: &'a [(usize, u32)],
+    flat_colours: &'a [Vec3],
+}
+
+impl Shader<'_> {
+    /// A pixel's linear colour: the mean of its samples, each distinct primitive shaded once.
+    fn pixel(&self, x: u32, y: u32, keys: &[u64]) -> Vec4 {
+        let mut sum = Vec4::ZERO;
+        for (s, &key) in keys.iter().enumerate() {
+            if keys[..s].contains(&key) {
+                continue;
+            }
+            let count = keys[s..].iter().filter(|&&k| k == key).count() as f32;
+            let colour = match key {
+                EMPTY => Vec4::from(self.frame.clear),
+                k if k & FLAT != 0 => self.flat_colours[(k & !FLAT) as usize].extend(1.0),
+                k => self.triangle(x, y, s, k).extend(1.0),
+            };
+            sum += colour * count;
+        }
+        sum / SAMPLES as f32
+    }
+
+    /// The colour of triangle `key` at the centre of pixel (x, y), or at its sample `s` where
+    /// the centre lies behind the eye in the triangle's plane.
+    fn triangle(&self, x: u32, y: u32, s: usize, key: u64) -> Vec3 {
+        let (draw, copy) = self.batches[(key >> 32) as usize];
+        let d = &self.frame.draws[draw];
+        let instance: &InstanceData = &self.frame.instances[copy as usize];
+        let Geometry::Mesh { vertices, indices } = geometry(self.frame, d) else {
+            return Vec3::ZERO;
+        };
+        let t = (key & 0xffff_ffff) as usize * 3;
+        let v = [0, 1, 2].map(|k| &vertices[indices[t + k] as usize]);
+        let world = v.map(|v| instance.place(Vec3::from(v.position)));
+        let clip = world.map(|w| self.view_proj * w.extend(1.0));
+        let Some(setup) = Setup::new(clip) else {
+            return Vec3::ZERO;
+        };
+        let pixel = Vec2::new(x as f32, y as f32);
+        let at = |p: Vec2| setup.barycentric(self.grid.ndc(p));
+        let (centre, b) = match at(pixel + 0.5) {
+            Some(b) => (pixel + 0.5, b),
+            None => {
+                let p = pixel + SAMPLE_POSITIONS[s];
+                (p, at(p).unwrap_or(Vec3::splat(1.0 / 3.0)))
+            }
+        };
+        let interpolate = |b: Vec3| world[0] * b.x + world[1] * b.y + world[2] * b.z;
+        let position = interpolate(b);
+        let material = &self.frame.materials[d.material];
+        let fwidth = if shade::is_ground(material) {
+            // fwidth: the ground's movement to the next pixel across and down.
+            let step = |o: Vec2| at(centre + o).map_or(Vec3::ZERO, |b| interpolate(b) - position);
+            let (dx, dy) = (step(Vec2::X), step(Vec2::Y));
+            Vec2::new(dx.x.abs() + dy.x.abs(), dx.y.abs() + dy.y.abs())
+        } else {
+            Vec2::ZERO
+        };
+        let normal = v
+            .iter()
+            .zip([b.x, b.y, b.z])
+            .map(|(v, w)| instance.turn(Vec3::from(v.normal)) * w)
+            .sum();
+        let fragment = Fragment {
+            world: position,
+            normal,
+            shade: v[0].shade * b.x + v[1].shade * b.y + v[2].shade * b.z,
+            front: setup.front,
+            fwidth,
+        };
+        self.light.surface(material, &fragment)
+    }
+}

@@ -1,0 +1,388 @@
+//! One frame, planned without a GPU: the lighting, the copies of each tree that are in view,
+//! what each copy draws at its range, and the props. The GPU records this plan into passes;
+//! the CPU rasteriser draws the same plan, so both backends show the same picture.
+
+use crate::camera::Camera;
+use crate::props::{PropMesh, ground, person};
+use crate::scene::{FrameStats, Placement, Scene};
+use crate::tree::RenderTree;
+use glam::Vec3;
+use glam::camera::rh::proj::directx;
+use glam::camera::rh::view::look_at_mat4;
+
+/// Side of the square shadow map, texels.
+pub(crate) const SHADOW_SIZE: u32 = 2048;
+/// Background (sRGB): a pale sky.
+pub const SKY_SRGB: [f32; 3] = [0.80, 0.87, 0.94];
+const GROUND_SRGB: [f32; 3] = [0.55, 0.52, 0.45];
+const PERSON_SRGB: [f32; 3] = [0.35, 0.38, 0.45];
+
+/// What the shaders read for the whole frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Globals {
+    pub view_proj: [[f32; 4]; 4],
+    pub light_view_proj: [[f32; 4]; 4],
+    pub sun_dir: [f32; 4],
+    pub sun_color: [f32; 4],
+    pub sky_color: [f32; 4],
+    pub ground_bounce: [f32; 4],
+    /// x: shadow map texel size, y: depth bias.
+    pub shadow: [f32; 4],
+    /// xyz: the eye; w: pixels per metre at 1 m from it.
+    pub eye: [f32; 4],
+}
+
+/// A surface's linear colour and kind (x: 0 opaque, 1 leaf, 2 ground with its grid).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Material {
+    pub color: [f32; 4],
+    pub kind: [f32; 4],
+}
+
+pub(crate) const KIND_OPAQUE: f32 = 0.0;
+pub(crate) const KIND_LEAF: f32 = 1.0;
+pub(crate) const KIND_GROUND: f32 = 2.0;
+
+/// A copy of a tree as the vertex shader reads it: offset and scale, cos and sin of the turn.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct InstanceData {
+    pub place: [f32; 4],
+    pub turn: [f32; 2],
+    /// Lines and points: how many items each drawn one stands for (items not meshed / items
+    /// drawn flat), so that together they cover what the whole list would.
+    pub stands_for: [f32; 2],
+}
+
+impl From<&Placement> for InstanceData {
+    fn from(p: &Placement) -> Self {
+        let (s, c) = p.turn.sin_cos();
+        Self {
+            place: [p.position.x, p.position.y, p.position.z, p.scale],
+            turn: [c, s],
+            stands_for: [1.0, 0.0],
+        }
+    }
+}
+
+impl InstanceData {
+    /// Where a point of the tree lands.
+    pub fn place(&self, p: Vec3) -> Vec3 {
+        Vec3::from_slice(&self.place[..3]) + self.place[3] * self.turn(p)
+    }
+
+    /// A direction turned with the copy.
+    pub fn turn(&self, v: Vec3) -> Vec3 {
+        let [c, s] = self.turn;
+        Vec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Primitive {
+    Triangles,
+    Lines,
+    Points,
+}
+
+/// Which vertices (and indices) a draw reads.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Part<'a> {
+    /// A tree's whole bark or leaf mesh.
+    Mesh {
+        tree: &'a RenderTree,
+        leaves: bool,
+    },
+    /// One rank-major list's triangles (indices into the bark, or for list 3 the leaves).
+    LodTriangles {
+        tree: &'a RenderTree,
+        list: usize,
+    },
+    /// One list's line (stems) or point (leaves) vertices.
+    LodFlat {
+        tree: &'a RenderTree,
+        list: usize,
+    },
+    Ground,
+    Person,
+}
+
+/// One draw call: a range of indexed triangles, or of line/point vertices, for a range of
+/// instances (tree copies; the props use instance 0, which stands at the origin).
+#[derive(Clone, Debug)]
+pub(crate) struct Draw<'a> {
+    pub primitive: Primitive,
+    pub part: Part<'a>,
+    pub range: std::ops::Range<u32>,
+    /// What the shadow pass draws of the same vertices; empty for what casts no shadow.
+    pub shadow: std::ops::Range<u32>,
+    pub instances: std::ops::Range<u32>,
+    /// Index into [`Frame::materials`].
+    pub material: usize,
+}
+
+impl Draw<'_> {
+    /// Primitives this draw makes.
+    fn primitives(&self) -> usize {
+        let n = self.range.len() * self.instances.len();
+        match self.primitive {
+            Primitive::Triangles => n / 3,
+            Primitive::Lines => n / 2,
+            Primitive::Points => n,
+        }
+    }
+}
+
+/// Everything one picture draws.
+#[derive(Debug)]
+pub(crate) struct Frame<'a> {
+    pub globals: Globals,
+    pub instances: Vec<InstanceData>,
+    /// Trees, then the person and the ground, in drawing order.
+    pub draws: Vec<Draw<'a>>,
+    pub materials: Vec<Material>,
+    pub ground: PropMesh,
+    pub person: PropMesh,
+    /// Linear RGBA the picture starts from.
+    pub clear: [f32; 4],
+    pub stats: FrameStats,
+}
+
+pub(crate) fn linear(c: [f32; 3]) -> [f32; 4] {
+    let l = |c: f32| {
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    [l(c[0]), l(c[1]), l(c[2]), 1.0]
+}
+
+/// The six planes of a view-projection's frustum (WebGPU depth 0..1), as `n.p + d >= 0` inside.
+fn frustum_planes(m: glam::Mat4) -> [glam::Vec4; 6] {
+    let (r0, r1, r2, r3) = (m.row(0), m.row(1), m.row(2), m.row(3));
+    [r3 + r0, r3 - r0, r3 + r1, r3 - r1, r2, r3 - r2].map(|p| p / p.truncate().length())
+}
+
+fn sphere_visible(planes: &[glam::Vec4; 6], centre: Vec3, radius: f32) -> bool {
+    planes
+        .iter()
+        .all(|p| p.truncate().dot(centre) + p.w >= -radius)
+}
+
+fn material(colour: [f32; 3], kind: f32) -> Material {
+    Material {
+        color: linear(colour),
+        kind: [kind, 0.0, 0.0, 0.0],
+    }
+}
+
+/// Plans `scene` seen by `camera` (at `azimuth` degrees) in a picture `height` pixels tall.
+pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height: u32) -> Frame<'a> {
+    let (lo, hi) = scene.bounds(azimuth);
+    let centre = (lo + hi) / 2.0;
+    let radius = ((hi - lo).length() / 2.0).max(0.5);
+    // The sun's view: orthographic over a disc of ground around the trees, where their
+    // shadows fall.
+    let reach = radius * 2.2;
+    let light_view = look_at_mat4(centre + scene.sun * radius * 4.0, centre, Vec3::Z);
+    let light_proj = directx::orthographic(-reach, reach, -reach, reach, 0.1, radius * 8.0);
+    let view_proj = camera.view_proj();
+    let globals = Globals {
+        view_proj: view_proj.to_cols_array_2d(),
+        light_view_proj: (light_proj * light_view).to_cols_array_2d(),
+        sun_dir: scene.sun.normalize().extend(0.0).to_array(),
+        sun_color: [2.6, 2.45, 2.2, 0.0],
+        sky_color: [0.42, 0.5, 0.62, 0.0],
+        ground_bounce: [0.18, 0.17, 0.14, 0.0],
+        shadow: [1.0 / SHADOW_SIZE as f32, 0.0015, 0.0, 0.0],
+        eye: camera
+            .eye
+            .extend(height as f32 / (2.0 * (camera.fov_y / 2.0).tan()))
+            .to_array(),
+    };
+    let mut materials: Vec<Material> = scene
+        .stands
+        .iter()
+        .flat_map(|s| [material(s.bark, KIND_OPAQUE), material(s.leaves, KIND_LEAF)])
+        .collect();
+    let planes = frustum_planes(view_proj);
+    let viewer = sylva::lod::Viewer {
+        image_height: height as f32,
+        fov_y: camera.fov_y.to_degrees(),
+        quality: scene.lod_quality,
+    };
+    // Instance 0 stands at the origin for the props; the trees' copies follow.
+    let mut instances = vec![InstanceData::from(&Placement::ORIGIN)];
+    let mut stats = FrameStats::default();
+    let mut draws: Vec<Draw> = Vec::new();
+    for (s, stand) in scene.stands.iter().enumerate() {
+        let (bark, leaves) = (2 * s, 2 * s + 1);
+        let tree = stand.tree;
+        let lod = tree.data.lod.as_ref();
+        stats.trees += stand.placements.len();
+        let first = instances.len() as u32;
+        for p in stand.placements.iter() {
+            let (c, r) = stand.sphere(p);
+            if !sphere_visible(&planes, c, r) {
+                continue;
+            }
+            stats.trees_drawn += 1;
+            let Some(lod) = lod.filter(|_| scene.use_lod) else {
+                instances.push(p.into());
+                continue;
+            };
+            // Each copy's range, and the picture it lands in, choose what of each list is
+            // drawn (Weber & Penn section 5); a copy scaled up looks as the original nearer.
+            let range = camera.eye.distance(c) / p.scale.max(1e-3);
+            for (list, choice) in lod.choice.iter().enumerate() {
+                let is_leaves = list == 3;
+                if is_leaves && !scene.show_leaves {
+                    continue;
+                }
+                let pick = choice.select(is_leaves, range, &viewer);
+                // One instance entry per list: its lines or points stand for its items that
+                // are neither meshed nor drawn.
+                let index = instances.len() as u32;
+                let per_item = if is_leaves { 1 } else { 2 };
+                let flat = (choice.items * per_item) as f32 - pick.points.start as f32;
+                instances.push(InstanceData {
+                    stands_for: [flat / pick.points.len().max(1) as f32, 0.0],
+                    ..p.into()
+                });
+                let material = if is_leaves { leaves } else { bark };
+                draws.push(Draw {
+                    primitive: Primitive::Triangles,
+                    part: Part::LodTriangles { tree, list },
+                    shadow: pick.triangles.clone(),
+                    range: pick.triangles,
+                    instances: index..index + 1,
+                    material,
+                });
+                draws.push(Draw {
+                    primitive: if is_leaves {
+                        Primitive::Points
+                    } else {
+                        Primitive::Lines
+                    },
+                    part: Part::LodFlat { tree, list },
+                    // Shadows of every leaf not meshed: points are cheap, and a crown shading
+                    // itself with only the drawn few would look too bright.
+                    shadow: if is_leaves {
+                        pick.points.start..choice.items as u32
+                    } else {
+                        pick.points.clone()
+                    },
+                    range: pick.points,
+                    instances: index..index + 1,
+                    material,
+                });
+            }
+        }
+        let copies = first..instances.len() as u32;
+        match (lod, scene.use_lod) {
+            (Some(_), true) => {}
+            (Some(lod), false) => {
+                // Every list whole: one instanced draw per list for every visible copy.
+                for (list, choice) in lod.choice.iter().enumerate() {
+                    if list == 3 && !scene.show_leaves {
+                        continue;
+                    }
+                    let all = 0..choice.index_prefix.last().copied().unwrap_or(0);
+                    draws.push(Draw {
+                        primitive: Primitive::Triangles,
+                        part: Part::LodTriangles { tree, list },
+                        range: all.clone(),
+                        shadow: all,
+                        instances: copies.clone(),
+                        material: if list == 3 { leaves } else { bark },
+                    });
+                }
+            }
+            (None, _) => {
+                // Whole meshes: one instanced draw per mesh for every visible copy.
+                let mut whole = |leaves_part: bool, material| {
+                    let data = if leaves_part {
+                        &tree.data.leaves
+                    } else {
+                        &tree.data.bark
+                    };
+                    let all = 0..data.indices.len() as u32;
+                    draws.push(Draw {
+                        primitive: Primitive::Triangles,
+                        part: Part::Mesh {
+                            tree,
+                            leaves: leaves_part,
+                        },
+                        range: all.clone(),
+                        shadow: all,
+                        instances: copies.clone(),
+                        material,
+                    });
+                };
+                whole(false, bark);
+                if scene.show_leaves {
+                    whole(true, leaves);
+                }
+            }
+        }
+    }
+    draws.retain(|d| !(d.instances.is_empty() || d.range.is_empty() && d.shadow.is_empty()));
+    for d in &draws {
+        stats.draw_calls += 1;
+        match d.primitive {
+            Primitive::Triangles => stats.triangles += d.primitives(),
+            Primitive::Lines => stats.lines += d.primitives(),
+            Primitive::Points => stats.points += d.primitives(),
+        }
+    }
+    let ground_mesh = ground(centre, radius * 3.0);
+    let person_mesh = person(scene.person_feet(azimuth), azimuth);
+    if scene.show_person {
+        materials.push(material(PERSON_SRGB, KIND_OPAQUE));
+        let all = 0..person_mesh.indices.len() as u32;
+        draws.push(Draw {
+            primitive: Primitive::Triangles,
+            part: Part::Person,
+            range: all.clone(),
+            shadow: all,
+            instances: 0..1,
+            material: materials.len() - 1,
+        });
+    }
+    if scene.show_ground {
+        // The ground receives shadows but casts none.
+        materials.push(material(GROUND_SRGB, KIND_GROUND));
+        draws.push(Draw {
+            primitive: Primitive::Triangles,
+            part: Part::Ground,
+            range: 0..ground_mesh.indices.len() as u32,
+            shadow: 0..0,
+            instances: 0..1,
+            material: materials.len() - 1,
+        });
+    }
+    // Transparent pictures clear to the leaves' colour, so that edge pixels blend towards it
+    // rather than towards the sky.
+    let clear = match (scene.transparent, scene.stands.first()) {
+        (true, Some(s)) => {
+            let [r, g, b, _] = linear(s.leaves);
+            [r * 0.5, g * 0.5, b * 0.5, 0.0]
+        }
+        (true, None) => [0.0; 4],
+        (false, _) => linear(SKY_SRGB),
+    };
+    Frame {
+        globals,
+        instances,
+        draws,
+        materials,
+        ground: ground_mesh,
+        person: person_mesh,
+        clear,
+        stats,
+    }
+}

@@ -1,0 +1,207 @@
+//! A tree's buffers on the GPU, cut to fit the device's largest buffer.
+
+use crate::props::Vertex;
+use crate::tree::{MeshData, TreeData};
+use wgpu::util::DeviceExt;
+
+/// One piece of a mesh: its own vertices and the triangles that use them.
+#[derive(Debug)]
+pub(crate) struct GpuPart {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub count: u32,
+}
+
+/// A mesh as one or more parts; more than one only when it outgrows `max_buffer_size`.
+#[derive(Debug)]
+pub(crate) struct GpuMesh {
+    pub parts: Vec<GpuPart>,
+}
+
+/// Per list of a range-degraded tree: triangle indices into the bark or leaf vertices, and
+/// line or point vertices.
+#[derive(Debug)]
+pub(crate) struct GpuLod {
+    pub indices: [wgpu::Buffer; 4],
+    pub points: [wgpu::Buffer; 4],
+}
+
+/// A tree's GPU buffers.
+#[derive(Debug)]
+pub(crate) struct TreeBuffers {
+    pub bark: GpuMesh,
+    pub leaves: GpuMesh,
+    pub lod: Option<GpuLod>,
+}
+
+/// A buffer with `contents`; wgpu refuses empty buffers, so an empty one keeps 12 zero bytes.
+pub(crate) fn buffer(
+    device: &wgpu::Device,
+    label: &str,
+    contents: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    let contents = if contents.is_empty() {
+        &[0u8; 12][..]
+    } else {
+        contents
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage,
+    })
+}
+
+/// Cuts `indices` into runs of whole triangles whose vertices and indices each fit in
+/// `max_bytes`, each with its own compact vertex list. One run when everything fits.
+pub(crate) fn split(
+    vertices: &[Vertex],
+    indices: &[u32],
+    max_bytes: u64,
+) -> Vec<(Vec<Vertex>, Vec<u32>)> {
+    let vertex_size = std::mem::size_of::<Vertex>() as u64;
+    let fits =
+        |v: usize, i: usize| v as u64 * vertex_size <= max_bytes && i as u64 * 4 <= max_bytes;
+    if fits(vertices.len(), indices.len()) {
+        return vec![(vertices.to_vec(), indices.to_vec())];
+    }
+    // At most this many vertices and indices per part, whole triangles (a triangle adds at
+    // most three new vertices).
+    let max_indices = ((max_bytes / 4) as usize / 3 * 3).max(3);
+    let max_vertices = ((max_bytes / vertex_size) as usize).max(3);
+    let mut parts = Vec::new();
+    let mut remap = vec![u32::MAX; vertices.len()];
+    let mut part = (Vec::new(), Vec::new());
+    for triangle in indices.chunks_exact(3) {
+        if part.1.len() + 3 > max_indices || part.0.len() + 3 > max_vertices {
+            remap.fill(u32::MAX);
+            parts.push(std::mem::take(&mut part));
+        }
+        for &i in triangle {
+            let slot = &mut remap[i as usize];
+            if *slot == u32::MAX {
+                *slot = part.0.len() as u32;
+                part.0.push(vertices[i as usize]);
+            }
+            part.1.push(*slot);
+        }
+    }
+    if !part.1.is_empty() {
+        parts.push(part);
+    }
+    parts
+}
+
+fn upload_mesh(device: &wgpu::Device, label: &str, mesh: &MeshData, max_bytes: u64) -> GpuMesh {
+    let parts = split(&mesh.vertices, &mesh.indices, max_bytes)
+        .into_iter()
+        .map(|(v, i)| GpuPart {
+            // Empty buffers get a few zero bytes (see `buffer`): a tree stored for range
+            // degradation has vertices but no triangles of its own (its lists hold them).
+            vertices: buffer(
+                device,
+                label,
+                bytemuck::cast_slice(&v),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: buffer(
+                device,
+                label,
+                bytemuck::cast_slice(&i),
+                wgpu::BufferUsages::INDEX,
+            ),
+            count: i.len() as u32,
+        })
+        .collect();
+    GpuMesh { parts }
+}
+
+/// Uploads `data`. A tree stored for range degradation must fit whole in one buffer per mesh,
+/// since its lists index the whole mesh: `None` when it does not.
+pub(crate) fn upload(
+    device: &wgpu::Device,
+    data: &TreeData,
+    max_bytes: u64,
+) -> Option<TreeBuffers> {
+    let bark = upload_mesh(device, "bark", &data.bark, max_bytes);
+    let leaves = upload_mesh(device, "leaves", &data.leaves, max_bytes);
+    let lod = match &data.lod {
+        None => None,
+        Some(lod) => {
+            let too_big = |bytes: usize| bytes as u64 > max_bytes;
+            // Its lists index each mesh whole: one part each (none when the vertices alone
+            // are over the limit).
+            if bark.parts.len() != 1
+                || leaves.parts.len() != 1
+                || lod.indices.iter().any(|i| too_big(i.len() * 4))
+                || lod
+                    .points
+                    .iter()
+                    .any(|p| too_big(std::mem::size_of_val(p.as_slice())))
+            {
+                return None;
+            }
+            Some(GpuLod {
+                indices: std::array::from_fn(|i| {
+                    buffer(
+                        device,
+                        "lod indices",
+                        bytemuck::cast_slice(&lod.indices[i]),
+                        wgpu::BufferUsages::INDEX,
+                    )
+                }),
+                points: std::array::from_fn(|i| {
+                    buffer(
+                        device,
+                        "lod points",
+                        bytemuck::cast_slice(&lod.points[i]),
+                        wgpu::BufferUsages::VERTEX,
+                    )
+                }),
+            })
+        }
+    };
+    Some(TreeBuffers { bark, leaves, lod })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vertex(i: u32) -> Vertex {
+        Vertex {
+            position: [i as f32, 0.0, 0.0],
+            normal: [0.0, 0.0, 1.0],
+            shade: 1.0,
+        }
+    }
+
+    #[test]
+    fn split_keeps_every_triangle_within_the_limit() {
+        // A strip of 1000 triangles over 502 vertices, cut to 1 kB parts.
+        let vertices: Vec<Vertex> = (0..502).map(vertex).collect();
+        let indices: Vec<u32> = (0..1000u32)
+            .flat_map(|t| [t / 2, t / 2 + 1, t / 2 + 2])
+            .collect();
+        let parts = split(&vertices, &indices, 1024);
+        assert!(parts.len() > 1);
+        let mut triangles = Vec::new();
+        for (v, i) in &parts {
+            assert!(std::mem::size_of_val(v.as_slice()) <= 1024);
+            assert!(i.len() * 4 <= 1024);
+            assert_eq!(i.len() % 3, 0);
+            triangles.extend(i.chunks(3).map(|t| {
+                t.iter()
+                    .map(|&k| v[k as usize].position[0])
+                    .collect::<Vec<_>>()
+            }));
+        }
+        let expected: Vec<Vec<f32>> = indices
+            .chunks(3)
+            .map(|t| t.iter().map(|&k| k as f32).collect())
+            .collect();
+        assert_eq!(triangles, expected, "same triangles, same order");
+        assert_eq!(split(&vertices, &indices, 1 << 20).len(), 1);
+    }
+}
