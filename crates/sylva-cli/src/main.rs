@@ -6,6 +6,7 @@ mod bench_growth;
 mod caption;
 mod commands;
 mod forest;
+mod glb_scene;
 mod grow;
 mod lines;
 mod lobes;

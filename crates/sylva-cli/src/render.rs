@@ -3,13 +3,15 @@
 
 use crate::args::{RenderArgs, RenderView};
 use crate::commands::{load_params, mesh_options};
+use crate::glb_scene::{GlbScene, read_glb_scene};
 use anyhow::{Context, Result, bail};
 use image::ImageEncoder;
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use sylva::export::write_atomically;
-use sylva::mesh::{Mesh, TreeMesh, mesh_tree};
+use sylva::mesh::{TreeMesh, mesh_tree};
 use sylva::{GenerateOptions, Wind};
-use sylva_render::{Picture, Renderer, Scene, View, ViewKind};
+use sylva_render::{Picture, RenderTree, Renderer, Scene, Stand, View, ViewKind};
 
 /// Parses `WxH`.
 pub fn parse_size(text: &str) -> Result<(u32, u32)> {
@@ -46,111 +48,6 @@ fn numbered(path: &Path, index: u32) -> PathBuf {
     path.with_file_name(format!("{stem}-{index:04}.png"))
 }
 
-/// A GLB read back: the mesh and the sRGB base colours of its bark and leaf materials.
-pub struct GlbTree {
-    pub mesh: TreeMesh,
-    pub bark: [f32; 3],
-    pub leaves: [f32; 3],
-}
-
-fn linear_to_srgb(c: f32) -> f32 {
-    if c <= 0.0031308 {
-        c * 12.92
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    }
-}
-
-/// Reads a GLB written by `sylva generate` (or any glTF with triangle primitives) back into a
-/// tree mesh: primitives whose material is named `leaves` are leaves, the rest bark; Y up in
-/// the file becomes Z up.
-pub fn read_glb(path: &Path) -> Result<GlbTree> {
-    let mut colours = (sylva::params::DEFAULT_BARK, sylva::params::DEFAULT_LEAVES);
-    let gltf = gltf::Gltf::open(path)
-        .with_context(|| format!("{}: not a readable glTF file", path.display()))?;
-    let base = path.parent().unwrap_or(Path::new("."));
-    let buffers = gltf::import_buffers(&gltf.document, Some(base), gltf.blob.clone())
-        .with_context(|| format!("{}: cannot load its buffers", path.display()))?;
-    let mut mesh = TreeMesh::default();
-    let z_up = |p: [f32; 3]| [p[0], -p[2], p[1]];
-    for node in gltf.document.nodes() {
-        let Some(gmesh) = node.mesh() else { continue };
-        let transform = glam::Mat4::from_cols_array_2d(&node.transform().matrix());
-        for prim in gmesh.primitives() {
-            if prim.mode() != gltf::mesh::Mode::Triangles {
-                continue;
-            }
-            let [r, g, b, _] = prim.material().pbr_metallic_roughness().base_color_factor();
-            let srgb = [r, g, b].map(linear_to_srgb);
-            let part: &mut Mesh = if prim.material().name() == Some("leaves") {
-                colours.1 = srgb;
-                &mut mesh.leaves
-            } else {
-                colours.0 = srgb;
-                &mut mesh.bark
-            };
-            let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
-            let Some(positions) = reader.read_positions() else {
-                continue;
-            };
-            let base = part.positions.len() as u32;
-            let positions: Vec<[f32; 3]> = positions
-                .map(|p| z_up(transform.transform_point3(glam::Vec3::from(p)).to_array()))
-                .collect();
-            let normals: Vec<[f32; 3]> = match reader.read_normals() {
-                Some(n) => n
-                    .map(|n| {
-                        z_up(
-                            transform
-                                .transform_vector3(glam::Vec3::from(n))
-                                .normalize_or_zero()
-                                .to_array(),
-                        )
-                    })
-                    .collect(),
-                None => vec![[0.0, 0.0, 1.0]; positions.len()],
-            };
-            let count = positions.len() as u32;
-            // COLOR_0 (a grown tree's leaf light classes) becomes the shade; the other
-            // primitives of a part with shades are fully lit.
-            let shades: Option<Vec<f32>> = reader
-                .read_colors(0)
-                .map(|c| c.into_rgb_f32().map(|c| c[1].clamp(0.0, 1.0)).collect())
-                .filter(|c: &Vec<f32>| c.len() == count as usize);
-            match shades {
-                Some(c) => {
-                    part.shades.resize(base as usize, 1.0);
-                    part.shades.extend(c);
-                }
-                None if !part.shades.is_empty() => {
-                    part.shades.resize(base as usize + count as usize, 1.0);
-                }
-                None => {}
-            }
-            part.positions.extend(positions);
-            part.normals.extend(normals);
-            part.uvs
-                .extend(std::iter::repeat_n([0.0, 0.0], count as usize));
-            match reader.read_indices() {
-                Some(idx) => part
-                    .indices
-                    .extend(idx.into_u32().filter(|&i| i < count).map(|i| i + base)),
-                None => part.indices.extend(base..base + count),
-            }
-            // Indices that pointed outside the primitive were dropped: keep whole triangles only.
-            part.indices.truncate(part.indices.len() / 3 * 3);
-        }
-    }
-    if mesh.triangle_count() == 0 {
-        bail!("{}: no triangles to render", path.display());
-    }
-    Ok(GlbTree {
-        mesh,
-        bark: colours.0,
-        leaves: colours.1,
-    })
-}
-
 fn view_of(v: RenderView) -> View {
     View::named(match v {
         RenderView::Front => ViewKind::Front,
@@ -166,42 +63,67 @@ fn contact_sheet(pictures: &[Picture]) -> Picture {
     crate::caption::tile(pictures, columns, 0, 255)
 }
 
-/// Where the pictured tree comes from.
-enum TreeSource {
-    /// A finished model, drawn as it is.
-    Glb(Box<GlbTree>),
-    /// A species, generated (and re-formed by the wind) for each frame.
-    Species(Box<sylva::TreeParams>),
+/// The trees of a GLB's scene on the renderer: each distinct mesh once, its copies placed.
+pub struct UploadedScene {
+    trees: Vec<RenderTree>,
+    glb: GlbScene,
 }
 
-impl TreeSource {
-    fn colours(&self) -> ([f32; 3], [f32; 3]) {
-        match self {
-            TreeSource::Glb(g) => (g.bark, g.leaves),
-            TreeSource::Species(p) => (p.bark_color, p.leaf_color),
+impl UploadedScene {
+    pub fn new(renderer: &Renderer, glb: GlbScene) -> Self {
+        let trees = glb
+            .models
+            .iter()
+            .map(|m| renderer.upload(&m.mesh))
+            .collect();
+        Self { trees, glb }
+    }
+
+    /// The scene with ground and person, as a single tree's picture shows them.
+    pub fn scene(&self) -> Scene<'_> {
+        let stands = self
+            .trees
+            .iter()
+            .zip(&self.glb.models)
+            .map(|(tree, m)| Stand {
+                tree,
+                bark: m.bark,
+                leaves: m.leaves,
+                placements: Cow::Borrowed(&m.placements),
+            })
+            .collect();
+        Scene {
+            show_person: true,
+            ..Scene::forest(stands)
         }
     }
 
-    fn mesh_at(&self, args: &RenderArgs, time: f64) -> Result<TreeMesh> {
-        match self {
-            TreeSource::Glb(g) => Ok(g.mesh.clone()),
-            TreeSource::Species(params) => {
-                let options = GenerateOptions {
-                    wind: Wind {
-                        speed: args.wind,
-                        gust: args.gust,
-                        time,
-                    },
-                    ..args.tree.options()
-                };
-                let skeleton = sylva::generate(params, &options)?;
-                Ok(mesh_tree(
-                    &skeleton,
-                    &mesh_options(params, args.tree.quality),
-                ))
-            }
-        }
+    /// Triangles drawn, every copy counted.
+    pub fn triangles(&self) -> usize {
+        self.glb.triangles_placed()
     }
+
+    /// The scene's bounds (metres, Z up).
+    pub fn bounds(&self) -> (glam::Vec3, glam::Vec3) {
+        self.scene().tree_bounds()
+    }
+}
+
+/// The tree a species makes at a moment of the wind.
+fn species_mesh(params: &sylva::TreeParams, args: &RenderArgs, time: f64) -> Result<TreeMesh> {
+    let options = GenerateOptions {
+        wind: Wind {
+            speed: args.wind,
+            gust: args.gust,
+            time,
+        },
+        ..args.tree.options()
+    };
+    let skeleton = sylva::generate(params, &options)?;
+    Ok(mesh_tree(
+        &skeleton,
+        &mesh_options(params, args.tree.quality),
+    ))
 }
 
 /// The headless renderer `SYLVA_RENDERER` asks for (by default the first that works: Vulkan,
@@ -265,54 +187,74 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             (width, height),
         );
     }
-    // One tree per frame: a GLB as it is, a species regenerated for each moment of the wind.
-    let frames = args.frames.unwrap_or(1);
-    let source = if is_glb {
-        TreeSource::Glb(Box::new(read_glb(Path::new(&args.input))?))
-    } else {
-        TreeSource::Species(Box::new(load_params(&args.input, &args.tree.set)?))
-    };
-    let colours = source.colours();
-    for frame in 0..frames {
+    // A GLB as it is; a species regenerated for each moment of the wind.
+    if is_glb {
+        let uploaded = UploadedScene::new(&renderer, read_glb_scene(Path::new(&args.input))?);
+        let scene = uploaded.scene();
+        let picture = draw(&renderer, args, scene, (width, height))?;
+        return write_picture(&args.output, &picture, uploaded.triangles(), &renderer);
+    }
+    let params = load_params(&args.input, &args.tree.set)?;
+    for frame in 0..args.frames.unwrap_or(1) {
         let time = args.time + frame as f64 / args.fps;
-        let mesh = source.mesh_at(args, time)?;
+        let mesh = species_mesh(&params, args, time)?;
         let tree = renderer.upload(&mesh);
-        let mut scene = Scene::new(&tree, colours.0, colours.1);
-        scene.show_leaves = !args.tree.no_leaves;
-        scene.show_ground = !args.bare;
-        scene.show_person = !args.bare;
-        let mut base = view_of(args.view);
-        base.fov_y = args.fov;
-        let picture = match args.turntable {
-            Some(n) => {
-                let views: Result<Vec<Picture>> = (0..n)
-                    .map(|i| {
-                        let view = View {
-                            azimuth: base.azimuth + 360.0 * i as f32 / n as f32,
-                            ..base
-                        };
-                        Ok(renderer.render(&scene, &view, width, height)?)
-                    })
-                    .collect();
-                contact_sheet(&views?)
-            }
-            None => renderer.render(&scene, &base, width, height)?,
-        };
+        let scene = Scene::new(&tree, params.bark_color, params.leaf_color);
+        let picture = draw(&renderer, args, scene, (width, height))?;
         let path = if args.frames.is_some() {
             numbered(&args.output, frame)
         } else {
             args.output.clone()
         };
-        encode_png(&path, picture.width, picture.height, &picture.rgba)?;
-        println!(
-            "wrote {} ({}x{}, {} triangles, {})",
-            path.display(),
-            picture.width,
-            picture.height,
-            tree.triangles,
-            renderer.adapter_name()
-        );
+        write_picture(&path, &picture, tree.triangles, &renderer)?;
     }
+    Ok(())
+}
+
+/// One view of `scene`, or a turntable sheet of several, as the flags ask.
+fn draw(
+    renderer: &Renderer,
+    args: &RenderArgs,
+    mut scene: Scene,
+    (width, height): (u32, u32),
+) -> Result<Picture> {
+    scene.show_leaves = !args.tree.no_leaves;
+    scene.show_ground = !args.bare;
+    scene.show_person = !args.bare;
+    let mut base = view_of(args.view);
+    base.fov_y = args.fov;
+    Ok(match args.turntable {
+        Some(n) => {
+            let views: Result<Vec<Picture>> = (0..n)
+                .map(|i| {
+                    let view = View {
+                        azimuth: base.azimuth + 360.0 * i as f32 / n as f32,
+                        ..base
+                    };
+                    Ok(renderer.render(&scene, &view, width, height)?)
+                })
+                .collect();
+            contact_sheet(&views?)
+        }
+        None => renderer.render(&scene, &base, width, height)?,
+    })
+}
+
+fn write_picture(
+    path: &Path,
+    picture: &Picture,
+    triangles: usize,
+    renderer: &Renderer,
+) -> Result<()> {
+    encode_png(path, picture.width, picture.height, &picture.rgba)?;
+    println!(
+        "wrote {} ({}x{}, {} triangles, {})",
+        path.display(),
+        picture.width,
+        picture.height,
+        triangles,
+        renderer.adapter_name()
+    );
     Ok(())
 }
 

@@ -292,9 +292,17 @@ impl Renderer {
         width: u32,
         height: u32,
     ) -> Result<FrameStats, RenderError> {
-        let gpu = self
-            .gpu()
-            .ok_or(RenderError::NeedsGpu("drawing into a window"))?;
+        let what = "drawing into a window";
+        let gpu = match (&self.gpu, self.gpu_failed.get()) {
+            (Some(g), None) => g,
+            (Some(_), Some(reason)) => {
+                return Err(RenderError::Gpu {
+                    what,
+                    message: reason.clone(),
+                });
+            }
+            (None, _) => return Err(RenderError::NeedsGpu(what)),
+        };
         let camera = scene.camera(view, width as f32 / height as f32);
         let frame = frame::plan(scene, &camera, view.azimuth, height);
         gpu.render_into(&frame, resolve, width, height)?;

@@ -145,8 +145,13 @@ impl ForestViewer {
         scene.use_lod = self.use_lod;
         scene.lod_quality = self.lod_quality;
         scene.show_leaves = self.show_leaves;
-        (self.stats, self.frame_ms) =
-            super::render_timed(&self.renderer, &scene, &self.view(), &texture.view, size);
+        (self.stats, self.frame_ms) = super::render_timed(
+            &self.renderer,
+            &self.render_state,
+            &scene,
+            &self.view(),
+            texture,
+        );
         self.needs_render = false;
     }
 

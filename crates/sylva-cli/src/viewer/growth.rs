@@ -253,8 +253,13 @@ impl GrowthViewer {
             return;
         };
         let view = self.view(size[0] as f32 / size[1] as f32);
-        let (_, ms) =
-            super::render_timed(&self.renderer, &self.scene(), &view, &texture.view, size);
+        let (_, ms) = super::render_timed(
+            &self.renderer,
+            &self.render_state,
+            &self.scene(),
+            &view,
+            texture,
+        );
         self.frame_ms = ms;
         self.needs_render = false;
     }

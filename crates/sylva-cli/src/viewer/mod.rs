@@ -94,6 +94,9 @@ fn window<A: eframe::App + 'static>(
 struct ViewTexture {
     /// sRGB view the renderer draws into.
     view: eframe::wgpu::TextureView,
+    drawn: eframe::wgpu::Texture,
+    /// The same bytes as unorm, which egui shows.
+    shown: eframe::wgpu::Texture,
     id: egui::TextureId,
     size: [u32; 2],
 }
@@ -124,28 +127,38 @@ fn ensure_texture(
         return false;
     }
     let device = &render_state.device;
-    let gpu_texture = device.create_texture(&eframe::wgpu::TextureDescriptor {
-        label: Some("tree view"),
-        size: eframe::wgpu::Extent3d {
-            width: size[0],
-            height: size[1],
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: eframe::wgpu::TextureDimension::D2,
-        format: sylva_render::PICTURE_FORMAT,
-        usage: eframe::wgpu::TextureUsages::RENDER_ATTACHMENT
-            | eframe::wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[eframe::wgpu::TextureFormat::Rgba8Unorm],
-    });
-    let view = gpu_texture.create_view(&Default::default());
-    // egui blends in gamma space: it must read the sRGB-encoded bytes as they are,
-    // through a plain unorm view, or the picture comes out too dark.
-    let egui_view = gpu_texture.create_view(&eframe::wgpu::TextureViewDescriptor {
-        format: Some(eframe::wgpu::TextureFormat::Rgba8Unorm),
-        ..Default::default()
-    });
+    let make = |label, format, usage| {
+        device.create_texture(&eframe::wgpu::TextureDescriptor {
+            label: Some(label),
+            size: eframe::wgpu::Extent3d {
+                width: size[0],
+                height: size[1],
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: eframe::wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    use eframe::wgpu::TextureUsages as U;
+    let drawn = make(
+        "tree view",
+        sylva_render::PICTURE_FORMAT,
+        U::RENDER_ATTACHMENT | U::COPY_SRC,
+    );
+    // egui blends in gamma space: it must read the sRGB-encoded bytes as they are, so the
+    // picture is copied into a plain unorm texture (a unorm view of the sRGB one would do,
+    // but OpenGL devices cannot make one), or it comes out too dark.
+    let shown = make(
+        "tree view (shown)",
+        eframe::wgpu::TextureFormat::Rgba8Unorm,
+        U::TEXTURE_BINDING | U::COPY_DST,
+    );
+    let view = drawn.create_view(&Default::default());
+    let egui_view = shown.create_view(&Default::default());
     let mut egui_renderer = render_state.renderer.write();
     let id = match &*texture {
         Some(old) => {
@@ -163,7 +176,13 @@ fn ensure_texture(
             eframe::wgpu::FilterMode::Linear,
         ),
     };
-    *texture = Some(ViewTexture { view, id, size });
+    *texture = Some(ViewTexture {
+        view,
+        drawn,
+        shown,
+        id,
+        size,
+    });
     true
 }
 
@@ -281,23 +300,33 @@ impl Screenshots {
     }
 }
 
-/// Draws `scene` into `target` and waits for the GPU, so that the time (ms) is the frame's,
+/// Draws `scene` into `texture` and waits for the GPU, so that the time (ms) is the frame's,
 /// not just its recording.
 fn render_timed(
     renderer: &Renderer,
+    render_state: &egui_wgpu::RenderState,
     scene: &Scene,
     view: &View,
-    target: &eframe::wgpu::TextureView,
-    size: [u32; 2],
+    texture: &ViewTexture,
 ) -> (sylva_render::FrameStats, f64) {
     let t = Instant::now();
-    let stats = match renderer.render_into(scene, view, target, size[0], size[1]) {
+    let [w, h] = texture.size;
+    let stats = match renderer.render_into(scene, view, &texture.view, w, h) {
         Ok(stats) => stats,
         Err(e) => {
             let _ = GPU_FAILURE.set(e.to_string());
             Default::default()
         }
     };
+    let mut encoder = render_state
+        .device
+        .create_command_encoder(&Default::default());
+    encoder.copy_texture_to_texture(
+        texture.drawn.as_image_copy(),
+        texture.shown.as_image_copy(),
+        texture.drawn.size(),
+    );
+    render_state.queue.submit([encoder.finish()]);
     if let Some(device) = renderer.device() {
         let _ = device.poll(eframe::wgpu::PollType::wait_indefinitely());
     }
@@ -469,7 +498,13 @@ impl Viewer {
             && let Some(texture) = &self.texture
         {
             let scene = self.scene(tree);
-            render_timed(&self.renderer, &scene, &self.view, &texture.view, size);
+            render_timed(
+                &self.renderer,
+                &self.render_state,
+                &scene,
+                &self.view,
+                texture,
+            );
             self.needs_render = false;
         }
     }

@@ -2,15 +2,16 @@
 //! street tree, a species) from every side. Drag turns and tilts, the wheel zooms.
 
 use super::{Screenshots, Turntable, ViewTexture};
+use crate::render::UploadedScene;
 use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use sylva_render::{RenderTree, Renderer, Scene, View};
+use sylva_render::{Renderer, View};
 
 /// Opens the window (blocks until it is closed).
 pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
-    let model = crate::render::read_glb(path)?;
+    let model = crate::glb_scene::read_glb_scene(path)?;
     let title = format!("Sylva: {}", path.display());
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -35,9 +36,8 @@ struct SelfTest {
 struct ModelViewer {
     renderer: Renderer,
     render_state: egui_wgpu::RenderState,
-    tree: RenderTree,
-    bark: [f32; 3],
-    leaves: [f32; 3],
+    /// The model's meshes, each once, with their copies.
+    model: UploadedScene,
     show_leaves: bool,
     turntable: Turntable,
     texture: Option<ViewTexture>,
@@ -49,17 +49,15 @@ struct ModelViewer {
 impl ModelViewer {
     fn new(
         cc: &eframe::CreationContext<'_>,
-        model: crate::render::GlbTree,
+        glb: crate::glb_scene::GlbScene,
         self_test: Option<PathBuf>,
     ) -> Result<Self> {
         let (renderer, render_state) = super::renderer_of(cc)?;
-        let tree = renderer.upload(&model.mesh);
+        let model = UploadedScene::new(&renderer, glb);
         Ok(Self {
             renderer,
             render_state,
-            tree,
-            bark: model.bark,
-            leaves: model.leaves,
+            model,
             show_leaves: true,
             turntable: Turntable::new(10.0),
             texture: None,
@@ -76,7 +74,7 @@ impl ModelViewer {
 
     /// Frames the model's bounds whatever its size, turned and zoomed by the user.
     fn view(&self, aspect: f32) -> View {
-        let (lo, hi) = (self.tree.lo, self.tree.hi);
+        let (lo, hi) = self.model.bounds();
         let size = hi - lo;
         let across = size.x.max(size.y).max(0.5) * 1.2;
         let height = hi.z.max(1.9) + 0.3;
@@ -95,17 +93,18 @@ impl ModelViewer {
         if !self.needs_render {
             return;
         }
-        let mut scene = Scene::new(&self.tree, self.bark, self.leaves);
+        let mut scene = self.model.scene();
         scene.show_leaves = self.show_leaves;
         let view = self.view(size[0] as f32 / size[1] as f32);
-        let (_, ms) = super::render_timed(&self.renderer, &scene, &view, &texture.view, size);
+        let (_, ms) =
+            super::render_timed(&self.renderer, &self.render_state, &scene, &view, texture);
         self.frame_ms = ms;
         self.needs_render = false;
     }
 
     fn self_test_step(&mut self, ctx: &egui::Context) {
         let settled = self.texture.is_some() && !self.needs_render;
-        let (triangles, frame_ms) = (self.tree.triangles, self.frame_ms);
+        let (triangles, frame_ms) = (self.model.triangles(), self.frame_ms);
         let Some(test) = &mut self.self_test else {
             return;
         };
@@ -151,10 +150,10 @@ impl eframe::App for ModelViewer {
                 if ui.checkbox(&mut self.show_leaves, "leaves").changed() {
                     self.needs_render = true;
                 }
-                let (lo, hi) = (self.tree.lo, self.tree.hi);
+                let (lo, hi) = self.model.bounds();
                 ui.label(format!(
                     "{} triangles   |   {:.2} m tall, {:.2} x {:.2} m across   |   {:.0} ms a frame   |   drag: turn and tilt   wheel: zoom",
-                    self.tree.triangles,
+                    self.model.triangles(),
                     hi.z,
                     hi.x - lo.x,
                     hi.y - lo.y,

@@ -151,15 +151,15 @@ fn shadow_map(frame: &Frame, light: Mat4) -> ShadowMap {
                     let size = size as usize;
                     if d.primitive == Primitive::Lines {
                         for pair in points[range].chunks_exact(2) {
-                            grid.line(clip(&pair[0]), clip(&pair[1]), |x, y, z, _| {
+                            grid.line(clip(&pair[0]), clip(&pair[1]), |x, y, z, _, _| {
                                 write(y as usize * size + x as usize, z)
                             });
                         }
                     } else {
                         for p in &points[range] {
-                            if let Some((x, y, z)) = grid.point(clip(p)) {
-                                write(y as usize * size + x as usize, z);
-                            }
+                            grid.point(clip(p), |x, y, z, _| {
+                                write(y as usize * size + x as usize, z)
+                            });
                         }
                     }
                 }
@@ -253,42 +253,21 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
                 }
                 Geometry::Flat(points) => {
                     let range = clamp_range(&d.range, points.len());
-                    let stands_for = instance.stands_for[0];
-                    let mut fragment = |x: u32, y: u32, z: f32, world: Vec3, v: &FlatVertex| {
-                        let direction = instance.turn(
-                            Vec3::new(v.normal[0] as f32, v.normal[1] as f32, v.normal[2] as f32)
-                                / 127.0,
-                        );
-                        let size = Vec3::new(v.size, stands_for, instance.place[3]);
-                        let (lit, cover) = light.flat(material, world, direction, size);
-                        let mask = shade::coverage_mask(cover, shade::world_seed(world));
-                        if mask == 0 {
-                            return;
-                        }
-                        let key = FLAT | flat_colours.len() as u64;
-                        flat_colours.push(lit);
-                        let base = (y * width + x) as usize * SAMPLES;
-                        for s in 0..SAMPLES {
-                            if mask & (1 << s) != 0 {
-                                samples.test(base + s, z, key);
-                            }
-                        }
+                    let flat = FlatDraw {
+                        light: &light,
+                        material,
+                        instance,
+                        view_proj,
+                        grid,
                     };
-                    let world = |v: &FlatVertex| instance.place(Vec3::from(v.position));
+                    let mut out = (&mut samples, &mut flat_colours);
                     if d.primitive == Primitive::Lines {
                         for pair in points[range].chunks_exact(2) {
-                            let (a, b) = (world(&pair[0]), world(&pair[1]));
-                            let (ca, cb) = (view_proj * a.extend(1.0), view_proj * b.extend(1.0));
-                            grid.line(ca, cb, |x, y, z, t| {
-                                fragment(x, y, z, a + (b - a) * t, &pair[0])
-                            });
+                            flat.line(&pair[0], &pair[1], &mut out);
                         }
                     } else {
                         for p in &points[range] {
-                            let w = world(p);
-                            if let Some((x, y, z)) = grid.point(view_proj * w.extend(1.0)) {
-                                fragment(x, y, z, w, p);
-                            }
+                            flat.point(p, &mut out);
                         }
                     }
                 }
@@ -332,6 +311,74 @@ fn encode_srgb(c: Vec4) -> [u8; 4] {
         s(c.z),
         (c.w.clamp(0.0, 1.0) * 255.0).round() as u8,
     ]
+}
+
+/// Far stems (lines) and leaves (points) of one copy of a tree.
+struct FlatDraw<'a> {
+    light: &'a Light<'a>,
+    material: &'a crate::frame::Material,
+    instance: &'a InstanceData,
+    view_proj: Mat4,
+    grid: Grid,
+}
+
+/// Where flat primitives go: the visibility buffer and the colours its flat keys point to.
+type FlatOut<'a> = (&'a mut Samples, &'a mut Vec<Vec3>);
+
+impl FlatDraw<'_> {
+    /// The colour and the share of a pixel of a line or point at `world` whose vertex is `v`,
+    /// stored under a new key.
+    fn lit(&self, world: Vec3, v: &FlatVertex, colours: &mut Vec<Vec3>) -> (u64, f32) {
+        let n = Vec3::new(v.normal[0] as f32, v.normal[1] as f32, v.normal[2] as f32) / 127.0;
+        let size = Vec3::new(v.size, self.instance.stands_for[0], self.instance.place[3]);
+        let (lit, cover) = self
+            .light
+            .flat(self.material, world, self.instance.turn(n), size);
+        colours.push(lit);
+        (FLAT | (colours.len() - 1) as u64, cover)
+    }
+
+    fn write(out: &mut FlatOut, pixel: (u32, u32), width: u32, z: f32, key: u64, mask: u32) {
+        let base = (pixel.1 * width + pixel.0) as usize * SAMPLES;
+        for s in 0..SAMPLES {
+            if mask & (1 << s) != 0 {
+                out.0.test(base + s, z, key);
+            }
+        }
+    }
+
+    /// A point: lit once; every pixel it touches shows the same samples of its share, as the
+    /// GPU's fragments of one point (same position, same seed) do.
+    fn point(&self, v: &FlatVertex, out: &mut FlatOut) {
+        let world = self.instance.place(Vec3::from(v.position));
+        let mut key = None;
+        self.grid
+            .point(self.view_proj * world.extend(1.0), |x, y, z, shape| {
+                let (k, cover) = *key.get_or_insert_with(|| self.lit(world, v, out.1));
+                let mask = shade::coverage_mask(cover, shade::world_seed(world)) & shape;
+                Self::write(out, (x, y), self.grid.width, z, k, mask);
+            });
+    }
+
+    /// A line: lit once at its middle (a far stem is a few pixels long); each pixel draws its
+    /// own share of samples, seeded by where along the line it lies.
+    fn line(&self, va: &FlatVertex, vb: &FlatVertex, out: &mut FlatOut) {
+        let (a, b) = (
+            self.instance.place(Vec3::from(va.position)),
+            self.instance.place(Vec3::from(vb.position)),
+        );
+        let (ca, cb) = (
+            self.view_proj * a.extend(1.0),
+            self.view_proj * b.extend(1.0),
+        );
+        let mut key = None;
+        self.grid.line(ca, cb, |x, y, z, t, shape| {
+            let (k, cover) = *key.get_or_insert_with(|| self.lit((a + b) / 2.0, va, out.1));
+            let seed = shade::world_seed(a + (b - a) * t);
+            let mask = shade::coverage_mask(cover, seed) & shape;
+            Self::write(out, (x, y), self.grid.width, z, k, mask);
+        });
+    }
 }
 
 /// Shades the visibility buffer.

@@ -220,49 +220,85 @@ impl Grid {
         }
     }
 
-    /// Calls `hit(pixel x, y, depth, t)` for each pixel of a one-pixel-wide line from `a` to
-    /// `b` (clip space), t being where along it (0 at a). Lines with an end behind the eye are
-    /// cut at the near plane.
-    pub fn line(&self, a: Vec4, b: Vec4, mut hit: impl FnMut(u32, u32, f32, f32)) {
-        let (a, b, t0, t1) = match clip_line(a, b) {
-            Some(v) => v,
-            None => return,
+    /// Calls `hit(pixel x, y, depth, t, samples)` for each pixel a one-pixel-wide line from
+    /// `a` to `b` (clip space) covers: a rectangle one pixel wide about the segment, as GPUs
+    /// draw lines with multisampling. `t` is where along the line the pixel's centre lies (0 at
+    /// `a`, in clip space), `samples` a bit per covered sample. Ends behind the eye are cut at
+    /// the near plane.
+    pub fn line(&self, a: Vec4, b: Vec4, mut hit: impl FnMut(u32, u32, f32, f32, u32)) {
+        let Some((a, b, t0, t1)) = clip_line(a, b) else {
+            return;
         };
         let (pa, pb) = (self.pixel(a.xy() / a.w), self.pixel(b.xy() / b.w));
         let (za, zb) = (a.z / a.w, b.z / b.w);
         let d = pb - pa;
-        let steps = d.x.abs().max(d.y.abs()).ceil().max(1.0);
-        if !steps.is_finite() || steps > 65536.0 {
+        let length2 = d.length_squared();
+        if !(1e-12..=1e10).contains(&length2) {
             return;
         }
-        let n = steps as u32;
-        // One pixel per step along the major axis, from pixel centre to pixel centre.
-        for k in 0..n {
-            let f = (k as f32 + 0.5) / steps;
-            let p = pa + d * f;
-            if p.x < 0.0 || p.y < 0.0 || p.x >= self.width as f32 || p.y >= self.height as f32 {
-                continue;
-            }
-            let z = za + (zb - za) * f;
-            if (0.0..=1.0).contains(&z) {
-                hit(p.x as u32, p.y as u32, z, t0 + (t1 - t0) * f);
+        let across = Vec2::new(-d.y, d.x) / length2.sqrt();
+        // Screen fraction s to clip fraction: z/w is linear on the screen, the rest is not.
+        let to_clip = |s: f32| {
+            let (ia, ib) = ((1.0 - s) / a.w, s / b.w);
+            t0 + (t1 - t0) * ib / (ia + ib)
+        };
+        let lo = (pa.min(pb) - 1.0).max(Vec2::ZERO);
+        let hi =
+            (pa.max(pb) + 1.0).min(Vec2::new(self.width as f32 - 1.0, self.height as f32 - 1.0));
+        let offsets = self.offsets();
+        for y in lo.y as u32..=hi.y.max(0.0) as u32 {
+            for x in lo.x as u32..=hi.x.max(0.0) as u32 {
+                let pixel = Vec2::new(x as f32, y as f32);
+                let mut samples = 0u32;
+                for (k, o) in offsets.iter().enumerate() {
+                    let q = pixel + *o - pa;
+                    let s = q.dot(d) / length2;
+                    if (0.0..1.0).contains(&s) && q.dot(across).abs() <= 0.5 {
+                        samples |= 1 << k;
+                    }
+                }
+                if samples == 0 {
+                    continue;
+                }
+                let s = ((pixel + 0.5 - pa).dot(d) / length2).clamp(0.0, 1.0);
+                let z = za + (zb - za) * s;
+                if (0.0..=1.0).contains(&z) {
+                    hit(x, y, z, to_clip(s), samples);
+                }
             }
         }
     }
 
-    /// The pixel a point (clip space) lands in, with its depth.
-    pub fn point(&self, c: Vec4) -> Option<(u32, u32, f32)> {
+    /// Calls `hit(pixel x, y, depth, samples)` for each pixel a point (clip space) covers: a
+    /// one-pixel square about it, over up to four pixels.
+    pub fn point(&self, c: Vec4, mut hit: impl FnMut(u32, u32, f32, u32)) {
         if c.w <= 0.0 {
-            return None;
+            return;
         }
         let p = self.pixel(c.xy() / c.w);
         let z = c.z / c.w;
-        (p.x >= 0.0
-            && p.y >= 0.0
-            && p.x < self.width as f32
-            && p.y < self.height as f32
-            && (0.0..=1.0).contains(&z))
-        .then_some((p.x as u32, p.y as u32, z))
+        if !p.is_finite() || !(0.0..=1.0).contains(&z) {
+            return;
+        }
+        let offsets = self.offsets();
+        let (x0, y0) = ((p.x - 0.5).floor(), (p.y - 0.5).floor());
+        for y in [y0, y0 + 1.0] {
+            for x in [x0, x0 + 1.0] {
+                if x < 0.0 || y < 0.0 || x >= self.width as f32 || y >= self.height as f32 {
+                    continue;
+                }
+                let mut samples = 0u32;
+                for (k, o) in offsets.iter().enumerate() {
+                    let q = Vec2::new(x, y) + *o - p;
+                    if q.x.abs() <= 0.5 && q.y.abs() <= 0.5 {
+                        samples |= 1 << k;
+                    }
+                }
+                if samples != 0 {
+                    hit(x as u32, y as u32, z, samples);
+                }
+            }
+        }
     }
 }
 
@@ -347,15 +383,40 @@ mod tests {
     }
 
     #[test]
-    fn lines_step_one_pixel_per_column() {
+    fn a_line_covers_one_pixel_of_width_along_its_length() {
+        // 9 pixels long, across the middle of a 10 x 10 picture, slanted.
         let g = grid(10, 10);
-        let mut pixels = vec![];
+        let mut covered = 0;
         g.line(
-            Vec4::new(-0.9, 0.0, 0.5, 1.0),
-            Vec4::new(0.9, 0.0, 0.5, 1.0),
-            |x, y, _, _| pixels.push((x, y)),
+            Vec4::new(-0.9, -0.3, 0.5, 1.0),
+            Vec4::new(0.9, 0.3, 0.5, 1.0),
+            |_, _, z, t, samples| {
+                assert!((z - 0.5).abs() < 1e-6 && (0.0..=1.0).contains(&t));
+                covered += samples.count_ones();
+            },
         );
-        assert_eq!(pixels.len(), 9);
-        assert!(pixels.windows(2).all(|w| w[1].0 == w[0].0 + 1));
+        // Area: length x 1 pixel, in samples of a quarter pixel each.
+        let length = (9.0f32 * 9.0 + 3.0 * 3.0).sqrt();
+        let expected = length * 4.0;
+        assert!(
+            (covered as f32 - expected).abs() < 6.0,
+            "{covered} vs {expected}"
+        );
+    }
+
+    #[test]
+    fn a_point_covers_one_pixel_of_samples() {
+        let g = grid(8, 8);
+        for p in [
+            Vec2::new(0.1, 0.2),
+            Vec2::new(-0.37, 0.55),
+            Vec2::new(0.0, 0.0),
+        ] {
+            let mut covered = 0;
+            g.point(p.extend(0.5).extend(1.0), |_, _, _, samples| {
+                covered += samples.count_ones()
+            });
+            assert_eq!(covered, 4, "{p}");
+        }
     }
 }

@@ -1,0 +1,273 @@
+//! Reading a GLB back for pictures and the model viewer: each distinct mesh once, with every
+//! node that shows it as a placement, so a forest of a thousand copies of three trees costs
+//! three trees of memory and draws instanced.
+
+use anyhow::{Context, Result, bail};
+use glam::{Mat4, Vec3};
+use std::collections::HashMap;
+use std::path::Path;
+use sylva::mesh::{Mesh, TreeMesh};
+use sylva_render::Placement;
+
+/// Deepest node hierarchy read, and most nodes visited: a malformed file (a node listed as its
+/// own child) stops here instead of looping.
+const MAX_DEPTH: usize = 64;
+const MAX_NODES: usize = 4_000_000;
+
+/// One mesh of a GLB and where it stands.
+pub struct GlbModel {
+    /// The mesh in Sylva's frame (metres, Z up).
+    pub mesh: TreeMesh,
+    /// sRGB base colours of its bark and leaf materials.
+    pub bark: [f32; 3],
+    pub leaves: [f32; 3],
+    /// Every node showing it.
+    pub placements: Vec<Placement>,
+}
+
+/// The models of a GLB's default scene.
+pub struct GlbScene {
+    pub models: Vec<GlbModel>,
+}
+
+impl GlbScene {
+    /// Triangles in the scene, every copy counted.
+    pub fn triangles_placed(&self) -> usize {
+        self.models
+            .iter()
+            .map(|m| m.mesh.triangle_count() * m.placements.len())
+            .sum()
+    }
+}
+
+fn linear_to_srgb(c: f32) -> f32 {
+    if c <= 0.0031308 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// glTF's Y up to Sylva's Z up: (x, y, z) -> (x, -z, y).
+const Y_UP_TO_Z_UP: Mat4 = Mat4::from_cols_array(&[
+    1.0, 0.0, 0.0, 0.0, //
+    0.0, 0.0, 1.0, 0.0, //
+    0.0, -1.0, 0.0, 0.0, //
+    0.0, 0.0, 0.0, 1.0,
+]);
+
+/// A node's transform (Z up) as a placement, when it is one: a uniform scale, a turn about the
+/// vertical and a move, as Sylva's forests write them.
+fn as_placement(m: Mat4) -> Option<Placement> {
+    let (x, y, z) = (
+        m.x_axis.truncate(),
+        m.y_axis.truncate(),
+        m.z_axis.truncate(),
+    );
+    let scale = z.z;
+    let tolerance = 1e-4 * scale.abs().max(1.0);
+    let close = |a: Vec3, b: Vec3| (a - b).abs().max_element() <= tolerance;
+    let (cos, sin) = (x.x / scale, x.y / scale);
+    let ok = scale > 0.0
+        && scale.is_finite()
+        && close(z, Vec3::new(0.0, 0.0, scale))
+        && close(x, Vec3::new(cos, sin, 0.0) * scale)
+        && close(y, Vec3::new(-sin, cos, 0.0) * scale)
+        && ((cos * cos + sin * sin) - 1.0).abs() < 1e-3
+        && m.row(3) == glam::Vec4::W;
+    ok.then(|| Placement {
+        position: m.w_axis.truncate(),
+        turn: sin.atan2(cos),
+        scale,
+    })
+}
+
+/// Reads a glTF mesh's triangle primitives into a tree mesh transformed by `transform` (glTF's
+/// frame to Sylva's): primitives whose material is named `leaves` are leaves, the rest bark.
+/// Returns the mesh and its bark and leaf colours (`None` where it has no such material).
+fn read_mesh(
+    mesh: &gltf::Mesh,
+    buffers: &[gltf::buffer::Data],
+    transform: Mat4,
+) -> (TreeMesh, Option<[f32; 3]>, Option<[f32; 3]>) {
+    let mut out = TreeMesh::default();
+    let (mut bark, mut leaves) = (None, None);
+    for prim in mesh.primitives() {
+        if prim.mode() != gltf::mesh::Mode::Triangles {
+            continue;
+        }
+        let [r, g, b, _] = prim.material().pbr_metallic_roughness().base_color_factor();
+        let srgb = [r, g, b].map(linear_to_srgb);
+        let part: &mut Mesh = if prim.material().name() == Some("leaves") {
+            leaves = Some(srgb);
+            &mut out.leaves
+        } else {
+            bark = Some(srgb);
+            &mut out.bark
+        };
+        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        let Some(positions) = reader.read_positions() else {
+            continue;
+        };
+        let base = part.positions.len() as u32;
+        let positions: Vec<[f32; 3]> = positions
+            .map(|p| transform.transform_point3(Vec3::from(p)).to_array())
+            .collect();
+        let count = positions.len() as u32;
+        let normals: Vec<[f32; 3]> = match reader.read_normals() {
+            Some(n) => n
+                .map(|n| {
+                    transform
+                        .transform_vector3(Vec3::from(n))
+                        .normalize_or_zero()
+                        .to_array()
+                })
+                .take(count as usize)
+                .collect(),
+            None => Vec::new(),
+        };
+        let normals = if normals.len() == count as usize {
+            normals
+        } else {
+            vec![[0.0, 0.0, 1.0]; count as usize]
+        };
+        // COLOR_0 (a grown tree's leaf light classes) becomes the shade; the other primitives
+        // of a part with shades are fully lit.
+        let shades: Option<Vec<f32>> = reader
+            .read_colors(0)
+            .map(|c| c.into_rgb_f32().map(|c| c[1].clamp(0.0, 1.0)).collect())
+            .filter(|c: &Vec<f32>| c.len() == count as usize);
+        match shades {
+            Some(c) => {
+                part.shades.resize(base as usize, 1.0);
+                part.shades.extend(c);
+            }
+            None if !part.shades.is_empty() => {
+                part.shades.resize(base as usize + count as usize, 1.0);
+            }
+            None => {}
+        }
+        part.positions.extend(positions);
+        part.normals.extend(normals);
+        part.uvs
+            .extend(std::iter::repeat_n([0.0, 0.0], count as usize));
+        match reader.read_indices() {
+            Some(idx) => part
+                .indices
+                .extend(idx.into_u32().filter(|&i| i < count).map(|i| i + base)),
+            None => part.indices.extend(base..base + count),
+        }
+        // Indices that pointed outside the primitive were dropped: keep whole triangles only.
+        part.indices.truncate(part.indices.len() / 3 * 3);
+    }
+    (out, bark, leaves)
+}
+
+/// Reads the default scene of a GLB (or glTF) file: each mesh once, placed by every node that
+/// shows it. A node whose transform is more than a move, a turn about the vertical and a
+/// uniform scale gets its own transformed copy of the mesh.
+pub fn read_glb_scene(path: &Path) -> Result<GlbScene> {
+    let gltf = gltf::Gltf::open(path)
+        .with_context(|| format!("{}: not a readable glTF file", path.display()))?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let buffers = gltf::import_buffers(&gltf.document, Some(base), gltf.blob.clone())
+        .with_context(|| format!("{}: cannot load its buffers", path.display()))?;
+    let doc = &gltf.document;
+    let roots: Vec<gltf::Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
+        Some(scene) => scene.nodes().collect(),
+        // No scene: every node that is nobody's child is a root.
+        None => {
+            let children: std::collections::HashSet<usize> = doc
+                .nodes()
+                .flat_map(|n| n.children().map(|c| c.index()))
+                .collect();
+            doc.nodes()
+                .filter(|n| !children.contains(&n.index()))
+                .collect()
+        }
+    };
+    let mut models: Vec<GlbModel> = Vec::new();
+    let mut by_mesh: HashMap<usize, usize> = HashMap::new();
+    let mut stack: Vec<(gltf::Node, Mat4, usize)> =
+        roots.into_iter().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    let mut visited = 0usize;
+    let z_up = Y_UP_TO_Z_UP;
+    let y_up = z_up.inverse();
+    while let Some((node, parent, depth)) = stack.pop() {
+        visited += 1;
+        if depth > MAX_DEPTH || visited > MAX_NODES {
+            bail!(
+                "{}: its node hierarchy is deeper than {MAX_DEPTH} or has over {MAX_NODES} \
+                 nodes (a node listed inside itself?)",
+                path.display()
+            );
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        for child in node.children() {
+            stack.push((child, world, depth + 1));
+        }
+        let Some(mesh) = node.mesh() else { continue };
+        let placed = z_up * world * y_up;
+        match (as_placement(placed), by_mesh.get(&mesh.index())) {
+            (Some(p), Some(&k)) => models[k].placements.push(p),
+            (Some(p), None) => {
+                let (m, bark, leaves) = read_mesh(&mesh, &buffers, z_up);
+                by_mesh.insert(mesh.index(), models.len());
+                models.push(model(m, bark, leaves, vec![p]));
+            }
+            (None, _) => {
+                let (m, bark, leaves) = read_mesh(&mesh, &buffers, placed * z_up);
+                models.push(model(m, bark, leaves, vec![Placement::ORIGIN]));
+            }
+        }
+    }
+    // Meshes without triangles draw nothing; drop them.
+    models.retain(|m| m.mesh.triangle_count() > 0);
+    if models.is_empty() {
+        bail!("{}: no triangles to render", path.display());
+    }
+    Ok(GlbScene { models })
+}
+
+fn model(
+    mesh: TreeMesh,
+    bark: Option<[f32; 3]>,
+    leaves: Option<[f32; 3]>,
+    placements: Vec<Placement>,
+) -> GlbModel {
+    GlbModel {
+        mesh,
+        bark: bark.unwrap_or(sylva::params::DEFAULT_BARK),
+        leaves: leaves.unwrap_or(sylva::params::DEFAULT_LEAVES),
+        placements,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn turns_moves_and_scales_are_placements_and_shears_are_not() {
+        let m = Mat4::from_translation(Vec3::new(3.0, -2.0, 0.5))
+            * Mat4::from_rotation_z(0.7)
+            * Mat4::from_scale(Vec3::splat(1.3));
+        let p = as_placement(m).unwrap();
+        assert!((p.turn - 0.7).abs() < 1e-5 && (p.scale - 1.3).abs() < 1e-5);
+        let corner = Vec3::new(1.0, 2.0, 3.0);
+        assert!((p.apply(corner) - m.transform_point3(corner)).length() < 1e-4);
+        assert!(as_placement(Mat4::from_rotation_x(0.3)).is_none());
+        assert!(as_placement(Mat4::from_scale(Vec3::new(1.0, 2.0, 1.0))).is_none());
+        assert!(as_placement(Mat4::from_scale(Vec3::splat(-1.0))).is_none());
+        let origin = as_placement(Mat4::IDENTITY).unwrap();
+        assert_eq!(origin, Placement::ORIGIN);
+    }
+
+    #[test]
+    fn a_turn_about_y_in_gltf_is_a_turn_about_z_here() {
+        // Sylva's forests write turns as rotations about glTF's Y axis.
+        let gltf = Mat4::from_rotation_y(0.5);
+        let p = as_placement(Y_UP_TO_Z_UP * gltf * Y_UP_TO_Z_UP.inverse()).unwrap();
+        assert!((p.turn.abs() - 0.5).abs() < 1e-5, "{}", p.turn);
+    }
+}
