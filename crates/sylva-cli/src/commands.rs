@@ -121,7 +121,8 @@ fn generate(args: &GenerateArgs) -> Result<()> {
         bail!("--levels 0: expected 1 (trunk only) or more");
     }
     let t0 = Instant::now();
-    let skeleton = sylva::generate(&params, &options)?;
+    let skeleton =
+        sylva::generate(&params, &options).with_context(|| format!("species {}", args.species))?;
     let generate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let t1 = Instant::now();
     let mesh = mesh_tree(&skeleton, &mesh_options(&params, args.tree.quality));

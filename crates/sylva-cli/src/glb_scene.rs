@@ -13,6 +13,8 @@ use sylva_render::Placement;
 /// own child) stops here instead of looping.
 const MAX_DEPTH: usize = 64;
 const MAX_NODES: usize = 4_000_000;
+/// Largest model file read (a GLB's lengths are 32-bit), and largest external buffer.
+const MAX_FILE_BYTES: u64 = 2 << 30;
 
 /// One mesh of a GLB and where it stands.
 pub struct GlbModel {
@@ -167,9 +169,26 @@ fn read_mesh(
 /// shows it. A node whose transform is more than a move, a turn about the vertical and a
 /// uniform scale gets its own transformed copy of the mesh.
 pub fn read_glb_scene(path: &Path) -> Result<GlbScene> {
-    let gltf = gltf::Gltf::open(path)
+    let bytes = read_bounded(path)?;
+    // The reader subtracts the 12-byte header from the length a GLB declares without checking
+    // it (gltf 1.4.1): a length under 20 (header and one chunk header) must not reach it.
+    if let Some(declared) = bytes.strip_prefix(b"glTF").and_then(|b| b.get(4..8)) {
+        let declared = u32::from_le_bytes(declared.try_into().expect("4 bytes")) as usize;
+        if declared < 20 || declared > bytes.len() {
+            bail!(
+                "{}: not a readable glTF file: its header says {declared} bytes, the file has {}",
+                path.display(),
+                bytes.len()
+            );
+        }
+    }
+    // From a slice, whose lengths the reader checks against the data (its stream reader
+    // trusts the header's length: it underflows below 12 and allocates whatever it says).
+    let gltf = gltf::Gltf::from_slice(&bytes)
         .with_context(|| format!("{}: not a readable glTF file", path.display()))?;
+    drop(bytes);
     let base = path.parent().unwrap_or(Path::new("."));
+    check_external_buffers(&gltf.document, base, path)?;
     let buffers = gltf::import_buffers(&gltf.document, Some(base), gltf.blob.clone())
         .with_context(|| format!("{}: cannot load its buffers", path.display()))?;
     let doc = &gltf.document;
@@ -227,6 +246,47 @@ pub fn read_glb_scene(path: &Path) -> Result<GlbScene> {
         bail!("{}: no triangles to render", path.display());
     }
     Ok(GlbScene { models })
+}
+
+/// The whole file, if it is a regular file within the budget.
+fn read_bounded(path: &Path) -> Result<Vec<u8>> {
+    let meta =
+        std::fs::metadata(path).with_context(|| format!("cannot read {}", path.display()))?;
+    if !meta.is_file() {
+        bail!("{}: not a file", path.display());
+    }
+    if meta.len() > MAX_FILE_BYTES {
+        bail!(
+            "{}: {} MB, over the {} MB a model may take",
+            path.display(),
+            meta.len() >> 20,
+            MAX_FILE_BYTES >> 20
+        );
+    }
+    std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
+/// Buffers in other files must be regular files within the budget (a `.gltf` naming
+/// `/dev/zero` would otherwise be read without end).
+fn check_external_buffers(doc: &gltf::Document, base: &Path, path: &Path) -> Result<()> {
+    for buffer in doc.buffers() {
+        if let gltf::buffer::Source::Uri(uri) = buffer.source()
+            && !uri.starts_with("data:")
+        {
+            let file = base.join(uri);
+            let ok =
+                std::fs::metadata(&file).is_ok_and(|m| m.is_file() && m.len() <= MAX_FILE_BYTES);
+            if !ok {
+                bail!(
+                    "{}: buffer {} names `{uri}`, which is not a readable file of at most {} MB",
+                    path.display(),
+                    buffer.index(),
+                    MAX_FILE_BYTES >> 20
+                );
+            }
+        }
+    }
+    Ok(())
 }
 
 fn model(

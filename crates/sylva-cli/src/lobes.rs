@@ -141,7 +141,13 @@ pub fn lobes(args: &LobesArgs) -> Result<()> {
         Some(t) => t,
         None => rules.tessellation,
     };
-    let tree = sylva::fields::grow(&rules, seed, &placement)?;
+    // Budgets hit while growing depend on the lobes: say which input brought them.
+    let from = match &args.points {
+        Some(cloud) => format!("{} fitted to {}", args.input, cloud.display()),
+        None => args.input.clone(),
+    };
+    let tree =
+        sylva::fields::grow(&rules, seed, &placement).with_context(|| format!("growing {from}"))?;
     let mut skeleton = tree.skeleton();
     scale_skeleton(&mut skeleton, args.scale as f32);
     let look = MeshLook {

@@ -119,7 +119,8 @@ fn species_mesh(params: &sylva::TreeParams, args: &RenderArgs, time: f64) -> Res
         },
         ..args.tree.options()
     };
-    let skeleton = sylva::generate(params, &options)?;
+    let skeleton =
+        sylva::generate(params, &options).with_context(|| format!("species {}", args.input))?;
     Ok(mesh_tree(
         &skeleton,
         &mesh_options(params, args.tree.quality),

@@ -11,6 +11,16 @@ fn location(source_name: &Option<String>) -> String {
     }
 }
 
+/// A value as a message shows it: exponent form when it is huge or tiny, so `1e308` reads as
+/// written rather than as 309 digits.
+fn number(v: &f64) -> String {
+    if v.is_finite() && *v != 0.0 && !(1e-4..1e9).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// A species file or parameter set that cannot be used.
 #[derive(Debug, thiserror::Error)]
 pub enum ParamsError {
@@ -23,7 +33,7 @@ pub enum ParamsError {
         source_name: Option<String>,
     },
     /// A value outside the documented range (or a fraction for a whole-number parameter).
-    #[error("parameter `{name}` is {value}, expected {allowed}{}", location(.source_name))]
+    #[error("parameter `{name}` is {}, expected {allowed}{}", number(.value), location(.source_name))]
     OutOfRange {
         /// Full parameter name (`1DownAngle`).
         name: String,
@@ -104,14 +114,35 @@ pub enum GenerateError {
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
     /// The file could not be written.
-    #[error("cannot write {}: {source}", path.display())]
+    #[error("cannot write {}: {cause}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
+        /// The cause, told in the message (not chained, or it would be told twice).
+        cause: std::io::Error,
     },
     /// The mesh cannot be represented in the format.
     #[error("cannot export: {0}")]
     Format(String),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn huge_and_tiny_values_read_as_written() {
+        let e = |v: f64| ParamsError::out_of_range("Scale", v, "0.001..500").to_string();
+        assert_eq!(e(1e308), "parameter `Scale` is 1e308, expected 0.001..500");
+        assert_eq!(
+            e(-2.5e-7),
+            "parameter `Scale` is -2.5e-7, expected 0.001..500"
+        );
+        assert_eq!(e(600.0), "parameter `Scale` is 600, expected 0.001..500");
+        assert_eq!(e(f64::NAN), "parameter `Scale` is NaN, expected 0.001..500");
+        assert_eq!(
+            e(f64::NEG_INFINITY),
+            "parameter `Scale` is -inf, expected 0.001..500"
+        );
+    }
 }

@@ -285,7 +285,8 @@ impl Grower<'_> {
         } else {
             along - rho / angle.tan()
         };
-        s.clamp(range.0, range.1)
+        // max/min rather than clamp: a degenerate axis (a NaN length) must not panic.
+        s.max(range.0).min(range.1)
     }
 
     /// Direction leaving axis `d` at `angle`, turned toward `target` from `from`.

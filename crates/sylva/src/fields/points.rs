@@ -20,6 +20,14 @@ pub enum Up {
     Y,
 }
 
+/// Largest coordinate accepted, metres: beyond any georeferenced scan (UTM northings reach
+/// 1e7), so a number garbled into 1e19 is refused rather than fitted as a crown that wide.
+const MAX_COORDINATE: f32 = 1e7;
+
+fn usable(v: f32) -> bool {
+    v.is_finite() && v.abs() <= MAX_COORDINATE
+}
+
 fn syntax(name: &str, line: Option<usize>, message: String) -> ParamsError {
     ParamsError::Syntax {
         source_name: match line {
@@ -84,9 +92,13 @@ fn read_xyz(name: &str, bytes: &[u8], up: Up) -> Result<Vec<Vec3>, ParamsError> 
             *slot = f
                 .parse::<f32>()
                 .ok()
-                .filter(|v| v.is_finite())
+                .filter(|v| usable(*v))
                 .ok_or_else(|| {
-                    syntax(name, Some(i + 1), format!("`{f}` is not a finite number"))
+                    syntax(
+                        name,
+                        Some(i + 1),
+                        format!("`{f}` is not a coordinate (a finite number of at most {MAX_COORDINATE:e} m)"),
+                    )
                 })?;
         }
         if points.len() >= MAX_POINTS {
@@ -257,12 +269,15 @@ fn read_ply(name: &str, bytes: &[u8], up: Up) -> Result<Vec<Vec3>, ParamsError> 
                     *slot = f[k]
                         .parse::<f32>()
                         .ok()
-                        .filter(|v| v.is_finite())
+                        .filter(|v| usable(*v))
                         .ok_or_else(|| {
                             syntax(
                                 name,
                                 Some(line_no),
-                                format!("`{}` is not a finite number", f[k]),
+                                format!(
+                                    "`{}` is not a coordinate (a finite number of at most {MAX_COORDINATE:e} m)",
+                                    f[k]
+                                ),
                             )
                         })?;
                 }
@@ -319,11 +334,13 @@ fn read_ply(name: &str, bytes: &[u8], up: Up) -> Result<Vec<Vec3>, ParamsError> 
                 for (slot, k) in p.iter_mut().zip([ix, iy, iz]) {
                     *slot = read(base + offsets[k], props[k].1);
                 }
-                if p.iter().any(|c| !c.is_finite()) {
+                if p.iter().any(|c| !usable(*c)) {
                     return Err(syntax(
                         name,
                         None,
-                        format!("vertex {v}: coordinates must be float or double and finite"),
+                        format!(
+                            "vertex {v}: coordinates must be float or double, finite and at most {MAX_COORDINATE:e} m"
+                        ),
                     ));
                 }
                 points.push(orient(p, up));

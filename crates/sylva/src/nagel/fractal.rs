@@ -145,15 +145,9 @@ impl FractalParams {
             100.0,
             "0..100 metres",
         )?;
+        check("vary-length", self.length_variation, 0.0, 0.9, "0..0.9")?;
         check(
-            "length-variation",
-            self.length_variation,
-            0.0,
-            0.9,
-            "0..0.9",
-        )?;
-        check(
-            "angle-variation",
+            "vary-angle",
             self.angle_variation,
             0.0,
             90.0,
