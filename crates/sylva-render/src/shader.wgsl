@@ -145,8 +145,8 @@ fn fs_main(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f
 
 // Lines (stem axes) and points (leaves) for trees seen from afar. Each is lit like what it
 // replaces (a leaf by its normal, two-sided and translucent; a stem as a cylinder about its
-// axis) and covers, through alpha-to-coverage, the share of a pixel that its stems or leaves
-// would: a 1-pixel line for a 0.3-pixel twig lights about one sample in four.
+// axis) and covers, through the samples it writes, the share of a pixel that its stems or
+// leaves would: a 1-pixel line for a 0.3-pixel twig lights about one sample in four.
 struct FlatOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) light_clip: vec4<f32>,
