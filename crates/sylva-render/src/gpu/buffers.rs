@@ -2,7 +2,6 @@
 
 use crate::props::Vertex;
 use crate::tree::{MeshData, TreeData};
-use wgpu::util::DeviceExt;
 
 /// One piece of a mesh: its own vertices and the triangles that use them.
 #[derive(Debug)]
@@ -35,6 +34,10 @@ pub(crate) struct TreeBuffers {
 }
 
 /// A buffer with `contents`; wgpu refuses empty buffers, so an empty one keeps 12 zero bytes.
+///
+/// Not `DeviceExt::create_buffer_init`: that `expect`s the new buffer's mapping, so a buffer the
+/// device refuses (out of memory, over a limit) would panic. Here a refused buffer simply gets
+/// no contents; its error reaches the caller's error scope.
 pub(crate) fn buffer(
     device: &wgpu::Device,
     label: &str,
@@ -46,11 +49,18 @@ pub(crate) fn buffer(
     } else {
         contents
     };
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+    let size = (contents.len() as u64).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
-        contents,
+        size,
         usage,
-    })
+        mapped_at_creation: true,
+    });
+    if let Ok(mut view) = buffer.get_mapped_range_mut(..) {
+        view.slice(..contents.len()).copy_from_slice(contents);
+    }
+    buffer.unmap();
+    buffer
 }
 
 /// Cuts `indices` into runs of whole triangles whose vertices and indices each fit in

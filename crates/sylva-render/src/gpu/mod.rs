@@ -434,7 +434,9 @@ fn scoped<T>(
     let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
     let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
-    let out = f();
+    // A driver that panics (wgpu's own `expect`s, a backend's internal error) fails the GPU
+    // like any other error: the picture is then drawn on the CPU.
+    let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
     // Scopes pop in the reverse order of their pushing.
     let errors = [
         pollster::block_on(internal.pop()),
@@ -447,6 +449,16 @@ fn scoped<T>(
             message: e.to_string(),
         });
     }
+    let out = out.map_err(|panic| RenderError::Gpu {
+        what,
+        message: match panic.downcast_ref::<&str>() {
+            Some(s) => format!("the driver panicked: {s}"),
+            None => match panic.downcast_ref::<String>() {
+                Some(s) => format!("the driver panicked: {s}"),
+                None => "the driver panicked".into(),
+            },
+        },
+    })?;
     failed(failure, what)?;
     Ok(out)
 }
