@@ -3,6 +3,7 @@
 //! to a point cloud), grown into branches that reach control points on the lobes' surfaces and
 //! leaves that fill them.
 
+mod grow;
 mod leaves;
 pub mod lobe;
 pub mod pipeline;
@@ -10,8 +11,9 @@ pub mod points;
 pub mod rules;
 pub mod tree_file;
 
+pub use grow::grow;
 pub use lobe::Lobe;
-pub use pipeline::{LobeTree, Placement, TrunkPiece, auto_placement, grow, placement_for_lobes};
+pub use pipeline::{LobeTree, Placement, TrunkPiece, auto_placement, placement_for_lobes};
 pub use rules::{TreeRules, builtin, from_toml};
 pub use tree_file::TreeFile;
 

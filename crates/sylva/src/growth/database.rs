@@ -3,7 +3,6 @@
 
 use super::GrowthError;
 use super::equations::{Equation, Form};
-use super::measured::Measured;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -272,10 +271,15 @@ impl Database {
             .collect()
     }
 
-    /// The measured functions of a species in a region. `query` is a species code (`PLAC`), a
-    /// scientific name (`Platanus x acerifolia`) or a common name (`London planetree`), in any
-    /// case, with `_` or `-` for spaces.
-    pub fn find(&self, region: &str, query: &str) -> Result<Measured, GrowthError> {
+    /// A species' entry, its region and its five equations: what [`Database::find`] makes a
+    /// [`super::Measured`] of. `query` is a species code (`PLAC`), a scientific name
+    /// (`Platanus x acerifolia`) or a common name (`London planetree`), in any case, with `_`
+    /// or `-` for spaces.
+    pub(super) fn lookup(
+        &self,
+        region: &str,
+        query: &str,
+    ) -> Result<(SpeciesEntry, Region, [Equation; 5]), GrowthError> {
         let region = self
             .regions
             .iter()
@@ -331,7 +335,7 @@ impl Database {
                 }
             })?;
         let eqs = self.equations(&entry.region, &entry.code)?;
-        Ok(Measured::new((*entry).clone(), region.clone(), eqs))
+        Ok(((*entry).clone(), region.clone(), eqs))
     }
 
     /// The five equations growth needs, in the order age→DBH, DBH→height, DBH→crown diameter,

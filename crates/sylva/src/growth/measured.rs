@@ -2,7 +2,8 @@
 //! from the database's age→DBH and DBH→X equations and kept inside the ranges they were fitted
 //! for.
 
-use super::database::{Region, SpeciesEntry};
+use super::GrowthError;
+use super::database::{Database, Region, SpeciesEntry};
 use super::equations::Equation;
 
 /// Longest life the age search looks at, years.
@@ -146,5 +147,17 @@ impl Measured {
     /// Display name: common name (code).
     pub fn label(&self) -> String {
         format!("{} ({})", self.species.common, self.species.code)
+    }
+}
+
+// Here rather than in `database.rs`, so that the database knows nothing of `Measured` and the
+// two modules do not import each other.
+impl Database {
+    /// The measured functions of a species in a region. `query` is a species code (`PLAC`), a
+    /// scientific name (`Platanus x acerifolia`) or a common name (`London planetree`), in any
+    /// case, with `_` or `-` for spaces.
+    pub fn find(&self, region: &str, query: &str) -> Result<Measured, GrowthError> {
+        let (entry, region, equations) = self.lookup(region, query)?;
+        Ok(Measured::new(entry, region, equations))
     }
 }
