@@ -1,8 +1,8 @@
 //! `sylva bench --forest` and `--throughput`: what range degradation saves when drawing a tree
 //! and a forest, and how fast unique trees grow.
 
-use crate::commands::{APPENDIX_SPECIES, fastest_ms, mesh_options};
 use crate::render_forest::{ForestOnGpu, grouped};
+use crate::shared::{APPENDIX_SPECIES, fastest_ms, mesh_options};
 use anyhow::{Context, Result};
 use glam::Vec3;
 use std::time::Instant;

@@ -1,7 +1,7 @@
 //! `sylva bench --growth`: milliseconds per growth step (production rules, light, meshing) of
 //! a street tree as it passes 5,000, 10,000, 20,000 and 30,000 branch segments.
 
-use crate::commands::fastest_ms;
+use crate::shared::fastest_ms;
 use anyhow::{Context, Result, bail};
 use sylva::growth::{Database, Grower, GrowthOptions};
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree_into};

@@ -5,28 +5,11 @@ use anyhow::{Context, Result, bail};
 use std::path::Path;
 use std::time::Instant;
 use sylva::export::{Materials, to_glb, write_atomically, write_obj};
-use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::mesh::{TreeMesh, mesh_tree};
 use sylva::params::{PARAMS, format_value};
 use sylva::{GenerateOptions, TreeParams};
 
-/// The paper's four appendix species: the benchmark set.
-pub const APPENDIX_SPECIES: [&str; 4] = [
-    "quaking_aspen",
-    "black_tupelo",
-    "weeping_willow",
-    "ca_black_oak",
-];
-
-/// Fastest of `runs` timings of `f`, milliseconds (the least disturbed by a shared machine).
-pub fn fastest_ms(runs: u32, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
-    let mut best = f64::MAX;
-    for _ in 0..runs.max(1) {
-        let t = Instant::now();
-        f()?;
-        best = best.min(t.elapsed().as_secs_f64());
-    }
-    Ok(best * 1e3)
-}
+use crate::shared::{APPENDIX_SPECIES, fastest_ms, load_params, mesh_options};
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
@@ -65,38 +48,6 @@ fn output_format(path: &Path) -> Result<Format> {
             "output {}: unknown format; use a .glb or .obj file name",
             path.display()
         ),
-    }
-}
-
-/// Loads the species and applies `--set` overrides.
-pub fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
-    let mut params = sylva::species::load(species)?;
-    for note in &params.notes {
-        eprintln!("sylva: warning: {species}: {note}");
-    }
-    for item in overrides {
-        let (name, value) = item.split_once('=').with_context(|| {
-            format!("--set {item}: expected NAME=VALUE, e.g. --set 1Branches=30")
-        })?;
-        let value: f64 = value
-            .trim()
-            .parse()
-            .with_context(|| format!("--set {item}: `{value}` is not a number"))?;
-        params
-            .set(name.trim(), value)
-            .with_context(|| format!("--set {item}"))?;
-    }
-    params
-        .validate()
-        .with_context(|| format!("species {species}"))?;
-    Ok(params)
-}
-
-pub fn mesh_options(params: &TreeParams, quality: f64) -> MeshOptions {
-    // Arbaro's Smooth (0..1, default 0.5) scales the mesh resolution around the default.
-    MeshOptions {
-        quality: quality * (0.5 + params.smooth),
-        ..Default::default()
     }
 }
 
@@ -190,7 +141,7 @@ fn write_preview(
 ) -> Result<()> {
     let picture =
         crate::render::picture(mesh, params.bark_color, params.leaf_color, view, 1024, 768)?;
-    crate::render::encode_png(path, picture.width, picture.height, &picture.rgba)
+    crate::shared::encode_png(path, picture.width, picture.height, &picture.rgba)
 }
 
 fn round3(x: f32) -> f64 {

@@ -3,7 +3,7 @@
 //! growing here also serve `sylva render forest.toml` and the viewer.
 
 use crate::args::ForestArgs;
-use crate::commands::{load_params, mesh_options};
+use crate::shared::{load_params, mesh_options};
 use anyhow::{Context, Result, bail};
 use rayon::prelude::*;
 use std::path::Path;

@@ -4,7 +4,7 @@
 
 use crate::args::GrowArgs;
 use crate::caption::{draw_text, text_width, with_caption};
-use crate::render::{encode_png, parse_size};
+use crate::shared::{encode_png, parse_size, street_tree_colours};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use std::borrow::Cow;
@@ -19,17 +19,6 @@ use sylva_render::{Picture, Placement, Renderer, Scene, Stand, View};
 const MAX_AGES: usize = 400;
 /// Oldest age asked for, years.
 pub const MAX_AGE: f64 = 300.0;
-
-/// Colours for the pictures and models: bark, and leaves (evergreens darker).
-pub fn colours(m: &Measured) -> ([f32; 3], [f32; 3]) {
-    let evergreen = m.species.tree_type.get(1..2) == Some("E");
-    let leaves = if evergreen {
-        [0.2, 0.36, 0.16]
-    } else {
-        [0.33, 0.5, 0.2]
-    };
-    ([0.42, 0.36, 0.3], leaves)
-}
 
 /// One age of one species.
 struct Grown {
@@ -140,7 +129,7 @@ pub fn grow(args: &GrowArgs) -> Result<()> {
                 },
             );
             let stem = format!("{}-age-{}", m.species.code, age_label(age));
-            let (bark, leaves) = colours(m);
+            let (bark, leaves) = street_tree_colours(m);
             let glb = to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))?;
             write_atomically(&output.join(format!("{stem}.glb")), &glb)?;
             if let Some(r) = &renderer {
@@ -249,7 +238,7 @@ fn single_picture(
     widest: f64,
 ) -> Result<Picture> {
     let tree = r.upload(mesh);
-    let (bark, leaves) = colours(m);
+    let (bark, leaves) = street_tree_colours(m);
     let scene = Scene::new(&tree, bark, leaves);
     let view = fixed_view(tallest, widest + 2.0, width as f32 / height as f32);
     Ok(r.render(&scene, &view, width, height)?)
@@ -277,7 +266,7 @@ fn compare_picture(
         .zip(species)
         .zip(&placements)
         .map(|((t, m), p)| {
-            let (bark, leaves) = colours(m);
+            let (bark, leaves) = street_tree_colours(m);
             Stand {
                 tree: t,
                 bark,

@@ -209,7 +209,7 @@ pub fn draw(args: &DrawArgs) -> Result<()> {
                 measured.ages.1
             );
         }
-        let (bark, leaves) = crate::grow::colours(&measured);
+        let (bark, leaves) = crate::shared::street_tree_colours(&measured);
         let name = format!("{} at {age} years", measured.species.common);
         let mut grower = sylva::growth::Grower::new(
             measured,
@@ -232,10 +232,10 @@ pub fn draw(args: &DrawArgs) -> Result<()> {
         };
         write_skeleton(&planned, &args.out, &skeleton, &name, &look)?
     } else {
-        let params = crate::commands::load_params(&args.input, &args.tree.set)?;
+        let params = crate::shared::load_params(&args.input, &args.tree.set)?;
         let skeleton = sylva::generate(&params, &args.tree.options())?;
         let look = MeshLook {
-            options: crate::commands::mesh_options(&params, args.tree.quality),
+            options: crate::shared::mesh_options(&params, args.tree.quality),
             materials: Materials::from_srgb(params.bark_color, params.leaf_color),
         };
         write_skeleton(&planned, &args.out, &skeleton, &params.name, &look)?

@@ -14,6 +14,7 @@ mod lod_chain;
 mod nagel;
 mod render;
 mod render_forest;
+mod shared;
 mod viewer;
 
 use clap::Parser;

@@ -2,42 +2,15 @@
 //! sheet, or wind animation frames.
 
 use crate::args::{RenderArgs, RenderView};
-use crate::commands::{load_params, mesh_options};
 use crate::glb_scene::{GlbScene, read_glb_scene};
+use crate::shared::{encode_png, parse_size};
+use crate::shared::{load_params, mesh_options};
 use anyhow::{Context, Result, bail};
-use image::ImageEncoder;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
-use sylva::export::write_atomically;
 use sylva::mesh::{TreeMesh, mesh_tree};
 use sylva::{GenerateOptions, Wind};
 use sylva_render::{Picture, RenderTree, Renderer, Scene, Stand, View, ViewKind};
-
-/// Parses `WxH`.
-pub fn parse_size(text: &str) -> Result<(u32, u32)> {
-    let (w, h) = text
-        .split_once(['x', 'X'])
-        .with_context(|| format!("--size {text}: expected WIDTHxHEIGHT, e.g. 1280x720"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|v| (16..=8192).contains(v))
-            .with_context(|| {
-                format!("--size {text}: each side must be a whole number of pixels, 16..8192")
-            })
-    };
-    Ok((parse(w)?, parse(h)?))
-}
-
-pub fn encode_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(rgba, width, height, image::ExtendedColorType::Rgba8)
-        .context("encoding PNG")?;
-    write_atomically(path, &bytes)?;
-    Ok(())
-}
 
 /// `out.png` -> `out-0007.png`.
 fn numbered(path: &Path, index: u32) -> PathBuf {

@@ -3,8 +3,8 @@
 
 use crate::args::{LodMode, RenderArgs};
 use crate::caption::{side_by_side, with_caption};
-use crate::commands::mesh_options;
 use crate::forest::{grow, read_forest_file};
+use crate::shared::mesh_options;
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use std::borrow::Cow;
@@ -204,7 +204,7 @@ pub fn render_forest(
             side_by_side(&[left, right], 8)
         }
     };
-    crate::render::encode_png(&args.output, picture.width, picture.height, &picture.rgba)?;
+    crate::shared::encode_png(&args.output, picture.width, picture.height, &picture.rgba)?;
     println!(
         "wrote {} ({}x{}; {} trees of {} variants grown in {:.1} s, {:.1} MB stored; {})",
         args.output.display(),

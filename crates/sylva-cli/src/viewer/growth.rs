@@ -3,7 +3,7 @@
 //! shows any age grown so far (the slider), or plays the years in turn.
 
 use super::{Screenshots, Turntable, ViewTexture};
-use crate::grow::colours;
+use crate::shared::street_tree_colours;
 use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use glam::Vec3;
@@ -224,7 +224,7 @@ impl GrowthViewer {
             .zip(&self.species)
             .enumerate()
             .map(|(i, (tree, m))| {
-                let (bark, leaves) = colours(m);
+                let (bark, leaves) = street_tree_colours(m);
                 Stand {
                     tree,
                     bark,

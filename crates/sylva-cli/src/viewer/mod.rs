@@ -33,7 +33,7 @@ pub fn run(args: &ViewArgs) -> Result<()> {
     {
         return model::run(path, args.self_test.clone());
     }
-    let params = crate::commands::load_params(&args.species, &[])?;
+    let params = crate::shared::load_params(&args.species, &[])?;
     let self_test = args.self_test.clone();
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -289,7 +289,7 @@ impl Screenshots {
             let path = self.dir.join(format!("{}-{n}.png", self.prefix));
             let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
             if let Err(e) =
-                crate::render::encode_png(&path, image.size[0] as u32, image.size[1] as u32, &rgba)
+                crate::shared::encode_png(&path, image.size[0] as u32, image.size[1] as u32, &rgba)
             {
                 eprintln!("sylva: self-test: {e:#}");
             }
@@ -458,7 +458,7 @@ impl Viewer {
             wind: self.wind(),
             ..Default::default()
         };
-        let mesh = crate::commands::mesh_options(&self.params, self.quality);
+        let mesh = crate::shared::mesh_options(&self.params, self.quality);
         self.worker.request(self.params.clone(), options, mesh);
     }
 
@@ -548,7 +548,7 @@ impl Viewer {
                 .renderer
                 .render(&self.scene(tree), &self.view, 1600, 1200)
                 .map_err(Into::into)
-                .and_then(|p| crate::render::encode_png(&path, p.width, p.height, &p.rgba)),
+                .and_then(|p| crate::shared::encode_png(&path, p.width, p.height, &p.rgba)),
             (Some("glb" | "obj" | "png"), _, _) => Err(anyhow!("no tree yet")),
             _ => Err(anyhow!("export to a .glb, .obj or .png file")),
         };
