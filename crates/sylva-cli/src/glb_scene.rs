@@ -42,14 +42,6 @@ impl GlbScene {
     }
 }
 
-fn linear_to_srgb(c: f32) -> f32 {
-    if c <= 0.0031308 {
-        c * 12.92
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    }
-}
-
 /// glTF's Y up to Sylva's Z up: (x, y, z) -> (x, -z, y).
 const Y_UP_TO_Z_UP: Mat4 = Mat4::from_cols_array(&[
     1.0, 0.0, 0.0, 0.0, //
@@ -99,7 +91,7 @@ fn read_mesh(
             continue;
         }
         let [r, g, b, _] = prim.material().pbr_metallic_roughness().base_color_factor();
-        let srgb = [r, g, b].map(linear_to_srgb);
+        let srgb = [r, g, b].map(sylva::colour::linear_to_srgb);
         let part: &mut Mesh = if prim.material().name() == Some("leaves") {
             leaves = Some(srgb);
             &mut out.leaves

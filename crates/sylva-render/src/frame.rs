@@ -151,14 +151,8 @@ pub(crate) struct Frame<'a> {
 }
 
 pub(crate) fn linear(c: [f32; 3]) -> [f32; 4] {
-    let l = |c: f32| {
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    };
-    [l(c[0]), l(c[1]), l(c[2]), 1.0]
+    let [r, g, b] = c.map(sylva::colour::srgb_to_linear);
+    [r, g, b, 1.0]
 }
 
 /// The six planes of a view-projection's frustum (WebGPU depth 0..1), as `n.p + d >= 0` inside.

@@ -55,13 +55,6 @@ pub struct RenderTree {
     pub triangles: usize,
 }
 
-impl RenderTree {
-    /// Whether the tree was stored for range degradation ([`crate::Renderer::upload_lod`]).
-    pub fn has_lod(&self) -> bool {
-        self.data.lod.is_some()
-    }
-}
-
 fn mesh_data(mesh: &Mesh) -> MeshData {
     let vertices = mesh
         .positions

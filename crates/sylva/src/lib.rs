@@ -27,6 +27,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod colour;
 pub mod drawing;
 pub mod error;
 pub mod export;

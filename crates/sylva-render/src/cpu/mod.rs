@@ -296,15 +296,7 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
 }
 
 fn encode_srgb(c: Vec4) -> [u8; 4] {
-    let s = |c: f32| {
-        let c = c.clamp(0.0, 1.0);
-        let e = if c <= 0.0031308 {
-            c * 12.92
-        } else {
-            1.055 * c.powf(1.0 / 2.4) - 0.055
-        };
-        (e * 255.0).round() as u8
-    };
+    let s = |c: f32| (sylva::colour::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8;
     [
         s(c.x),
         s(c.y),

@@ -18,20 +18,11 @@ pub struct Materials {
     pub leaves: [f32; 4],
 }
 
-/// sRGB 0..1 to linear (the exact piecewise curve).
-fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
 impl Materials {
     /// Materials from sRGB colours, as species files give them.
     pub fn from_srgb(bark: [f32; 3], leaves: [f32; 3]) -> Self {
         let lin = |c: [f32; 3]| {
-            let l = c.map(srgb_to_linear);
+            let l = c.map(crate::colour::srgb_to_linear);
             [l[0], l[1], l[2], 1.0]
         };
         Self {
