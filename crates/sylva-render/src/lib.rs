@@ -78,6 +78,33 @@ pub enum RenderError {
     Choice(String),
 }
 
+impl RenderError {
+    /// Why, without the advice: for an adapter not found, only the backends wgpu tried (its
+    /// message also lists every backend it was not asked for or was built without).
+    fn reason(&self) -> String {
+        match self {
+            RenderError::NoAdapter(wgpu) => {
+                let tried: Vec<&str> = wgpu
+                    .split([';', ',', '(', ')'])
+                    .map(str::trim)
+                    .filter(|part| {
+                        !part.is_empty()
+                            && !part.ends_with("not requested")
+                            && !part.ends_with("not compiled in")
+                            && !part.starts_with("No suitable graphics adapter")
+                    })
+                    .collect();
+                if tried.is_empty() {
+                    "no adapter".into()
+                } else {
+                    tried.join(", ")
+                }
+            }
+            other => other.to_string(),
+        }
+    }
+}
+
 /// Colour format of headless pictures.
 pub const PICTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// Largest side of a picture drawn on the CPU.
@@ -182,8 +209,11 @@ impl Renderer {
                     Ok(g) => Some(g),
                     Err(gl) => {
                         notice(&format!(
-                            "no graphics driver answered (Vulkan: {native}; OpenGL: {gl}); \
-                             drawing with the CPU rasteriser"
+                            "no graphics driver answered (Vulkan: {}; OpenGL: {}); drawing with \
+                             the CPU rasteriser. For the GPU renderers install Mesa's drivers \
+                             (Debian: mesa-vulkan-drivers, or libegl1 and libgl1-mesa-dri)",
+                            native.reason(),
+                            gl.reason()
                         ));
                         None
                     }
@@ -361,6 +391,16 @@ mod tests {
         let skeleton = sylva::generate(&params, &options).unwrap();
         let lod = sylva::lod::LodTree::build(&skeleton, &Default::default());
         (lod, params)
+    }
+
+    #[test]
+    fn a_missing_adapter_is_told_by_what_was_tried() {
+        let e = RenderError::NoAdapter(
+            "No suitable graphics adapter found; noop not requested, vulkan drivers/libraries \
+             could not be loaded, metal support not compiled in, gl not requested"
+                .into(),
+        );
+        assert_eq!(e.reason(), "vulkan drivers/libraries could not be loaded");
     }
 
     #[test]
