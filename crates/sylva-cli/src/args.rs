@@ -67,20 +67,28 @@ pub struct LineOutputArgs {
     pub view: LineView,
 
     /// Size of .svg and .png drawings in pixels.
-    #[arg(long, value_name = "WxH", default_value = "1024x1024", value_parser = parse_size, help_heading = "Output")]
+    #[arg(long, value_name = "WxH", default_value = "1024x1024", value_parser = drawing_size, help_heading = "Output")]
     pub size: (u32, u32),
 }
 
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
+/// The size of a line drawing: pictures of lines may be larger than rendered ones.
+fn drawing_size(text: &str) -> Result<(u32, u32), String> {
+    parse_size(text, 16384)
+}
+
+/// Parses `WxH`, each side 16..=`max` pixels.
+pub fn parse_size(text: &str, max: u32) -> Result<(u32, u32), String> {
     let (w, h) = text
         .split_once(['x', 'X'])
-        .ok_or_else(|| format!("`{text}`: expected WIDTHxHEIGHT, e.g. 1024x768"))?;
+        .ok_or_else(|| format!("--size {text}: expected WIDTHxHEIGHT, e.g. 1280x720"))?;
     let parse = |v: &str| {
         v.trim()
             .parse::<u32>()
             .ok()
-            .filter(|n| (16..=16384).contains(n))
-            .ok_or_else(|| format!("`{text}`: width and height must be whole numbers 16..16384"))
+            .filter(|v| (16..=max).contains(v))
+            .ok_or_else(|| {
+                format!("--size {text}: each side must be a whole number of pixels, 16..{max}")
+            })
     };
     Ok((parse(w)?, parse(h)?))
 }
@@ -592,6 +600,19 @@ pub enum RenderView {
     Side,
     Top,
     Iso,
+}
+
+impl RenderView {
+    /// The renderer's camera for this view.
+    pub fn to_view(self) -> sylva_render::View {
+        use sylva_render::ViewKind;
+        sylva_render::View::named(match self {
+            RenderView::Front => ViewKind::Front,
+            RenderView::Side => ViewKind::Side,
+            RenderView::Top => ViewKind::Top,
+            RenderView::Iso => ViewKind::Iso,
+        })
+    }
 }
 
 #[derive(Subcommand, Debug)]

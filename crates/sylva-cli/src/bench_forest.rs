@@ -1,15 +1,16 @@
 //! `sylva bench --forest` and `--throughput`: what range degradation saves when drawing a tree
 //! and a forest, and how fast unique trees grow.
 
-use crate::render_forest::{ForestOnGpu, grouped};
-use crate::shared::{APPENDIX_SPECIES, fastest_ms, mesh_options};
+use crate::shared::{APPENDIX_SPECIES, fastest_ms, grow_for_range, headless, with_progress};
 use anyhow::{Context, Result};
 use glam::Vec3;
 use std::time::Instant;
 use sylva::GenerateOptions;
 use sylva::forest::ForestSpec;
 use sylva::lod::LodTree;
-use sylva_render::{Camera, Renderer, Scene, View};
+use sylva::mesh::MeshOptions;
+use sylva_render::caption::grouped;
+use sylva_render::{Camera, ForestOnGpu, Renderer, Scene, View};
 
 const RANGES: [f32; 7] = [10.0, 30.0, 100.0, 300.0, 1000.0, 2000.0, 3000.0];
 const SIZE: (u32, u32) = (1280, 720);
@@ -52,7 +53,7 @@ fn table(renderer: &Renderer, scene: &mut Scene, target: Vec3, runs: u32) -> Res
 }
 
 pub fn bench_forest(runs: u32) -> Result<()> {
-    let renderer = crate::render::headless()?;
+    let renderer = headless()?;
     println!();
     println!(
         "drawing with and without range degradation on {} ({}x{}, {FOV} degree lens; frames \
@@ -73,7 +74,7 @@ pub fn bench_forest(runs: u32) -> Result<()> {
 
     let params = sylva::species::builtin("black_tupelo").context("built-in species")?;
     let skeleton = sylva::generate(&params, &GenerateOptions::default())?;
-    let lod = LodTree::build(&skeleton, &mesh_options(&params, 1.0));
+    let lod = LodTree::build(&skeleton, &MeshOptions::for_species(&params, 1.0));
     let tree = renderer.upload_lod(&lod);
     let mut scene = Scene::new(&tree, params.bark_color, params.leaf_color);
     scene.show_person = false;
@@ -96,7 +97,7 @@ pub fn bench_forest(runs: u32) -> Result<()> {
         variants: 4,
         quality: 0.5,
     };
-    let forest = ForestOnGpu::grow(&renderer, &spec)?;
+    let forest = ForestOnGpu::upload(&renderer, &grow_for_range(&spec)?);
     let mut scene = forest.scene();
     let variants = forest.trees.len();
     let stored = forest.stored_bytes as f64 / 1e6;
@@ -130,9 +131,18 @@ pub fn bench_throughput(n: u32) -> Result<()> {
     // Each tree is stored for range and released at once: it holds nothing against the
     // forest's memory budget.
     let t = Instant::now();
-    let forest = crate::forest::grow(&spec, |params, skeleton| {
-        let tree = LodTree::build(skeleton, &mesh_options(params, spec.quality));
-        (tree.triangle_count(), 0)
+    let species = spec.load_species()?;
+    let variants = sylva::forest::plant(&spec).variants.len();
+    let forest = with_progress(variants, |tick| {
+        sylva::forest::grow(
+            &spec,
+            species,
+            |params, skeleton| {
+                let options = MeshOptions::for_species(params, spec.quality);
+                (LodTree::build(skeleton, &options).triangle_count(), 0)
+            },
+            tick,
+        )
     })?;
     let s = t.elapsed().as_secs_f64();
     let triangles: usize = forest.grown.iter().sum();

@@ -1,9 +1,10 @@
 //! `sylva lobes`: Fields' lobe-driven trees.
 
-use crate::args::{LineOutputArgs, LobesArgs, UpAxis};
-use crate::lines::{MeshLook, plan, write_skeleton};
+use crate::args::{LobesArgs, UpAxis};
+use crate::shared::{draw_options, print_written};
 use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
+use sylva::drawing::{MeshLook, Meshable, plan, write_outputs};
 use sylva::export::{Materials, write_atomically};
 use sylva::fields::points::Up;
 use sylva::fields::{Lobe, TreeFile, TreeRules};
@@ -45,19 +46,14 @@ fn parse_lobe(text: &str) -> Result<Lobe> {
     })
 }
 
-pub fn lobes(args: &LobesArgs) -> Result<()> {
+pub fn run(args: &LobesArgs) -> Result<()> {
     // `.tree` outputs are written here; the rest by extension as for every line-drawable tree.
     let (tree_outputs, others): (Vec<PathBuf>, Vec<PathBuf>) =
         args.out.outputs.iter().cloned().partition(|p| {
             p.extension()
                 .is_some_and(|e| e.eq_ignore_ascii_case("tree"))
         });
-    let out = LineOutputArgs {
-        outputs: others,
-        view: args.out.view,
-        size: args.out.size,
-    };
-    let planned = plan(&out)?;
+    let planned = plan(&others)?;
     for p in &tree_outputs {
         if p.is_dir() {
             bail!("output {}: is a folder; give a file name", p.display());
@@ -157,7 +153,9 @@ pub fn lobes(args: &LobesArgs) -> Result<()> {
         },
         materials: Materials::from_srgb([0.36, 0.28, 0.22], rules.leaf_texture.color),
     };
-    let mut written = write_skeleton(&planned, &out, &skeleton, &rules.name, &look)?;
+    let options = draw_options(&args.out);
+    let mesh = Meshable::Skeleton(&skeleton);
+    let mut written = write_outputs(&planned, &options, &skeleton, mesh, &rules.name, &look)?;
     for path in &tree_outputs {
         let mut scaled = placement.clone();
         let s = args.scale as f32;
@@ -188,9 +186,7 @@ pub fn lobes(args: &LobesArgs) -> Result<()> {
         stats.height,
         stats.crown_width
     );
-    for line in written {
-        println!("wrote {line}");
-    }
+    print_written(written);
     Ok(())
 }
 

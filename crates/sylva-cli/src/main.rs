@@ -1,22 +1,26 @@
-//! The `sylva` command: generate, export and inspect trees.
+//! The `sylva` command: generate, export and inspect trees. This file parses the flags and
+//! hands them to the subcommand's module; each module turns flags into library calls and
+//! prints what was made. What several of them need lives in `shared.rs`.
 
 mod args;
+mod bench;
 mod bench_forest;
 mod bench_growth;
-mod caption;
-mod commands;
+mod chart;
+mod draw;
 mod forest;
-mod glb_scene;
+mod fractal;
+mod generate;
 mod grow;
-mod lines;
 mod lobes;
-mod lod_chain;
-mod nagel;
 mod render;
-mod render_forest;
 mod shared;
-mod viewer;
+mod species;
+mod stick;
+mod view;
+mod whisk;
 
+use args::{Cli, Command};
 use clap::Parser;
 
 fn main() {
@@ -33,8 +37,21 @@ fn main() {
         // SAFETY: nothing else runs yet: no threads exist that could read the environment.
         unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
     }
-    let cli = args::Cli::parse();
-    if let Err(err) = commands::run(cli) {
+    let done = match Cli::parse().command {
+        Command::Generate(args) => generate::run(&args),
+        Command::Species(command) => species::run(command),
+        Command::Render(args) => render::run(&args),
+        Command::View(args) => view::run(&args),
+        Command::Forest(args) => forest::run(&args),
+        Command::Grow(args) => grow::run(&args),
+        Command::Fractal(args) => fractal::run(&args),
+        Command::Whisk(args) => whisk::run(&args),
+        Command::Stick(args) => stick::run(&args),
+        Command::Draw(args) => draw::run(&args),
+        Command::Lobes(args) => lobes::run(&args),
+        Command::Bench(args) => bench::run(&args),
+    };
+    if let Err(err) = done {
         eprintln!("sylva: {err:#}");
         std::process::exit(1);
     }

@@ -1,16 +1,19 @@
-//! `sylva render`: pictures of a tree with the wgpu renderer, one view, a turntable contact
-//! sheet, or wind animation frames.
+//! `sylva render`: pictures of a tree (a species, species file or GLB) with the renderer: one
+//! view, a turntable contact sheet, or wind animation frames; and of a forest file, drawn with
+//! the paper's range degradation, alone or side by side with full detail.
 
-use crate::args::{RenderArgs, RenderView};
-use crate::glb_scene::{GlbScene, read_glb_scene};
-use crate::shared::{encode_png, parse_size};
-use crate::shared::{load_params, mesh_options};
+use crate::args::{LodMode, RenderArgs, parse_size};
+use crate::shared::{grow_for_range, headless, load_params, save_picture};
 use anyhow::{Context, Result, bail};
-use std::borrow::Cow;
+use glam::Vec3;
 use std::path::{Path, PathBuf};
-use sylva::mesh::{TreeMesh, mesh_tree};
+use std::time::Instant;
+use sylva::forest::{ForestSpec, is_forest_file};
+use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use sylva::{GenerateOptions, Wind};
-use sylva_render::{Picture, RenderTree, Renderer, Scene, Stand, View, ViewKind};
+use sylva_render::caption::{grouped, side_by_side, tile, with_caption};
+use sylva_render::glb_scene::{UploadedScene, read_glb_scene};
+use sylva_render::{Camera, ForestOnGpu, Picture, Renderer, Scene, View};
 
 /// `out.png` -> `out-0007.png`.
 fn numbered(path: &Path, index: u32) -> PathBuf {
@@ -21,65 +24,10 @@ fn numbered(path: &Path, index: u32) -> PathBuf {
     path.with_file_name(format!("{stem}-{index:04}.png"))
 }
 
-fn view_of(v: RenderView) -> View {
-    View::named(match v {
-        RenderView::Front => ViewKind::Front,
-        RenderView::Side => ViewKind::Side,
-        RenderView::Top => ViewKind::Top,
-        RenderView::Iso => ViewKind::Iso,
-    })
-}
-
 /// Lays `pictures` out in a grid on one sheet, as square as it can be.
 fn contact_sheet(pictures: &[Picture]) -> Picture {
     let columns = (pictures.len() as f64).sqrt().ceil() as u32;
-    crate::caption::tile(pictures, columns, 0, 255)
-}
-
-/// The trees of a GLB's scene on the renderer: each distinct mesh once, its copies placed.
-pub struct UploadedScene {
-    trees: Vec<RenderTree>,
-    glb: GlbScene,
-}
-
-impl UploadedScene {
-    pub fn new(renderer: &Renderer, glb: GlbScene) -> Self {
-        let trees = glb
-            .models
-            .iter()
-            .map(|m| renderer.upload(&m.mesh))
-            .collect();
-        Self { trees, glb }
-    }
-
-    /// The scene with ground and person, as a single tree's picture shows them.
-    pub fn scene(&self) -> Scene<'_> {
-        let stands = self
-            .trees
-            .iter()
-            .zip(&self.glb.models)
-            .map(|(tree, m)| Stand {
-                tree,
-                bark: m.bark,
-                leaves: m.leaves,
-                placements: Cow::Borrowed(&m.placements),
-            })
-            .collect();
-        Scene {
-            show_person: true,
-            ..Scene::forest(stands)
-        }
-    }
-
-    /// Triangles drawn, every copy counted.
-    pub fn triangles(&self) -> usize {
-        self.glb.triangles_placed()
-    }
-
-    /// The scene's bounds (metres, Z up).
-    pub fn bounds(&self) -> (glam::Vec3, glam::Vec3) {
-        self.scene().tree_bounds()
-    }
+    tile(pictures, columns, 0, 255)
 }
 
 /// The tree a species makes at a moment of the wind.
@@ -96,37 +44,12 @@ fn species_mesh(params: &sylva::TreeParams, args: &RenderArgs, time: f64) -> Res
         sylva::generate(params, &options).with_context(|| format!("species {}", args.input))?;
     Ok(mesh_tree(
         &skeleton,
-        &mesh_options(params, args.tree.quality),
+        &MeshOptions::for_species(params, args.tree.quality),
     ))
 }
 
-/// The headless renderer `SYLVA_RENDERER` asks for (by default the first that works: Vulkan,
-/// OpenGL, the CPU), saying on stderr when pictures are drawn on the CPU instead of a GPU.
-pub fn headless() -> Result<Renderer> {
-    let choice = sylva_render::Choice::from_env()?;
-    Ok(Renderer::headless(choice, |note| {
-        eprintln!("sylva: {note}")
-    })?)
-}
-
-/// One picture of a tree mesh from a named view, with ground and person (the `--preview` of
-/// `sylva generate`).
-pub fn picture(
-    mesh: &TreeMesh,
-    bark: [f32; 3],
-    leaves: [f32; 3],
-    view: RenderView,
-    width: u32,
-    height: u32,
-) -> Result<Picture> {
-    let renderer = headless()?;
-    let tree = renderer.upload(mesh);
-    let scene = Scene::new(&tree, bark, leaves);
-    Ok(renderer.render(&scene, &view_of(view), width, height)?)
-}
-
-pub fn render(args: &RenderArgs) -> Result<()> {
-    let (width, height) = parse_size(&args.size)?;
+pub fn run(args: &RenderArgs) -> Result<()> {
+    let (width, height) = parse_size(&args.size, 8192).map_err(anyhow::Error::msg)?;
     if !args
         .output
         .extension()
@@ -153,13 +76,8 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         bail!("wind needs the species, not a finished .glb: render the species instead");
     }
     let renderer = headless()?;
-    if crate::forest::is_forest_file(Path::new(&args.input)) {
-        return crate::render_forest::render_forest(
-            args,
-            &renderer,
-            view_of(args.view),
-            (width, height),
-        );
+    if is_forest_file(Path::new(&args.input)) {
+        return render_forest(args, &renderer, args.view.to_view(), (width, height));
     }
     // A GLB as it is; a species regenerated for each moment of the wind.
     if is_glb {
@@ -195,7 +113,7 @@ fn draw(
     scene.show_leaves = !args.tree.no_leaves;
     scene.show_ground = !args.bare;
     scene.show_person = !args.bare;
-    let mut base = view_of(args.view);
+    let mut base = args.view.to_view();
     base.fov_y = args.fov;
     Ok(match args.turntable {
         Some(n) => {
@@ -220,7 +138,7 @@ fn write_picture(
     triangles: usize,
     renderer: &Renderer,
 ) -> Result<()> {
-    encode_png(path, picture.width, picture.height, &picture.rgba)?;
+    save_picture(path, picture)?;
     println!(
         "wrote {} ({}x{}, {} triangles, {})",
         path.display(),
@@ -232,15 +150,117 @@ fn write_picture(
     Ok(())
 }
 
+/// The camera a render asks for: an explicit eye, a range along the view's direction, or the
+/// view framing the whole forest from no lower than 12 degrees.
+fn forest_view(args: &RenderArgs, scene: &Scene, base: View) -> Result<View> {
+    let (lo, hi) = scene.tree_bounds();
+    let centre = Vec3::new(
+        (lo.x + hi.x) / 2.0,
+        (lo.y + hi.y) / 2.0,
+        (hi.z - lo.z) / 3.0,
+    );
+    if let (Some(eye), Some(target)) = (&args.eye, &args.target) {
+        if eye.len() != 3 || target.len() != 3 {
+            bail!(
+                "--eye and --target take three numbers each, X,Y,Z in metres, e.g. --eye 0,-80,2"
+            );
+        }
+        let (eye, target) = (Vec3::from_slice(eye), Vec3::from_slice(target));
+        if !eye.is_finite() || !target.is_finite() || eye.distance(target) < 1e-3 {
+            bail!("--eye and --target must be finite and apart");
+        }
+        return Ok(View::look_at(eye, target, args.fov));
+    }
+    let elevation = base.elevation.max(12.0);
+    if let Some(range) = args.range {
+        if !(range.is_finite() && range > 0.5 && range <= 100_000.0) {
+            bail!("--range {range}: expected 0.5..100000 metres");
+        }
+        let eye = centre + Camera::direction(base.azimuth, elevation) * range;
+        return Ok(View::look_at(eye, centre, args.fov));
+    }
+    let mut view = View::orbit(base.azimuth, elevation);
+    view.fov_y = args.fov;
+    Ok(view)
+}
+
+fn render_forest(
+    args: &RenderArgs,
+    renderer: &Renderer,
+    base: View,
+    (width, height): (u32, u32),
+) -> Result<()> {
+    if args.frames.is_some() || args.turntable.is_some() || args.wind != 0.0 {
+        bail!(
+            "forests are rendered one picture at a time: leave out --frames, --turntable and --wind"
+        );
+    }
+    let path = Path::new(&args.input);
+    let spec = ForestSpec::from_file(path)?;
+    let forest = grow_for_range(&spec).with_context(|| path.display().to_string())?;
+    let forest = ForestOnGpu::upload(renderer, &forest);
+    let mut scene = forest.scene();
+    scene.show_leaves = !args.tree.no_leaves;
+    scene.show_ground = !args.bare;
+    let view = forest_view(args, &scene, base)?;
+    let mut frame = |use_lod: bool| -> Result<(Picture, f64)> {
+        scene.use_lod = use_lod;
+        let t = Instant::now();
+        let picture = renderer.render(&scene, &view, width, height)?;
+        Ok((picture, t.elapsed().as_secs_f64() * 1e3))
+    };
+    let picture = match args.lod {
+        LodMode::On | LodMode::Off => {
+            let (p, ms) = frame(args.lod == LodMode::On)?;
+            println!("{}", p.stats.describe(ms));
+            p
+        }
+        LodMode::Compare => {
+            let (with, with_ms) = frame(true)?;
+            let (without, without_ms) = frame(false)?;
+            let size = (width as f32 / 48.0).clamp(11.0, 22.0);
+            let caption =
+                |title: &str, p: &Picture, ms: f64| vec![title.to_string(), p.stats.describe(ms)];
+            let left = with_caption(
+                &with,
+                &caption("with range degradation (LOD)", &with, with_ms),
+                size,
+            );
+            let right = with_caption(
+                &without,
+                &caption("full detail (no LOD)", &without, without_ms),
+                size,
+            );
+            println!("with LOD:    {}", with.stats.describe(with_ms));
+            println!("without LOD: {}", without.stats.describe(without_ms));
+            side_by_side(&[left, right], 8)
+        }
+    };
+    save_picture(&args.output, &picture)?;
+    println!(
+        "wrote {} ({}x{}; {} trees of {} variants grown in {:.1} s, {:.1} MB stored; {})",
+        args.output.display(),
+        picture.width,
+        picture.height,
+        grouped(forest.placements.iter().map(Vec::len).sum()),
+        forest.trees.len(),
+        forest.grow_seconds,
+        forest.stored_bytes as f64 / 1e6,
+        renderer.adapter_name()
+    );
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn sizes_and_names() {
-        assert_eq!(parse_size("1280x720").unwrap(), (1280, 720));
-        assert!(parse_size("12x720").is_err());
-        assert!(parse_size("wide").is_err());
+        assert_eq!(parse_size("1280x720", 8192).unwrap(), (1280, 720));
+        assert!(parse_size("12x720", 8192).is_err());
+        assert!(parse_size("9000x720", 8192).is_err());
+        assert!(parse_size("wide", 8192).is_err());
         assert_eq!(
             numbered(Path::new("dir/sway.png"), 3),
             PathBuf::from("dir/sway-0003.png")

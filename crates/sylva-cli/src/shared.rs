@@ -1,16 +1,19 @@
-//! What the subcommands share: a species loaded with its `--set` overrides, the mesh options a
-//! species asks for, the benchmark set and its timer, picture sizes and PNG files, a grown
-//! street tree's colours. Imports no subcommand, so that none of
-//! them imports another through it.
+//! What the subcommands share: a species loaded with its `--set` overrides, the headless
+//! renderer with its notices, pictures written as PNG, forests grown with a progress bar,
+//! line-drawable trees written by extension, the benchmark set and its timer. Imports no subcommand, so that none of them
+//! imports another through it.
 
-use anyhow::{Context, Result};
-use image::ImageEncoder;
+use crate::args::{LineOutputArgs, LineView, RibArgs};
+use anyhow::{Context, Result, bail};
 use std::path::Path;
 use std::time::Instant;
-use sylva::TreeParams;
+use sylva::drawing::{DrawOptions, MeshLook, Meshable, Planned, View, write_outputs};
 use sylva::export::write_atomically;
-use sylva::growth::Measured;
-use sylva::mesh::MeshOptions;
+use sylva::forest::{Forest, ForestSpec};
+use sylva::lod::LodTree;
+use sylva::nagel::WhiskParams;
+use sylva::{Skeleton, TreeParams};
+use sylva_render::{Picture, Renderer};
 
 /// The paper's four appendix species: the benchmark set.
 pub const APPENDIX_SPECIES: [&str; 4] = [
@@ -34,9 +37,7 @@ pub fn fastest_ms(runs: u32, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
 /// Loads the species and applies `--set` overrides.
 pub fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
     let mut params = sylva::species::load(species)?;
-    for note in &params.notes {
-        eprintln!("sylva: warning: {species}: {note}");
-    }
+    warn_notes(species, &params);
     for item in overrides {
         let (name, value) = item.split_once('=').with_context(|| {
             format!("--set {item}: expected NAME=VALUE, e.g. --set 1Branches=30")
@@ -55,47 +56,139 @@ pub fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {
     Ok(params)
 }
 
-pub fn mesh_options(params: &TreeParams, quality: f64) -> MeshOptions {
-    // Arbaro's Smooth (0..1, default 0.5) scales the mesh resolution around the default.
-    MeshOptions {
-        quality: quality * (0.5 + params.smooth),
+/// What reading a species noticed (an Arbaro value clamped), as warnings.
+fn warn_notes(species: &str, params: &TreeParams) {
+    for note in &params.notes {
+        eprintln!("sylva: warning: {species}: {note}");
+    }
+}
+
+/// The headless renderer `SYLVA_RENDERER` asks for (by default the first that works: Vulkan,
+/// OpenGL, the CPU), saying on stderr when pictures are drawn on the CPU instead of a GPU.
+pub fn headless() -> Result<Renderer> {
+    let choice = sylva_render::Choice::from_env()?;
+    Ok(Renderer::headless(choice, |note| {
+        eprintln!("sylva: {note}")
+    })?)
+}
+
+/// Writes a picture as a PNG file.
+pub fn save_picture(path: &Path, picture: &Picture) -> Result<()> {
+    write_atomically(path, &picture.to_png()?)?;
+    Ok(())
+}
+
+/// A forest's species, loaded with their warnings told.
+pub fn forest_species(spec: &ForestSpec) -> Result<Vec<TreeParams>> {
+    let species = spec.load_species()?;
+    for (name, params) in spec.species.iter().zip(&species) {
+        warn_notes(name, params);
+    }
+    Ok(species)
+}
+
+/// Runs `grow` with a progress bar on stderr (hidden when stderr is not a terminal), passing
+/// it the tick to call as each tree is done.
+pub fn with_progress<T>(count: usize, grow: impl FnOnce(&(dyn Fn() + Sync)) -> T) -> T {
+    let bar = indicatif::ProgressBar::new(count as u64).with_message("growing trees");
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} [{elapsed}<{eta}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let grown = grow(&|| bar.inc(1));
+    bar.finish_and_clear();
+    grown
+}
+
+/// Plants and grows `spec` stored for range rendering, with a progress bar.
+pub fn grow_for_range(spec: &ForestSpec) -> Result<Forest<LodTree>> {
+    let species = forest_species(spec)?;
+    let variants = sylva::forest::plant(spec).variants.len();
+    Ok(with_progress(variants, |tick| {
+        sylva::forest::grow_lod(spec, species, tick)
+    })?)
+}
+
+/// The drawing settings the line-output flags ask for.
+pub fn draw_options(out: &LineOutputArgs) -> DrawOptions {
+    DrawOptions {
+        view: match out.view {
+            LineView::Front => View::Front,
+            LineView::Side => View::Side,
+            LineView::Top => View::Top,
+            LineView::Perspective => View::Perspective,
+            LineView::Overlay => View::Overlay,
+        },
+        width: out.size.0,
+        height: out.size.1,
         ..Default::default()
     }
 }
 
-/// Parses `WxH`.
-pub fn parse_size(text: &str) -> Result<(u32, u32)> {
-    let (w, h) = text
-        .split_once(['x', 'X'])
-        .with_context(|| format!("--size {text}: expected WIDTHxHEIGHT, e.g. 1280x720"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|v| (16..=8192).contains(v))
-            .with_context(|| {
-                format!("--size {text}: each side must be a whole number of pixels, 16..8192")
-            })
-    };
-    Ok((parse(w)?, parse(h)?))
-}
-
-pub fn encode_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(rgba, width, height, image::ExtendedColorType::Rgba8)
-        .context("encoding PNG")?;
-    write_atomically(path, &bytes)?;
+/// Writes a skeleton's planned line and mesh outputs; prints a line per file.
+pub fn write_skeleton(
+    planned: &[Planned],
+    out: &LineOutputArgs,
+    skeleton: &Skeleton,
+    name: &str,
+    look: &MeshLook,
+) -> Result<()> {
+    let options = draw_options(out);
+    let mesh = Meshable::Skeleton(skeleton);
+    print_written(write_outputs(
+        planned, &options, skeleton, mesh, name, look,
+    )?);
     Ok(())
 }
 
-/// Colours of a grown street tree's pictures and models: bark, and leaves (evergreens darker).
-pub fn street_tree_colours(m: &Measured) -> ([f32; 3], [f32; 3]) {
-    let evergreen = m.species.tree_type.get(1..2) == Some("E");
-    let leaves = if evergreen {
-        [0.2, 0.36, 0.16]
-    } else {
-        [0.33, 0.5, 0.2]
+/// One line per file written.
+pub fn print_written(written: Vec<String>) {
+    for line in written {
+        println!("wrote {line}");
+    }
+}
+
+/// A text file's contents; the error names the file.
+pub fn read_text(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
+/// The rib settings of a whisk or stick tree: `--ribs`, or ribs for a `--density`.
+pub fn rib_params(ribs: &RibArgs, rings: u32, spokes: u32) -> Result<WhiskParams> {
+    let count = match (ribs.ribs, ribs.density) {
+        (Some(n), _) => n,
+        (None, Some(d)) => sylva::nagel::whisk::density_ribs(d)
+            .with_context(|| format!("--density {d}: expected 1 (least dense) to 5 (most)"))?,
+        (None, None) => 8,
     };
-    ([0.42, 0.36, 0.3], leaves)
+    if let Some(h) = ribs.height
+        && !(h.is_finite() && h > 0.0 && h <= 200.0)
+    {
+        bail!("--height {h}: expected 0..200 metres");
+    }
+    Ok(WhiskParams {
+        ribs: count,
+        rings,
+        spokes,
+        wire_radius: ribs.wire_radius,
+        trunk_radius: ribs.trunk_radius,
+    })
+}
+
+/// Writes a whisk or stick tree's outputs and prints what was made.
+pub fn finish_ribbed(
+    planned: &[Planned],
+    out: &LineOutputArgs,
+    skeleton: &Skeleton,
+    name: &str,
+    summary: String,
+) -> Result<()> {
+    let stats = skeleton.stats();
+    println!(
+        "{summary}: {} stems, {:.2} m tall, crown {:.2} m across",
+        skeleton.stems.len(),
+        stats.height,
+        stats.crown_width
+    );
+    write_skeleton(planned, out, skeleton, name, &MeshLook::default())
 }

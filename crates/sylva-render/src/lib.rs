@@ -21,15 +21,22 @@
 #![deny(missing_docs)]
 
 mod camera;
+pub mod caption;
 mod cpu;
+mod forest;
 mod frame;
+pub mod glb_scene;
 mod gpu;
+mod lod_chain;
 mod props;
 mod scene;
+pub mod street;
 mod tree;
 
 pub use camera::{Camera, ViewKind};
+pub use forest::ForestOnGpu;
 pub use frame::SKY_SRGB;
+pub use lod_chain::{LodChain, bake_impostor, lod_chain};
 pub use props::{PERSON_HEIGHT, PropMesh, Vertex, ground, person};
 pub use scene::{FrameStats, Placement, Scene, Stand, View};
 pub use tree::RenderTree;
@@ -76,6 +83,12 @@ pub enum RenderError {
     /// `SYLVA_RENDERER` names no backend.
     #[error("SYLVA_RENDERER={0}: expected auto, vulkan, gl or cpu")]
     Choice(String),
+    /// A picture that cannot be encoded (its pixels do not fill its size).
+    #[error("cannot encode the picture as PNG: {0}")]
+    Encode(String),
+    /// A model that cannot be written.
+    #[error(transparent)]
+    Export(#[from] sylva::ExportError),
 }
 
 impl RenderError {
@@ -124,6 +137,20 @@ pub struct Picture {
 }
 
 impl Picture {
+    /// The picture as PNG bytes (RGBA, 8 bits per channel).
+    pub fn to_png(&self) -> Result<Vec<u8>, RenderError> {
+        let mut bytes = Vec::new();
+        image::ImageEncoder::write_image(
+            image::codecs::png::PngEncoder::new(&mut bytes),
+            &self.rgba,
+            self.width,
+            self.height,
+            image::ExtendedColorType::Rgba8,
+        )
+        .map_err(|e| RenderError::Encode(e.to_string()))?;
+        Ok(bytes)
+    }
+
     /// The RGB of one pixel.
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
         let i = ((y * self.width + x) * 4) as usize;

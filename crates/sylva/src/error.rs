@@ -124,6 +124,10 @@ pub enum ExportError {
     /// The mesh cannot be represented in the format.
     #[error("cannot export: {0}")]
     Format(String),
+    /// An output named so that nothing can be written to it (an unknown extension, a folder,
+    /// a file named twice, a mesh asked of lines); the message names it and what is allowed.
+    #[error("{0}")]
+    Output(String),
 }
 
 #[cfg(test)]

@@ -7,10 +7,12 @@
 //! Drawings that must know their extent before the first stroke (SVG, PNG) replay the source
 //! once per pass instead of buffering it.
 
+mod outputs;
 mod picture;
 mod vec_file;
 mod view;
 
+pub use outputs::{LineFormat, MeshLook, Meshable, Planned, plan, wants_mesh, write_outputs};
 pub use picture::{DrawOptions, draw_png, draw_rgba, draw_svg, write_svg};
 pub use vec_file::{VecWriter, read_vec, write_vec};
 pub use view::View;

@@ -9,6 +9,7 @@ pub mod light;
 pub mod measure;
 pub mod measured;
 pub mod model;
+pub mod report;
 
 pub use database::{Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};

@@ -107,6 +107,15 @@ impl Default for MeshOptions {
 }
 
 impl MeshOptions {
+    /// The options a Weber-Penn species asks for at a quality (1: the default): Arbaro's Smooth
+    /// (0..1, default 0.5) scales the ring resolution around it.
+    pub fn for_species(params: &crate::TreeParams, quality: f64) -> Self {
+        Self {
+            quality: quality * (0.5 + params.smooth),
+            ..Default::default()
+        }
+    }
+
     /// Vertices around a stem's rings.
     pub fn ring_vertices(&self, stem: &crate::skeleton::Stem) -> usize {
         match self.sides {

@@ -1,25 +1,30 @@
-//! Text on pictures (captions, labels): glyphs from the Ubuntu Light font that egui ships,
-//! rasterised with ab_glyph and blended over the RGBA pixels.
+//! Pictures put together: text (captions, labels) in the Ubuntu Light font that egui ships,
+//! rasterised with ab_glyph and blended over the RGBA pixels; pictures side by side or in a
+//! grid; numbers as captions write them.
 
+use crate::Picture;
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
-use sylva_render::Picture;
 
 fn font() -> FontRef<'static> {
     // The font is compiled in and known good; a failure here is a build defect.
     FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).expect("bundled font parses")
 }
 
-/// Makes the bundled font plotters' "sans-serif", once (charts need no system fonts).
-pub fn register_chart_font() {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        // Same bundled font as the captions; known to parse.
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            plotters::style::FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
-    });
+/// The bundled font's bytes (Ubuntu Light), for callers that draw text with other tools
+/// (charts) and should match the captions.
+pub const FONT: &[u8] = epaint_default_fonts::UBUNTU_LIGHT;
+
+/// Thousands separators: 1234567 -> "1,234,567".
+pub fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// Width in pixels of `text` at `size` pixels.
@@ -152,5 +157,13 @@ mod tests {
         assert!(text_width("wide text", 16.0) > text_width("w", 16.0));
         let both = side_by_side(&[p.clone(), p], 10);
         assert_eq!((both.width, both.height), (410, 50));
+    }
+
+    #[test]
+    fn numbers_are_grouped() {
+        assert_eq!(grouped(0), "0");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(1000), "1,000");
+        assert_eq!(grouped(1234567), "1,234,567");
     }
 }

@@ -2,12 +2,12 @@
 //! node that shows it as a placement, so a forest of a thousand copies of three trees costs
 //! three trees of memory and draws instanced.
 
-use anyhow::{Context, Result, bail};
+use crate::{Placement, RenderTree, Renderer, Scene, Stand};
 use glam::{Mat4, Vec3};
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::path::Path;
 use sylva::mesh::{Mesh, TreeMesh};
-use sylva_render::Placement;
 
 /// Deepest node hierarchy read, and most nodes visited: a malformed file (a node listed as its
 /// own child) stops here instead of looping.
@@ -16,12 +16,23 @@ const MAX_NODES: usize = 4_000_000;
 /// Largest model file read (a GLB's lengths are 32-bit), and largest external buffer.
 const MAX_FILE_BYTES: u64 = 2 << 30;
 
+/// A model file that cannot be drawn; the message names the file and what is wrong.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct GlbError(String);
+
+/// Fails with a message made by `format!`.
+macro_rules! fail {
+    ($($arg:tt)*) => { return Err(GlbError(format!($($arg)*))) };
+}
+
 /// One mesh of a GLB and where it stands.
 pub struct GlbModel {
     /// The mesh in Sylva's frame (metres, Z up).
     pub mesh: TreeMesh,
-    /// sRGB base colours of its bark and leaf materials.
+    /// sRGB base colour of its bark material.
     pub bark: [f32; 3],
+    /// sRGB base colour of its leaf material.
     pub leaves: [f32; 3],
     /// Every node showing it.
     pub placements: Vec<Placement>,
@@ -29,6 +40,7 @@ pub struct GlbModel {
 
 /// The models of a GLB's default scene.
 pub struct GlbScene {
+    /// Each distinct mesh once, with its placements.
     pub models: Vec<GlbModel>,
 }
 
@@ -160,14 +172,14 @@ fn read_mesh(
 /// Reads the default scene of a GLB (or glTF) file: each mesh once, placed by every node that
 /// shows it. A node whose transform is more than a move, a turn about the vertical and a
 /// uniform scale gets its own transformed copy of the mesh.
-pub fn read_glb_scene(path: &Path) -> Result<GlbScene> {
+pub fn read_glb_scene(path: &Path) -> Result<GlbScene, GlbError> {
     let bytes = read_bounded(path)?;
     // The reader subtracts the 12-byte header from the length a GLB declares without checking
     // it (gltf 1.4.1): a length under 20 (header and one chunk header) must not reach it.
     if let Some(declared) = bytes.strip_prefix(b"glTF").and_then(|b| b.get(4..8)) {
         let declared = u32::from_le_bytes(declared.try_into().expect("4 bytes")) as usize;
         if declared < 20 || declared > bytes.len() {
-            bail!(
+            fail!(
                 "{}: not a readable glTF file: its header says {declared} bytes, the file has {}",
                 path.display(),
                 bytes.len()
@@ -177,12 +189,12 @@ pub fn read_glb_scene(path: &Path) -> Result<GlbScene> {
     // From a slice, whose lengths the reader checks against the data (its stream reader
     // trusts the header's length: it underflows below 12 and allocates whatever it says).
     let gltf = gltf::Gltf::from_slice(&bytes)
-        .with_context(|| format!("{}: not a readable glTF file", path.display()))?;
+        .map_err(|e| GlbError(format!("{}: not a readable glTF file: {e}", path.display())))?;
     drop(bytes);
     let base = path.parent().unwrap_or(Path::new("."));
     check_external_buffers(&gltf.document, base, path)?;
     let buffers = gltf::import_buffers(&gltf.document, Some(base), gltf.blob.clone())
-        .with_context(|| format!("{}: cannot load its buffers", path.display()))?;
+        .map_err(|e| GlbError(format!("{}: cannot load its buffers: {e}", path.display())))?;
     let doc = &gltf.document;
     let roots: Vec<gltf::Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
@@ -207,7 +219,7 @@ pub fn read_glb_scene(path: &Path) -> Result<GlbScene> {
     while let Some((node, parent, depth)) = stack.pop() {
         visited += 1;
         if depth > MAX_DEPTH || visited > MAX_NODES {
-            bail!(
+            fail!(
                 "{}: its node hierarchy is deeper than {MAX_DEPTH} or has over {MAX_NODES} \
                  nodes (a node listed inside itself?)",
                 path.display()
@@ -235,32 +247,32 @@ pub fn read_glb_scene(path: &Path) -> Result<GlbScene> {
     // Meshes without triangles draw nothing; drop them.
     models.retain(|m| m.mesh.triangle_count() > 0);
     if models.is_empty() {
-        bail!("{}: no triangles to render", path.display());
+        fail!("{}: no triangles to render", path.display());
     }
     Ok(GlbScene { models })
 }
 
 /// The whole file, if it is a regular file within the budget.
-fn read_bounded(path: &Path) -> Result<Vec<u8>> {
-    let meta =
-        std::fs::metadata(path).with_context(|| format!("cannot read {}", path.display()))?;
+fn read_bounded(path: &Path) -> Result<Vec<u8>, GlbError> {
+    let meta = std::fs::metadata(path)
+        .map_err(|e| GlbError(format!("cannot read {}: {e}", path.display())))?;
     if !meta.is_file() {
-        bail!("{}: not a file", path.display());
+        fail!("{}: not a file", path.display());
     }
     if meta.len() > MAX_FILE_BYTES {
-        bail!(
+        fail!(
             "{}: {} MB, over the {} MB a model may take",
             path.display(),
             meta.len() >> 20,
             MAX_FILE_BYTES >> 20
         );
     }
-    std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))
+    std::fs::read(path).map_err(|e| GlbError(format!("cannot read {}: {e}", path.display())))
 }
 
 /// Buffers in other files must be regular files within the budget (a `.gltf` naming
 /// `/dev/zero` would otherwise be read without end).
-fn check_external_buffers(doc: &gltf::Document, base: &Path, path: &Path) -> Result<()> {
+fn check_external_buffers(doc: &gltf::Document, base: &Path, path: &Path) -> Result<(), GlbError> {
     for buffer in doc.buffers() {
         if let gltf::buffer::Source::Uri(uri) = buffer.source()
             && !uri.starts_with("data:")
@@ -269,7 +281,7 @@ fn check_external_buffers(doc: &gltf::Document, base: &Path, path: &Path) -> Res
             let ok =
                 std::fs::metadata(&file).is_ok_and(|m| m.is_file() && m.len() <= MAX_FILE_BYTES);
             if !ok {
-                bail!(
+                fail!(
                     "{}: buffer {} names `{uri}`, which is not a readable file of at most {} MB",
                     path.display(),
                     buffer.index(),
@@ -292,6 +304,54 @@ fn model(
         bark: bark.unwrap_or(sylva::params::DEFAULT_BARK),
         leaves: leaves.unwrap_or(sylva::params::DEFAULT_LEAVES),
         placements,
+    }
+}
+
+/// The trees of a GLB's scene on a renderer: each distinct mesh uploaded once, its copies
+/// placed.
+pub struct UploadedScene {
+    trees: Vec<RenderTree>,
+    glb: GlbScene,
+}
+
+impl UploadedScene {
+    /// Uploads every distinct mesh of `glb`.
+    pub fn new(renderer: &Renderer, glb: GlbScene) -> Self {
+        let trees = glb
+            .models
+            .iter()
+            .map(|m| renderer.upload(&m.mesh))
+            .collect();
+        Self { trees, glb }
+    }
+
+    /// The scene with ground and person, as a single tree's picture shows them.
+    pub fn scene(&self) -> Scene<'_> {
+        let stands = self
+            .trees
+            .iter()
+            .zip(&self.glb.models)
+            .map(|(tree, m)| Stand {
+                tree,
+                bark: m.bark,
+                leaves: m.leaves,
+                placements: Cow::Borrowed(&m.placements),
+            })
+            .collect();
+        Scene {
+            show_person: true,
+            ..Scene::forest(stands)
+        }
+    }
+
+    /// Triangles drawn, every copy counted.
+    pub fn triangles(&self) -> usize {
+        self.glb.triangles_placed()
+    }
+
+    /// The scene's bounds (metres, Z up).
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.scene().tree_bounds()
     }
 }
 

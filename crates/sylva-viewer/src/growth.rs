@@ -2,8 +2,10 @@
 //! thread grows every species year by year and hands over each age's skeleton; the window
 //! shows any age grown so far (the slider), or plays the years in turn.
 
-use super::{Screenshots, Turntable, ViewTexture};
-use crate::shared::street_tree_colours;
+use crate::window::{
+    Screenshots, Turntable, ViewTexture, ensure_texture, render_timed, renderer_of, show_texture,
+    window,
+};
 use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use glam::Vec3;
@@ -25,7 +27,7 @@ struct Grown {
 }
 
 /// Opens the window (blocks until it is closed).
-pub fn run(
+pub fn watch_growth(
     species: Vec<Measured>,
     ages: Vec<f64>,
     seed: u64,
@@ -39,7 +41,7 @@ pub fn run(
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    super::window("sylva-grow", options, move |cc| {
+    window("sylva-grow", options, move |cc| {
         GrowthViewer::new(cc, species, ages, seed, self_test)
     })
 }
@@ -126,7 +128,7 @@ impl GrowthViewer {
         seed: u64,
         self_test: Option<PathBuf>,
     ) -> Result<Self> {
-        let (renderer, render_state) = super::renderer_of(cc)?;
+        let (renderer, render_state) = renderer_of(cc)?;
         let (mut tallest, mut widest) = (1.8f32, 1.0f32);
         for m in &species {
             for &age in &ages {
@@ -224,7 +226,7 @@ impl GrowthViewer {
             .zip(&self.species)
             .enumerate()
             .map(|(i, (tree, m))| {
-                let (bark, leaves) = street_tree_colours(m);
+                let (bark, leaves) = m.colours();
                 Stand {
                     tree,
                     bark,
@@ -243,7 +245,7 @@ impl GrowthViewer {
 
     fn draw(&mut self, size: [u32; 2]) {
         let size = [size[0].clamp(16, 4096), size[1].clamp(16, 4096)];
-        if super::ensure_texture(&self.render_state, &mut self.texture, size) {
+        if ensure_texture(&self.render_state, &mut self.texture, size) {
             self.needs_render = true;
         }
         if self.trees.is_empty() || !self.needs_render {
@@ -253,7 +255,7 @@ impl GrowthViewer {
             return;
         };
         let view = self.view(size[0] as f32 / size[1] as f32);
-        let (_, ms) = super::render_timed(
+        let (_, ms) = render_timed(
             &self.renderer,
             &self.render_state,
             &self.scene(),
@@ -450,7 +452,7 @@ impl eframe::App for GrowthViewer {
                 self.needs_render = true;
             }
             self.draw([(rect.width() * ppp) as u32, (rect.height() * ppp) as u32]);
-            super::show_texture(ui, rect, &self.texture);
+            show_texture(ui, rect, &self.texture);
             self.labels(ui, rect);
         });
         let ctx = ui.ctx().clone();

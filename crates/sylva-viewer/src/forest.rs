@@ -1,26 +1,27 @@
 //! `sylva view forest.toml`: fly through a planted forest, with range degradation on or off,
 //! and see what each frame draws and how long it takes.
 
-use super::ViewTexture;
-use crate::render_forest::{ForestOnGpu, describe};
+use crate::window::{ViewTexture, ensure_texture, render_timed, renderer_of, show_texture, window};
 use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use glam::Vec3;
-use std::path::{Path, PathBuf};
-use sylva_render::{FrameStats, Renderer, View};
+use std::path::PathBuf;
+use sylva::forest::Forest;
+use sylva::lod::LodTree;
+use sylva_render::{ForestOnGpu, FrameStats, Renderer, View};
 
-/// Opens a window flying through the forest of `path` (blocks until it is closed).
-pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
+/// Opens a window flying through `forest`, titled by `name` (blocks until it is closed).
+/// `self_test`: a scripted run for tests (frames with and without LOD, a report, close).
+pub fn fly_through(forest: Forest<LodTree>, name: &str, self_test: Option<PathBuf>) -> Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
-            .with_title(format!("Sylva: {}", path.display()))
+            .with_title(format!("Sylva: {name}"))
             .with_inner_size([1280.0, 800.0]),
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    let path = path.to_path_buf();
-    super::window("sylva-forest", options, move |cc| {
-        ForestViewer::new(cc, &path, self_test)
+    window("sylva-forest", options, move |cc| {
+        ForestViewer::new(cc, &forest, self_test)
     })
 }
 
@@ -47,11 +48,11 @@ struct ForestViewer {
 impl ForestViewer {
     fn new(
         cc: &eframe::CreationContext<'_>,
-        path: &Path,
+        forest: &Forest<LodTree>,
         self_test: Option<PathBuf>,
     ) -> Result<Self> {
-        let (renderer, render_state) = super::renderer_of(cc)?;
-        let forest = ForestOnGpu::load(&renderer, path)?;
+        let (renderer, render_state) = renderer_of(cc)?;
+        let forest = ForestOnGpu::upload(&renderer, forest);
         // Start at the forest's edge, at eye height, looking across it.
         let (lo, hi) = forest.scene().tree_bounds();
         let eye = Vec3::new((lo.x + hi.x) / 2.0, lo.y - (hi.y - lo.y) * 0.15, 1.7);
@@ -135,7 +136,7 @@ impl ForestViewer {
 
     fn draw(&mut self, size: [u32; 2]) {
         let size = [size[0].clamp(16, 4096), size[1].clamp(16, 4096)];
-        if super::ensure_texture(&self.render_state, &mut self.texture, size) {
+        if ensure_texture(&self.render_state, &mut self.texture, size) {
             self.needs_render = true;
         }
         let (Some(texture), true) = (&self.texture, self.needs_render) else {
@@ -145,7 +146,7 @@ impl ForestViewer {
         scene.use_lod = self.use_lod;
         scene.lod_quality = self.lod_quality;
         scene.show_leaves = self.show_leaves;
-        (self.stats, self.frame_ms) = super::render_timed(
+        (self.stats, self.frame_ms) = render_timed(
             &self.renderer,
             &self.render_state,
             &scene,
@@ -215,7 +216,7 @@ impl eframe::App for ForestViewer {
             });
             ui.label(format!(
                 "{}   |   {}",
-                describe(&self.stats, self.frame_ms),
+                self.stats.describe(self.frame_ms),
                 self.renderer.adapter_name()
             ));
             ui.label(
@@ -229,7 +230,7 @@ impl eframe::App for ForestViewer {
             let response = ui.allocate_rect(rect, egui::Sense::drag());
             self.input(&response, ui);
             self.draw([(rect.width() * ppp) as u32, (rect.height() * ppp) as u32]);
-            super::show_texture(ui, rect, &self.texture);
+            show_texture(ui, rect, &self.texture);
         });
         let ctx = ui.ctx().clone();
         self.self_test_step(&ctx);

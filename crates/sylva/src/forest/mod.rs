@@ -1,16 +1,87 @@
 //! Forests: where trees stand on a plot, which species and variant each is, and how each copy
-//! is turned and scaled. Planting is cheap and deterministic; growing the variants is the
-//! caller's work (in parallel: every variant has its own seed).
+//! is turned and scaled ([`plant`], cheap and deterministic), then every variant grown in
+//! parallel ([`grow`], [`grow_meshes`]) into a [`Forest`] that exporters and the renderer take.
+//!
+//! ```
+//! use sylva::forest::{ForestSpec, grow_meshes};
+//! let spec = ForestSpec {
+//!     species: vec!["quaking_aspen".into(), "hazel".into()],
+//!     count: 20,
+//!     area: [40.0, 40.0],
+//!     ..ForestSpec::default()
+//! };
+//! let forest = grow_meshes(&spec, spec.load_species().unwrap(), &|| {}).unwrap();
+//! let glb = forest.to_glb().unwrap();
+//! assert_eq!(forest.planting.trees.len(), 20);
+//! assert_eq!(&glb[..4], b"glTF");
+//! ```
+
+mod file;
+mod grow;
+
+pub use file::is_forest_file;
+pub use grow::{Forest, MAX_FOREST_BYTES, grow, grow_lod, grow_meshes};
 
 use crate::rng::StreamKey;
 use serde::Deserialize;
+
+/// A forest that cannot be planted or grown. Each message names the file, species or field.
+#[derive(Debug, thiserror::Error)]
+pub enum ForestError {
+    /// A field of the spec out of range.
+    #[error("forest: {0}")]
+    Spec(String),
+    /// A forest file that cannot be read or holds no valid `[forest]` table.
+    #[error("{path}: {message}")]
+    File {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A species that cannot be loaded.
+    #[error(transparent)]
+    Load(#[from] crate::ParamsError),
+    /// A species whose parameters fail validation.
+    #[error("species {name}: {cause}")]
+    Species {
+        /// The species as the spec names it.
+        name: String,
+        /// Why, told in the message (not chained, or it would be told twice).
+        cause: crate::ParamsError,
+    },
+    /// A variant that cannot be generated (a budget).
+    #[error("growing {name} (seed {seed}): {cause}")]
+    Grow {
+        /// The species' name.
+        name: String,
+        /// The variant's seed.
+        seed: u64,
+        /// Why, told in the message.
+        cause: crate::GenerateError,
+    },
+    /// The trees would hold more than [`MAX_FOREST_BYTES`].
+    #[error(
+        "forest: its {variants} distinct trees would hold more than {:.1} GB (after {grown} \
+         trees); use fewer --variants or a lower --quality",
+        MAX_FOREST_BYTES as f64 / 1e9
+    )]
+    Budget {
+        /// Distinct trees planted.
+        variants: usize,
+        /// Trees grown when the budget was passed.
+        grown: usize,
+    },
+}
 
 /// The most trees one forest may hold.
 pub const MAX_TREES: u32 = 100_000;
 /// The largest side of a plot, metres.
 pub const MAX_SIDE: f32 = 100_000.0;
 
-/// What to plant: the `[forest]` table of a forest file, or `sylva forest`'s flags.
+/// What to plant: the `[forest]` table of a forest file, or `sylva forest`'s flags. The
+/// default is `sylva forest`'s: 100 trees on 100 x 100 m, 4 variants per species, quality 0.5,
+/// and no species (name at least one).
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ForestSpec {
@@ -46,6 +117,19 @@ fn default_variants() -> u32 {
 }
 fn default_quality() -> f64 {
     0.5
+}
+
+impl Default for ForestSpec {
+    fn default() -> Self {
+        Self {
+            species: Vec::new(),
+            count: default_count(),
+            area: default_area(),
+            seed: 0,
+            variants: default_variants(),
+            quality: default_quality(),
+        }
+    }
 }
 
 impl ForestSpec {

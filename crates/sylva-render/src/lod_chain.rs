@@ -1,32 +1,31 @@
-//! `sylva generate --lod-chain`: a tree as an engine's chain of levels of detail, the last a
-//! billboard impostor baked with the renderer.
+//! A tree as an engine's chain of levels of detail: the meshes of [`LodTree::engine_chain`],
+//! and last a billboard impostor whose views are baked with the renderer.
 
-use anyhow::Result;
+use crate::{Picture, RenderError, Renderer, Scene, View};
 use glam::Vec3;
-use std::path::Path;
 use sylva::TreeParams;
-use sylva::export::{Materials, to_glb_lod, write_atomically};
+use sylva::export::{Materials, to_glb_lod};
 use sylva::lod::LodTree;
 use sylva::lod::impostor::{Impostor, ImpostorFrame};
 use sylva::mesh::TreeMesh;
-use sylva_render::{Picture, Renderer, Scene, View};
 
 /// Height of one view in the atlas, pixels.
 const CELL_HEIGHT: u32 = 256;
 /// Screen coverage below which the impostor replaces the meshes.
-const IMPOSTOR_COVERAGE: f32 = 0.04;
+pub const IMPOSTOR_COVERAGE: f32 = 0.04;
 
 /// Bakes the views of `mesh` into an atlas: each view a near-orthographic picture (a long lens
 /// from far away) with a transparent background, lit by the same sun as every render.
 pub fn bake_impostor(
     renderer: &Renderer,
     mesh: &TreeMesh,
-    params: &TreeParams,
-) -> Result<Impostor> {
+    bark: [f32; 3],
+    leaves: [f32; 3],
+) -> Result<Impostor, RenderError> {
     let frame = ImpostorFrame::around(mesh);
     let (w, h) = frame.cell_size(CELL_HEIGHT);
     let tree = renderer.upload(mesh);
-    let mut scene = Scene::new(&tree, params.bark_color, params.leaf_color);
+    let mut scene = Scene::new(&tree, bark, leaves);
     scene.show_ground = false;
     scene.show_person = false;
     scene.transparent = true;
@@ -37,41 +36,50 @@ pub fn bake_impostor(
     let views = (0..frame.views)
         .map(|k| {
             let eye = centre + frame.direction(k) * distance;
-            Ok(renderer.render(&scene, &View::look_at(eye, centre, fov), w, h)?)
+            renderer.render(&scene, &View::look_at(eye, centre, fov), w, h)
         })
-        .collect::<Result<Vec<Picture>>>()?;
+        .collect::<Result<Vec<Picture>, RenderError>>()?;
     // Cells in the order the quads read them, on a transparent background.
     let atlas = crate::caption::tile(&views, frame.columns, 0, 0);
-    let mut png = Vec::new();
-    image::ImageEncoder::write_image(
-        image::codecs::png::PngEncoder::new(&mut png),
-        &atlas.rgba,
-        atlas.width,
-        atlas.height,
-        image::ExtendedColorType::Rgba8,
-    )?;
-    Ok(Impostor { png, frame })
+    Ok(Impostor {
+        png: atlas.to_png()?,
+        frame,
+    })
 }
 
-/// Writes the chain of `lod` to `path`; returns a one-line description of its levels.
-pub fn write_lod_chain(path: &Path, lod: &LodTree, params: &TreeParams) -> Result<String> {
+/// An LOD chain written as GLB.
+pub struct LodChain {
+    /// The GLB file's bytes.
+    pub glb: Vec<u8>,
+    /// One line describing its levels.
+    pub summary: String,
+}
+
+/// The chain of `lod` as GLB (`MSFT_lod`), with an impostor baked on `renderer` when there is
+/// one.
+pub fn lod_chain(
+    renderer: Option<&Renderer>,
+    lod: &LodTree,
+    params: &TreeParams,
+) -> Result<LodChain, RenderError> {
     let chain = lod.engine_chain();
-    let impostor = match crate::render::headless() {
-        Ok(renderer) => Some(bake_impostor(&renderer, &chain[0].0, params)?),
-        Err(e) => {
-            eprintln!("sylva: warning: {e}; writing the LOD chain without its impostor");
-            None
-        }
+    let impostor = match renderer {
+        Some(r) => Some(bake_impostor(
+            r,
+            &chain[0].0,
+            params.bark_color,
+            params.leaf_color,
+        )?),
+        None => None,
     };
     let materials = Materials::from_srgb(params.bark_color, params.leaf_color);
     let name = params.name.replace(' ', "_");
-    let bytes = to_glb_lod(
+    let glb = to_glb_lod(
         &name,
         &chain,
         impostor.as_ref().map(|i| (i, IMPOSTOR_COVERAGE)),
         &materials,
     )?;
-    write_atomically(path, &bytes)?;
     let mut parts: Vec<String> = chain
         .iter()
         .enumerate()
@@ -90,5 +98,8 @@ pub fn write_lod_chain(path: &Path, lod: &LodTree, params: &TreeParams) -> Resul
             i.png.len() / 1024
         ));
     }
-    Ok(parts.join("; "))
+    Ok(LodChain {
+        glb,
+        summary: parts.join("; "),
+    })
 }

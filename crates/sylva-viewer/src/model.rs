@@ -1,17 +1,20 @@
 //! `sylva view tree.glb`: look at any model Sylva wrote (a fractal, whisk or lobe tree, a grown
 //! street tree, a species) from every side. Drag turns and tilts, the wheel zooms.
 
-use super::{Screenshots, Turntable, ViewTexture};
-use crate::render::UploadedScene;
+use crate::window::{
+    Screenshots, Turntable, ViewTexture, ensure_texture, render_timed, renderer_of, show_texture,
+    window,
+};
 use anyhow::Result;
 use eframe::{egui, egui_wgpu};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use sylva_render::glb_scene::{UploadedScene, read_glb_scene};
 use sylva_render::{Renderer, View};
 
 /// Opens the window (blocks until it is closed).
-pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
-    let model = crate::glb_scene::read_glb_scene(path)?;
+pub fn look_at(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
+    let model = read_glb_scene(path)?;
     let title = format!("Sylva: {}", path.display());
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -20,7 +23,7 @@ pub fn run(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    super::window("sylva-model", options, move |cc| {
+    window("sylva-model", options, move |cc| {
         ModelViewer::new(cc, model, self_test)
     })
 }
@@ -49,10 +52,10 @@ struct ModelViewer {
 impl ModelViewer {
     fn new(
         cc: &eframe::CreationContext<'_>,
-        glb: crate::glb_scene::GlbScene,
+        glb: sylva_render::glb_scene::GlbScene,
         self_test: Option<PathBuf>,
     ) -> Result<Self> {
-        let (renderer, render_state) = super::renderer_of(cc)?;
+        let (renderer, render_state) = renderer_of(cc)?;
         let model = UploadedScene::new(&renderer, glb);
         Ok(Self {
             renderer,
@@ -84,7 +87,7 @@ impl ModelViewer {
 
     fn draw(&mut self, size: [u32; 2]) {
         let size = [size[0].clamp(16, 4096), size[1].clamp(16, 4096)];
-        if super::ensure_texture(&self.render_state, &mut self.texture, size) {
+        if ensure_texture(&self.render_state, &mut self.texture, size) {
             self.needs_render = true;
         }
         let Some(texture) = &self.texture else {
@@ -96,8 +99,7 @@ impl ModelViewer {
         let mut scene = self.model.scene();
         scene.show_leaves = self.show_leaves;
         let view = self.view(size[0] as f32 / size[1] as f32);
-        let (_, ms) =
-            super::render_timed(&self.renderer, &self.render_state, &scene, &view, texture);
+        let (_, ms) = render_timed(&self.renderer, &self.render_state, &scene, &view, texture);
         self.frame_ms = ms;
         self.needs_render = false;
     }
@@ -169,7 +171,7 @@ impl eframe::App for ModelViewer {
                 self.needs_render = true;
             }
             self.draw([(rect.width() * ppp) as u32, (rect.height() * ppp) as u32]);
-            super::show_texture(ui, rect, &self.texture);
+            show_texture(ui, rect, &self.texture);
         });
         let ctx = ui.ctx().clone();
         self.self_test_step(&ctx);

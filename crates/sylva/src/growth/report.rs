@@ -1,0 +1,268 @@
+//! A growth report: street trees grown side by side through a run of ages, each age measured
+//! the way the Urban Tree Database measured its trees and set beside the equations. The rows
+//! feed the CSV, the charts and the captions of `sylva grow`; drawing them is the caller's.
+//!
+//! ```
+//! use sylva::growth::{Database, report::{Cohort, run_ages}};
+//! let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+//! let ages = run_ages(&plane, Some(5.0), Some(10.0), 5.0).unwrap();
+//! let mut cohort = Cohort::new(vec![plane], 0);
+//! for &age in &ages {
+//!     let skeletons = cohort.advance_to(age);
+//!     assert_eq!(skeletons.len(), 1);
+//! }
+//! let csv = sylva::growth::report::csv(&cohort.history[0]);
+//! assert_eq!(csv.lines().count(), 3);
+//! ```
+
+use super::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
+use crate::Skeleton;
+use crate::mesh::MeshOptions;
+use std::fmt::Write as _;
+
+/// Oldest age a run may ask for, years.
+pub const MAX_AGE: f64 = 300.0;
+/// Most ages one run may hold.
+pub const MAX_AGES: usize = 400;
+
+/// How finely grown trees are meshed: a street tree has tens of thousands of thin segments,
+/// so rings are coarser than a lone Weber-Penn tree's.
+pub const MESH: MeshOptions = MeshOptions {
+    quality: 0.6,
+    sides: None,
+};
+
+/// The ages of a run: `from` to `to` every `step` years, by default the ages the species'
+/// data cover. Errors name the flags and the data's ages.
+pub fn run_ages(
+    first: &Measured,
+    from: Option<f64>,
+    to: Option<f64>,
+    step: f64,
+) -> Result<Vec<f64>, String> {
+    if !(step > 0.0 && step.is_finite()) {
+        return Err(format!(
+            "--step {step}: expected a positive number of years"
+        ));
+    }
+    let from = from.unwrap_or(first.ages.0.ceil());
+    let to = to.unwrap_or(first.ages.1.floor());
+    if !(0.0..=MAX_AGE).contains(&from) || !(0.0..=MAX_AGE).contains(&to) || from > to {
+        return Err(format!(
+            "--from {from} --to {to}: expected 0 <= from <= to <= {MAX_AGE} years (the data for \
+             {} cover ages {:.0} to {:.0})",
+            first.label(),
+            first.ages.0,
+            first.ages.1
+        ));
+    }
+    let count = ((to - from) / step + 1e-9).floor() as usize + 1;
+    if count > MAX_AGES {
+        return Err(format!(
+            "--from {from} --to {to} --step {step}: {count} ages, at most {MAX_AGES}"
+        ));
+    }
+    Ok((0..count).map(|i| from + i as f64 * step).collect())
+}
+
+/// One age of one tree: what the model grew and what the equations say.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AgeRecord {
+    /// Age, years.
+    pub age: f64,
+    /// The grown tree, measured.
+    pub model: Dimensions,
+    /// The equations at that age.
+    pub measured: Targets,
+}
+
+/// Street trees of several species grown through the same ages from one seed.
+pub struct Cohort {
+    /// The species, in the order given.
+    pub species: Vec<Measured>,
+    /// Each tree's grower, in the same order.
+    pub growers: Vec<Grower>,
+    /// Each tree's record of every age reached.
+    pub history: Vec<Vec<AgeRecord>>,
+}
+
+impl Cohort {
+    /// Saplings of every species, not yet grown.
+    pub fn new(species: Vec<Measured>, seed: u64) -> Self {
+        let growers = species
+            .iter()
+            .map(|m| {
+                let options = GrowthOptions {
+                    seed,
+                    ..Default::default()
+                };
+                Grower::new(m.clone(), options)
+            })
+            .collect();
+        let history = species.iter().map(|_| Vec::new()).collect();
+        Self {
+            species,
+            growers,
+            history,
+        }
+    }
+
+    /// Grows every tree to `age`, records it, and returns each one's skeleton in order.
+    pub fn advance_to(&mut self, age: f64) -> Vec<Skeleton> {
+        let mut skeletons = Vec::with_capacity(self.growers.len());
+        for (g, history) in self.growers.iter_mut().zip(&mut self.history) {
+            g.advance_to(age);
+            let skeleton = g.skeleton();
+            history.push(AgeRecord {
+                age,
+                model: measure(&skeleton),
+                measured: g.targets(age),
+            });
+            skeletons.push(skeleton);
+        }
+        skeletons
+    }
+
+    /// The tallest height and widest crown the equations give any species at any of `ages`
+    /// (at least 2 m and 1 m): the frame a run's pictures share, so that ages compare.
+    pub fn extent(&self, ages: &[f64]) -> (f64, f64) {
+        let mut tallest = 2.0f64;
+        let mut widest = 1.0f64;
+        for m in &self.species {
+            for &a in ages {
+                tallest = tallest.max(m.height(a));
+                widest = widest.max(m.crown_diameter(a));
+            }
+        }
+        (tallest, widest)
+    }
+}
+
+/// `5` for whole ages, `5.5` otherwise, padded so that files sort by age.
+pub fn age_label(age: f64) -> String {
+    if age.fract().abs() < 1e-9 {
+        format!("{:02}", age as u32)
+    } else {
+        format!("{age:04.1}")
+    }
+}
+
+/// Worst signed relative error per quantity over a history: height, DBH, crown diameter,
+/// crown height, leaf area.
+pub fn worst_errors(history: &[AgeRecord]) -> [f64; 5] {
+    let mut worst = [0.0f64; 5];
+    for g in history {
+        let e = g.model.relative_errors(&g.measured);
+        for k in 0..5 {
+            if e[k].abs() > worst[k].abs() {
+                worst[k] = e[k];
+            }
+        }
+    }
+    worst
+}
+
+/// A history as CSV: one row per age, model and measured side by side.
+pub fn csv(history: &[AgeRecord]) -> String {
+    let mut s = String::from(
+        "age,height_model_m,height_measured_m,crown_height_model_m,crown_height_measured_m,\
+         crown_diameter_model_m,crown_diameter_measured_m,dbh_model_cm,dbh_measured_cm,\
+         leaf_area_model_m2,leaf_area_measured_m2\n",
+    );
+    for g in history {
+        let (m, t) = (&g.model, &g.measured);
+        // Writing into a String cannot fail.
+        let _ = writeln!(
+            s,
+            "{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.2},{:.2},{:.1},{:.1}",
+            g.age,
+            m.height,
+            t.height,
+            m.crown_height,
+            t.crown_height,
+            m.crown_diameter,
+            t.crown_diameter,
+            m.dbh,
+            t.dbh,
+            m.leaf_area,
+            t.leaf_area
+        );
+    }
+    s
+}
+
+/// A quantity charted against age: its name with unit, how to read it from a grown tree and
+/// from the equations.
+pub struct Quantity {
+    /// Name and unit, as a chart's title.
+    pub name: &'static str,
+    /// The grown tree's value.
+    pub model: fn(&Dimensions) -> f64,
+    /// The equations' value.
+    pub measured: fn(&Targets) -> f64,
+}
+
+/// The five quantities a growth chart shows, in its panel order.
+pub const CHARTED: [Quantity; 5] = [
+    Quantity {
+        name: "height (m)",
+        model: |d| d.height,
+        measured: |t| t.height,
+    },
+    Quantity {
+        name: "crown height (m)",
+        model: |d| d.crown_height,
+        measured: |t| t.crown_height,
+    },
+    Quantity {
+        name: "crown diameter (m)",
+        model: |d| d.crown_diameter,
+        measured: |t| t.crown_diameter,
+    },
+    Quantity {
+        name: "DBH (cm)",
+        model: |d| d.dbh,
+        measured: |t| t.dbh,
+    },
+    Quantity {
+        name: "leaf area (m²)",
+        model: |d| d.leaf_area,
+        measured: |t| t.leaf_area,
+    },
+];
+
+impl Measured {
+    /// Colours of this species' pictures and models (sRGB): bark, and leaves (evergreens
+    /// darker).
+    pub fn colours(&self) -> ([f32; 3], [f32; 3]) {
+        let evergreen = self.species.tree_type.get(1..2) == Some("E");
+        let leaves = if evergreen {
+            [0.2, 0.36, 0.16]
+        } else {
+            [0.33, 0.5, 0.2]
+        };
+        ([0.42, 0.36, 0.3], leaves)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::growth::Database;
+
+    #[test]
+    fn ages_labels_and_errors() {
+        let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+        assert_eq!(
+            run_ages(&plane, Some(10.0), Some(20.0), 5.0).unwrap(),
+            [10.0, 15.0, 20.0]
+        );
+        assert!(run_ages(&plane, Some(20.0), Some(10.0), 5.0).is_err());
+        assert!(run_ages(&plane, None, None, 0.0).is_err());
+        let e = run_ages(&plane, Some(0.0), Some(300.0), 0.5).unwrap_err();
+        assert!(e.contains("601 ages"), "{e}");
+        assert_eq!(age_label(5.0), "05");
+        assert_eq!(age_label(5.5), "05.5");
+        assert_eq!(age_label(120.0), "120");
+    }
+}
