@@ -3,10 +3,12 @@
 //! `--forest`, `--throughput` and `--growth` are in `bench_forest.rs` and `bench_growth.rs`.
 
 use crate::args::BenchArgs;
-use crate::shared::{APPENDIX_SPECIES, fastest_ms, headless};
+use crate::shared::headless;
 use anyhow::{Context, Result};
 use std::time::Instant;
 use sylva::GenerateOptions;
+use sylva::bench::{APPENDIX_SPECIES, edit_ms, fastest_ms, generate_times, lod_times};
+use sylva::lod::Viewer;
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 
 pub fn run(args: &BenchArgs) -> Result<()> {
@@ -18,45 +20,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut tupelo_ms = None;
     for id in APPENDIX_SPECIES {
         let params = sylva::species::builtin(id).context("built-in species")?;
-        let options = GenerateOptions::default();
-        let mesh_opts = MeshOptions::for_species(&params, 1.0);
-        // Cold: fresh buffers every time, as a one-shot command line run.
-        let cold = fastest_ms(runs, || {
-            let skeleton = sylva::generate(&params, &options)?;
-            std::hint::black_box(mesh_tree(&skeleton, &mesh_opts));
-            Ok(())
-        })?;
-        // Warm: buffers reused across runs, as an editor regenerating on every change.
-        let mut skeleton = sylva::Skeleton::default();
-        let mut mesh = TreeMesh::default();
-        let gen_ms = fastest_ms(runs, || {
-            Ok(sylva::generate_into(&params, &options, &mut skeleton)?)
-        })?;
-        let mesh_ms = fastest_ms(runs, || {
-            sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh);
-            Ok(())
-        })?;
-        // Baseline, same run: copying the finished mesh's buffers into warm buffers.
-        let mut copy = TreeMesh::default();
-        let copy_ms = fastest_ms(runs, || {
-            copy.clone_from(&mesh);
-            Ok(())
-        })?;
-        let warm = gen_ms + mesh_ms;
-        let triangles = mesh.triangle_count();
+        let t = generate_times(&params, runs)?;
+        let warm = t.warm_ms();
         if id == "black_tupelo" {
             tupelo_ms = Some(warm);
         }
         println!(
             "{:<15} {:>9} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>8.1} {:>7.1}",
             id,
-            triangles,
-            cold,
-            gen_ms,
-            mesh_ms,
+            t.triangles,
+            t.cold_ms,
+            t.generate_ms,
+            t.mesh_ms,
             warm,
-            triangles as f64 / warm / 1e3,
-            warm / copy_ms
+            t.triangles as f64 / warm / 1e3,
+            warm / t.copy_ms
         );
     }
     println!(
@@ -87,17 +65,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 /// Range degradation (Weber & Penn section 5) for the Black Tupelo: what a frame draws at each
 /// range, what choosing that costs, and what the stored lists weigh.
 fn bench_lod() -> Result<()> {
-    use sylva::lod::{LodTree, Viewer};
     let params = sylva::species::builtin("black_tupelo").context("built-in species")?;
     let skeleton = sylva::generate(&params, &GenerateOptions::default())?;
-    let t = Instant::now();
-    let lod = LodTree::build(&skeleton, &MeshOptions::for_species(&params, 1.0));
-    let build_ms = t.elapsed().as_secs_f64() * 1e3;
     let viewer = Viewer {
         image_height: 1000.0,
         fov_y: 60.0,
         quality: 1.0,
     };
+    let (lod, times) = lod_times(&skeleton, &MeshOptions::for_species(&params, 1.0), &viewer);
     let full = lod.triangle_count();
     println!();
     println!(
@@ -120,31 +95,11 @@ fn bench_lod() -> Result<()> {
             total as f64 / full as f64
         );
     }
-    // Selection cost per tree and frame: ranges of a forest's worth of trees.
-    let ranges: Vec<f32> = (0..100_000)
-        .map(|i| 10.0 + (i as f32 * 7.31) % 3000.0)
-        .collect();
-    let mut best = f64::MAX;
-    for _ in 0..5 {
-        let t = Instant::now();
-        let mut sink = 0u32;
-        for &r in &ranges {
-            let d = lod.select(r, &viewer);
-            sink = sink.wrapping_add(d[0].triangles.end ^ d[3].points.end);
-        }
-        std::hint::black_box(sink);
-        best = best.min(t.elapsed().as_secs_f64());
-    }
-    let per_tree_ns = best / ranges.len() as f64 * 1e9;
-    let bytes: usize = lod
-        .lists
-        .iter()
-        .map(|l| l.indices.len() * 4 + l.index_prefix.len() * 4 + l.points.len() * 12)
-        .sum::<usize>()
-        + lod.mesh.vertex_count() * 32;
     println!(
-        "LOD selection: {per_tree_ns:.0} ns per tree per frame (target: under 1000 ns); lists built in {build_ms:.1} ms; {:.1} MB per tree (vertices + rank-major lists)",
-        bytes as f64 / 1e6
+        "LOD selection: {:.0} ns per tree per frame (target: under 1000 ns); lists built in {:.1} ms; {:.1} MB per tree (vertices + rank-major lists)",
+        times.select_ns,
+        times.build_ms,
+        times.stored_bytes as f64 / 1e6
     );
     Ok(())
 }
@@ -158,8 +113,7 @@ fn bench_render(runs: u32) -> Result<()> {
     let empty = renderer.upload(&TreeMesh::default());
     let empty_scene = Scene::new(&empty, [0.5; 3], [0.5; 3]);
     let base = fastest_ms(runs, || {
-        renderer.render(&empty_scene, &view, 1280, 720)?;
-        Ok(())
+        renderer.render(&empty_scene, &view, 1280, 720).map(drop)
     })?;
     println!();
     println!(
@@ -184,10 +138,7 @@ fn bench_render(runs: u32) -> Result<()> {
         let tree = renderer.upload(&mesh);
         let upload = t.elapsed().as_secs_f64() * 1e3;
         let scene = Scene::new(&tree, params.bark_color, params.leaf_color);
-        let frame = fastest_ms(runs, || {
-            renderer.render(&scene, &view, 1280, 720)?;
-            Ok(())
-        })?;
+        let frame = fastest_ms(runs, || renderer.render(&scene, &view, 1280, 720).map(drop))?;
         println!(
             "{:<15} {:>9} {:>10.1} {:>9.1} {:>9.1}",
             id,
@@ -198,21 +149,8 @@ fn bench_render(runs: u32) -> Result<()> {
         );
     }
     // An edit in the editor: change one parameter, regenerate and re-mesh into warm buffers.
-    let mut params = sylva::species::builtin("black_tupelo").context("built-in species")?;
-    let options = GenerateOptions::default();
-    let mesh_opts = MeshOptions::for_species(&params, 1.0);
-    let mut skeleton = sylva::Skeleton::default();
-    let mut mesh = TreeMesh::default();
-    sylva::generate_into(&params, &options, &mut skeleton)?;
-    sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh);
-    let mut angle = params.level[1].down_angle;
-    let edit = fastest_ms(runs, || {
-        angle = if angle > 60.0 { 55.0 } else { angle + 1.0 };
-        params.level[1].down_angle = angle;
-        sylva::generate_into(&params, &options, &mut skeleton)?;
-        sylva::mesh::mesh_tree_into(&skeleton, &mesh_opts, &mut mesh);
-        Ok(())
-    })?;
+    let params = sylva::species::builtin("black_tupelo").context("built-in species")?;
+    let edit = edit_ms(&params, runs)?;
     println!(
         "black_tupelo: 1DownAngle changed, regenerated and re-meshed in {edit:.1} ms (target: under 50 ms)"
     );

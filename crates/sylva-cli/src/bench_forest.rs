@@ -1,11 +1,12 @@
 //! `sylva bench --forest` and `--throughput`: what range degradation saves when drawing a tree
 //! and a forest, and how fast unique trees grow.
 
-use crate::shared::{APPENDIX_SPECIES, fastest_ms, grow_for_range, headless, with_progress};
+use crate::shared::{grow_for_range, headless, with_progress};
 use anyhow::{Context, Result};
 use glam::Vec3;
 use std::time::Instant;
 use sylva::GenerateOptions;
+use sylva::bench::{APPENDIX_SPECIES, fastest_ms};
 use sylva::forest::ForestSpec;
 use sylva::lod::LodTree;
 use sylva::mesh::MeshOptions;
@@ -30,7 +31,7 @@ fn table(renderer: &Renderer, scene: &mut Scene, target: Vec3, runs: u32) -> Res
             let mut stats = Default::default();
             let ms = fastest_ms(runs, || {
                 stats = renderer.render(scene, &view, SIZE.0, SIZE.1)?.stats;
-                Ok(())
+                Ok::<_, sylva_render::RenderError>(())
             })?;
             Ok((stats, ms))
         };
@@ -67,8 +68,9 @@ pub fn bench_forest(runs: u32) -> Result<()> {
     let mut empty_scene = Scene::new(&empty, [0.5; 3], [0.5; 3]);
     empty_scene.show_person = false;
     let base = fastest_ms(runs, || {
-        renderer.render(&empty_scene, &View::orbit(0.0, 10.0), SIZE.0, SIZE.1)?;
-        Ok(())
+        renderer
+            .render(&empty_scene, &View::orbit(0.0, 10.0), SIZE.0, SIZE.1)
+            .map(drop)
     })?;
     println!("empty frame (ground, shadow pass, read-back): {base:.1} ms");
 

@@ -145,7 +145,7 @@ pub fn run(args: &LobesArgs) -> Result<()> {
     let tree =
         sylva::fields::grow(&rules, seed, &placement).with_context(|| format!("growing {from}"))?;
     let mut skeleton = tree.skeleton();
-    scale_skeleton(&mut skeleton, args.scale as f32);
+    skeleton.scale(args.scale as f32);
     let look = MeshLook {
         options: MeshOptions {
             sides: Some(sides),
@@ -157,16 +157,7 @@ pub fn run(args: &LobesArgs) -> Result<()> {
     let mesh = Meshable::Skeleton(&skeleton);
     let mut written = write_outputs(&planned, &options, &skeleton, mesh, &rules.name, &look)?;
     for path in &tree_outputs {
-        let mut scaled = placement.clone();
-        let s = args.scale as f32;
-        for t in &mut scaled.trunks {
-            t.start *= s;
-            t.end *= s;
-        }
-        for l in &mut scaled.lobes {
-            l.centre *= s;
-            l.radius *= s;
-        }
+        let scaled = placement.scaled(args.scale as f32);
         let file = TreeFile::from_placement(&rules.name, seed as i64, &scaled);
         write_atomically(path, file.to_text().as_bytes())?;
         written.push(format!(
@@ -188,24 +179,4 @@ pub fn run(args: &LobesArgs) -> Result<()> {
     );
     print_written(written);
     Ok(())
-}
-
-/// Multiplies every length of a skeleton by `s`.
-fn scale_skeleton(skeleton: &mut sylva::Skeleton, s: f32) {
-    if s == 1.0 {
-        return;
-    }
-    for c in &mut skeleton.sections {
-        c.position *= s;
-        c.radius *= s;
-    }
-    for stem in &mut skeleton.stems {
-        stem.length *= s;
-        stem.offset *= s;
-    }
-    for leaf in &mut skeleton.leaves {
-        leaf.position *= s;
-        leaf.length *= s;
-        leaf.width *= s;
-    }
 }

@@ -1,12 +1,11 @@
 //! What the subcommands share: a species loaded with its `--set` overrides, the headless
 //! renderer with its notices, pictures written as PNG, forests grown with a progress bar,
-//! line-drawable trees written by extension, the benchmark set and its timer. Imports no subcommand, so that none of them
+//! line-drawable trees written by extension. Imports no subcommand, so that none of them
 //! imports another through it.
 
 use crate::args::{LineOutputArgs, LineView, RibArgs};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
-use std::time::Instant;
 use sylva::drawing::{DrawOptions, MeshLook, Meshable, Planned, View, write_outputs};
 use sylva::export::write_atomically;
 use sylva::forest::{Forest, ForestSpec};
@@ -14,25 +13,6 @@ use sylva::lod::LodTree;
 use sylva::nagel::WhiskParams;
 use sylva::{Skeleton, TreeParams};
 use sylva_render::{Picture, Renderer};
-
-/// The paper's four appendix species: the benchmark set.
-pub const APPENDIX_SPECIES: [&str; 4] = [
-    "quaking_aspen",
-    "black_tupelo",
-    "weeping_willow",
-    "ca_black_oak",
-];
-
-/// Fastest of `runs` timings of `f`, milliseconds (the least disturbed by a shared machine).
-pub fn fastest_ms(runs: u32, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
-    let mut best = f64::MAX;
-    for _ in 0..runs.max(1) {
-        let t = Instant::now();
-        f()?;
-        best = best.min(t.elapsed().as_secs_f64());
-    }
-    Ok(best * 1e3)
-}
 
 /// Loads the species and applies `--set` overrides.
 pub fn load_params(species: &str, overrides: &[String]) -> Result<TreeParams> {

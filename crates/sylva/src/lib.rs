@@ -27,6 +27,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod bench;
 pub mod colour;
 pub mod drawing;
 pub mod error;

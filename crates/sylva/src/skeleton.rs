@@ -153,6 +153,27 @@ pub struct SkeletonStats {
 }
 
 impl Skeleton {
+    /// Multiplies every length (positions, radii, stem lengths and offsets, leaf sizes) by
+    /// `s`: the same tree at another size.
+    pub fn scale(&mut self, s: f32) {
+        if s == 1.0 {
+            return;
+        }
+        for c in &mut self.sections {
+            c.position *= s;
+            c.radius *= s;
+        }
+        for stem in &mut self.stems {
+            stem.length *= s;
+            stem.offset *= s;
+        }
+        for leaf in &mut self.leaves {
+            leaf.position *= s;
+            leaf.length *= s;
+            leaf.width *= s;
+        }
+    }
+
     /// Appends a stem through `points` (consecutive ones distinct) with a radius per point,
     /// each section framed along the segment that starts there (the last like the one before),
     /// and returns its id. For models that think in polylines (Nagel's, Fields').

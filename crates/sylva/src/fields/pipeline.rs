@@ -100,6 +100,22 @@ pub(super) fn rotate_away(dir: Vec3, angle: f32, azimuth: f32) -> Vec3 {
     (dir * angle.cos() + across * angle.sin()).normalize()
 }
 
+impl Placement {
+    /// The same trunk and lobes `s` times as large (about the ground point under the trunk).
+    pub fn scaled(&self, s: f32) -> Placement {
+        let mut scaled = self.clone();
+        for t in &mut scaled.trunks {
+            t.start *= s;
+            t.end *= s;
+        }
+        for l in &mut scaled.lobes {
+            l.centre *= s;
+            l.radius *= s;
+        }
+        scaled
+    }
+}
+
 /// Stages 1 and 2 done automatically (the paper's button L): the trunk iterations from the
 /// ground and one lobe above them, sized by the rules' layout.
 pub fn auto_placement(rules: &TreeRules, seed: u64) -> Placement {

@@ -60,6 +60,16 @@ pub enum GrowthError {
         /// What is wrong.
         message: String,
     },
+    /// A tree that stopped growing before the size asked of it.
+    #[error("the {label} stopped at {segments} segments by age {age:.0}")]
+    Stalled {
+        /// The species.
+        label: String,
+        /// Segments it reached.
+        segments: usize,
+        /// The oldest age grown, years.
+        age: f64,
+    },
     /// A file that cannot be read.
     #[error("{path}: {message}")]
     Io {

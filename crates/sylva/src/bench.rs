@@ -1,0 +1,244 @@
+//! The measurements `sylva bench` prints: each runs a pipeline of this crate the way a user
+//! does and returns its timings, with a baseline timed in the same call (copying what was
+//! made), so figures compare across runs on shared, noisy machines. Nothing here prints.
+//!
+//! ```
+//! let params = sylva::species::builtin("quaking_aspen").unwrap();
+//! let t = sylva::bench::generate_times(&params, 1).unwrap();
+//! assert!(t.triangles > 0 && t.warm_ms() > 0.0 && t.copy_ms > 0.0);
+//! ```
+
+use crate::growth::report::MESH;
+use crate::growth::{Database, Grower, GrowthError, GrowthOptions};
+use crate::lod::{LodTree, Viewer};
+use crate::mesh::{MeshOptions, TreeMesh, mesh_tree, mesh_tree_into};
+use crate::{GenerateError, GenerateOptions, Skeleton, TreeParams};
+use std::time::Instant;
+
+/// The paper's four appendix species: the benchmark set.
+pub const APPENDIX_SPECIES: [&str; 4] = [
+    "quaking_aspen",
+    "black_tupelo",
+    "weeping_willow",
+    "ca_black_oak",
+];
+
+/// Fastest of `runs` timings of `f`, milliseconds (the least disturbed by a shared machine).
+pub fn fastest_ms<E>(runs: u32, mut f: impl FnMut() -> Result<(), E>) -> Result<f64, E> {
+    let mut best = f64::MAX;
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        f()?;
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    Ok(best * 1e3)
+}
+
+/// [`fastest_ms`] of work that cannot fail.
+pub fn fastest_of(runs: u32, mut f: impl FnMut()) -> f64 {
+    let timed: Result<f64, std::convert::Infallible> = fastest_ms(runs, || {
+        f();
+        Ok(())
+    });
+    match timed {
+        Ok(ms) => ms,
+        Err(never) => match never {},
+    }
+}
+
+/// Generating and meshing one tree, fastest of several runs on one thread.
+#[derive(Clone, Copy, Debug)]
+pub struct GenerateTimes {
+    /// Triangles in the mesh.
+    pub triangles: usize,
+    /// Generate and mesh into fresh buffers, as a one-shot command-line run, ms.
+    pub cold_ms: f64,
+    /// Generate into warm buffers, as an editor regenerating on every change, ms.
+    pub generate_ms: f64,
+    /// Mesh into warm buffers, ms.
+    pub mesh_ms: f64,
+    /// Baseline: copy the finished mesh's buffers into warm buffers, ms.
+    pub copy_ms: f64,
+}
+
+impl GenerateTimes {
+    /// Generate and mesh into warm buffers, ms.
+    pub fn warm_ms(&self) -> f64 {
+        self.generate_ms + self.mesh_ms
+    }
+}
+
+/// Times generating and meshing `params` (default options, quality 1), fastest of `runs`.
+pub fn generate_times(params: &TreeParams, runs: u32) -> Result<GenerateTimes, GenerateError> {
+    let options = GenerateOptions::default();
+    let mesh_options = MeshOptions::for_species(params, 1.0);
+    let cold_ms = fastest_ms::<GenerateError>(runs, || {
+        let skeleton = crate::generate(params, &options)?;
+        std::hint::black_box(mesh_tree(&skeleton, &mesh_options));
+        Ok(())
+    })?;
+    let mut skeleton = Skeleton::default();
+    let mut mesh = TreeMesh::default();
+    let generate_ms = fastest_ms(runs, || {
+        crate::generate_into(params, &options, &mut skeleton)
+    })?;
+    let mesh_ms = fastest_of(runs, || mesh_tree_into(&skeleton, &mesh_options, &mut mesh));
+    let mut copy = TreeMesh::default();
+    let copy_ms = fastest_of(runs, || copy.clone_from(&mesh));
+    Ok(GenerateTimes {
+        triangles: mesh.triangle_count(),
+        cold_ms,
+        generate_ms,
+        mesh_ms,
+        copy_ms,
+    })
+}
+
+/// The cost of an edit in the editor, ms: `1DownAngle` changed, the tree regenerated and
+/// re-meshed into warm buffers, fastest of `runs`.
+pub fn edit_ms(params: &TreeParams, runs: u32) -> Result<f64, GenerateError> {
+    let mut params = params.clone();
+    let options = GenerateOptions::default();
+    let mesh_options = MeshOptions::for_species(&params, 1.0);
+    let mut skeleton = Skeleton::default();
+    let mut mesh = TreeMesh::default();
+    crate::generate_into(&params, &options, &mut skeleton)?;
+    mesh_tree_into(&skeleton, &mesh_options, &mut mesh);
+    let mut angle = params.level[1].down_angle;
+    fastest_ms(runs, || {
+        angle = if angle > 60.0 { 55.0 } else { angle + 1.0 };
+        params.level[1].down_angle = angle;
+        crate::generate_into(&params, &options, &mut skeleton)?;
+        mesh_tree_into(&skeleton, &mesh_options, &mut mesh);
+        Ok(())
+    })
+}
+
+/// Range degradation's own costs for one tree.
+#[derive(Clone, Copy, Debug)]
+pub struct LodTimes {
+    /// Building the lists, ms.
+    pub build_ms: f64,
+    /// Choosing what to draw for one copy in one frame, ns (over 100,000 ranges).
+    pub select_ns: f64,
+    /// Bytes stored: vertices and the rank-major lists.
+    pub stored_bytes: usize,
+}
+
+/// Times storing `skeleton` for range and choosing what to draw, for `viewer`.
+pub fn lod_times(
+    skeleton: &Skeleton,
+    options: &MeshOptions,
+    viewer: &Viewer,
+) -> (LodTree, LodTimes) {
+    let t = Instant::now();
+    let lod = LodTree::build(skeleton, options);
+    let build_ms = t.elapsed().as_secs_f64() * 1e3;
+    // Ranges of a forest's worth of trees.
+    let ranges: Vec<f32> = (0..100_000)
+        .map(|i| 10.0 + (i as f32 * 7.31) % 3000.0)
+        .collect();
+    let mut best = f64::MAX;
+    for _ in 0..5 {
+        let t = Instant::now();
+        let mut sink = 0u32;
+        for &r in &ranges {
+            let d = lod.select(r, viewer);
+            sink = sink.wrapping_add(d[0].triangles.end ^ d[3].points.end);
+        }
+        std::hint::black_box(sink);
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    let stored_bytes = lod
+        .lists
+        .iter()
+        .map(|l| l.indices.len() * 4 + l.index_prefix.len() * 4 + l.points.len() * 12)
+        .sum::<usize>()
+        + lod.mesh.vertex_count() * 32;
+    let times = LodTimes {
+        build_ms,
+        select_ns: best / ranges.len() as f64 * 1e9,
+        stored_bytes,
+    };
+    (lod, times)
+}
+
+/// One row of the growth benchmark: a street tree's step at a size.
+#[derive(Clone, Copy, Debug)]
+pub struct GrowthStepTimes {
+    /// Branch segments when timed.
+    pub segments: usize,
+    /// Age, years.
+    pub age: f64,
+    /// Leaves on the skeleton.
+    pub leaves: usize,
+    /// Production rules (buds, elongation, shedding), mean ms per step.
+    pub growth_ms: f64,
+    /// Light in the crown, mean ms per step.
+    pub light_ms: f64,
+    /// The tree as a skeleton, ms (fastest).
+    pub skeleton_ms: f64,
+    /// Skeleton and mesh, ms (fastest).
+    pub mesh_ms: f64,
+    /// Baseline: copying the skeleton, ms (fastest).
+    pub copy_ms: f64,
+}
+
+impl GrowthStepTimes {
+    /// A whole step: growth, light and mesh, ms.
+    pub fn total_ms(&self) -> f64 {
+        self.growth_ms + self.light_ms + self.mesh_ms
+    }
+}
+
+/// Segment counts the growth benchmark times a step at.
+pub const GROWTH_SIZES: [usize; 4] = [5_000, 10_000, 20_000, 30_000];
+/// Steps averaged at each size: one year.
+pub const GROWTH_STEPS: usize = 20;
+
+/// Grows a London plane (Inland Valleys) past each of [`GROWTH_SIZES`] segments and times
+/// [`GROWTH_STEPS`] steps there, meshing at `runs` tries. An error if the tree stops growing
+/// before a size.
+pub fn growth_steps(runs: u32) -> Result<Vec<GrowthStepTimes>, GrowthError> {
+    let measured = Database::builtin().find("InlVal", "PLAC")?;
+    let (_, last_age) = measured.ages;
+    let mut grower = Grower::new(measured, GrowthOptions::default());
+    let dt = 1.0 / GrowthOptions::default().steps_per_year as f64;
+    let mut skeleton = grower.skeleton();
+    let mut mesh = TreeMesh::default();
+    let mut rows = Vec::new();
+    for size in GROWTH_SIZES {
+        while grower.segment_count() < size {
+            if grower.age() > last_age {
+                return Err(GrowthError::Stalled {
+                    label: grower.measured().label(),
+                    segments: grower.segment_count(),
+                    age: last_age,
+                });
+            }
+            grower.step_once(dt);
+        }
+        let (mut growth, mut light) = (0.0, 0.0);
+        for _ in 0..GROWTH_STEPS {
+            grower.step_once(dt);
+            growth += grower.times.growth;
+            light += grower.times.light;
+        }
+        let skeleton_ms = fastest_of(runs, || grower.skeleton_into(&mut skeleton));
+        let mesh_ms =
+            skeleton_ms + fastest_of(runs, || mesh_tree_into(&skeleton, &MESH, &mut mesh));
+        let mut copy = Skeleton::default();
+        let copy_ms = fastest_of(runs, || copy.clone_from(&skeleton));
+        rows.push(GrowthStepTimes {
+            segments: grower.segment_count(),
+            age: grower.age(),
+            leaves: skeleton.leaves.len(),
+            growth_ms: growth * 1e3 / GROWTH_STEPS as f64,
+            light_ms: light * 1e3 / GROWTH_STEPS as f64,
+            skeleton_ms,
+            mesh_ms,
+            copy_ms,
+        });
+    }
+    Ok(rows)
+}

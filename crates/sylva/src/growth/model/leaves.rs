@@ -1,0 +1,216 @@
+//! Leaves and light: the leaf area f_LA asks for, spread over young, thin, lit shoots and
+//! drawn as fewer, larger leaves past the leaf budget; and the light grid refreshed from the
+//! branches and leaves that shade it.
+
+use super::*;
+
+impl Grower {
+    /// Leaves on young, thin, lit shoots, adding up to f_LA.
+    pub(super) fn allocate_leaves(&mut self) {
+        let t = self.targets_now();
+        // Shoots low enough for their leaves to hang below the crown base carry none (see
+        // `for_each_leaf`).
+        let floor = t.crown_base() as f32 + 0.5 * self.drawn_leaf_size().0;
+        let area = self.leaf_area_each();
+        let wanted = (t.leaf_area / area as f64).round() as usize;
+        // A branch's outermost shoot stays leafy however old it is: its bud renews it.
+        let mut tip_shoot = vec![false; self.segments.len()];
+        for b in self.branches.iter().filter(|b| b.alive && b.order > 0) {
+            if let Some(&s) = b
+                .segments
+                .iter()
+                .rev()
+                .find(|&&s| self.segments[s as usize].length > 1e-4)
+            {
+                tip_shoot[s as usize] = true;
+            }
+        }
+        let radii = &self.radii;
+        let lights: Vec<f32> = self
+            .segments
+            .iter()
+            .map(|s| self.light.light_at(s.start + s.direction * s.length * 0.5))
+            .collect();
+        // Young, thin, lit shoots first; where they cannot hold the measured leaf area, older
+        // and thicker wood carries leaves too (spurs), step by step.
+        let levels = [
+            (LEAF_SHOOT_YEARS, LEAF_MAX_RADIUS, LEAF_MIN_LIGHT),
+            (4.0, 0.03, 0.08),
+            (8.0, 0.05, 0.04),
+            (f64::INFINITY, f32::INFINITY, 0.0),
+        ];
+        let mut weights = vec![0.0f32; self.segments.len()];
+        let mut capacity = vec![0u32; self.segments.len()];
+        for (k, &(years, radius, min_light)) in levels.iter().enumerate() {
+            let mut room = 0usize;
+            for (i, s) in self.segments.iter().enumerate() {
+                let b = &self.branches[s.branch as usize];
+                // The leader's young shoot is leafy too, or it would stand bare above the
+                // crown.
+                let leader = b.order == 0 && self.age - s.born <= LEAF_SHOOT_YEARS;
+                let eligible = b.alive
+                    && (b.order > 0 || leader)
+                    && s.start.z.min(s.end().z) >= floor
+                    && (self.age - s.born <= years || tip_shoot[i])
+                    && radii[i] <= radius
+                    && lights[i] >= min_light;
+                capacity[i] = if eligible {
+                    (s.length / self.leaf_spacing).floor() as u32
+                } else {
+                    0
+                };
+                weights[i] = if eligible {
+                    s.length * lights[i].max(0.01)
+                } else {
+                    0.0
+                };
+                room += capacity[i] as usize;
+            }
+            if room >= wanted || k == levels.len() - 1 {
+                break;
+            }
+        }
+        let total: f32 = weights.iter().sum();
+        self.leaves_on.clear();
+        self.leaves_on.resize(self.segments.len(), 0);
+        if total <= 0.0 {
+            return;
+        }
+        let mut carry = 0.0f32;
+        let mut placed = 0usize;
+        for i in 0..self.segments.len() {
+            if weights[i] == 0.0 {
+                continue;
+            }
+            let share = wanted as f32 * weights[i] / total + carry;
+            let n = (share.floor() as u32).min(capacity[i]).min(u16::MAX as u32);
+            carry = share - n as f32;
+            self.leaves_on[i] = n as u16;
+            placed += n as usize;
+        }
+        // What full shoots could not take goes to shoots with room left.
+        for (on, &cap) in self.leaves_on.iter_mut().zip(&capacity) {
+            if placed >= wanted {
+                break;
+            }
+            let spare = cap.min(u16::MAX as u32) - *on as u32;
+            let n = (spare as usize).min(wanted - placed);
+            *on += n as u16;
+            placed += n;
+        }
+        // A sapling with too little shoot for its measured leaf area carries larger leaves
+        // (at most five times the area).
+        self.leaf_boost = if placed > 0 && placed < wanted {
+            (wanted as f32 / placed as f32).min(5.0)
+        } else {
+            1.0
+        };
+    }
+
+    /// Length and width of a leaf as drawn, m.
+    pub(super) fn drawn_leaf_size(&self) -> (f32, f32) {
+        let natural = self.leaf_size.0
+            * self.leaf_size.1
+            * crate::mesh::leaf_template(self.leaf_shape).area();
+        let k = (self.leaf_area_each() * self.leaf_boost / natural).sqrt();
+        (self.leaf_size.0 * k, self.leaf_size.1 * k)
+    }
+
+    /// Area of one leaf as drawn, m² (larger than life when the leaf budget is reached).
+    pub(super) fn leaf_area_each(&self) -> f32 {
+        let template = crate::mesh::leaf_template(self.leaf_shape).area();
+        let natural = self.leaf_size.0 * self.leaf_size.1 * template;
+        let t = self.targets_now();
+        let needed = t.leaf_area as f32 / self.options.max_leaves as f32;
+        natural.max(needed)
+    }
+
+    /// Densities from every live segment and its leaves, then the rays.
+    pub(super) fn update_light(&mut self) {
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for s in &self.segments {
+            if self.branches[s.branch as usize].alive {
+                lo = lo.min(s.start.min(s.end()));
+                hi = hi.max(s.start.max(s.end()));
+            }
+        }
+        let margin = Vec3::splat(self.leaf_size.0 + self.options.light_cell);
+        self.light.reshape(
+            lo - margin,
+            hi + margin,
+            self.options.light_cell,
+            MAX_LIGHT_CELLS,
+        );
+        let leaf_area = if self.segments.is_empty() {
+            0.0
+        } else {
+            self.leaf_area_each() * self.leaf_boost
+        };
+        let cell = self.light.cell;
+        for (i, s) in self.segments.iter().enumerate() {
+            let b = &self.branches[s.branch as usize];
+            if !b.alive || s.length <= 0.0 {
+                continue;
+            }
+            let r = self.radii[i];
+            let pieces = (s.length / (cell * 0.5)).ceil().max(1.0) as usize;
+            let piece = s.length / pieces as f32;
+            let leaves = self.leaves_on.get(i).copied().unwrap_or(0) as f32;
+            // Leaves lie at all angles: on average half their area faces up.
+            let leaf_share = leaves * leaf_area * 0.5 / pieces as f32;
+            for k in 0..pieces {
+                let p = s.start + s.direction * piece * (k as f32 + 0.5);
+                // A cylinder piece seen from above covers about its diameter times its
+                // horizontal length (its end disc when it stands upright).
+                let horizontal = piece * (1.0 - s.direction.z * s.direction.z).sqrt();
+                let covered = 2.0 * r * horizontal + PI * r * r * s.direction.z.abs();
+                self.light.occlude(p, covered, leaf_share);
+            }
+        }
+        self.light.illuminate(&self.sky);
+    }
+}
+
+impl Grower {
+    /// The leaves of branch `b` (position and orientation), spiralling at a fixed divergence,
+    /// tilted 50 degrees off the shoot, none above the tree's top or below the crown base
+    /// (the survey's crown base is where the lowest foliage is).
+    pub(super) fn for_each_leaf(
+        &self,
+        b: usize,
+        length: f32,
+        top: f32,
+        mut f: impl FnMut(Vec3, Quat),
+    ) {
+        let floor = self.targets_now().crown_base() as f32 - 0.02;
+        let mut turn = 0.0f32;
+        let mut rng = self.key.child(1000 + b as u64).stream();
+        for &si in &self.branches[b].segments {
+            let s = &self.segments[si as usize];
+            let n = self.leaves_on.get(si as usize).copied().unwrap_or(0) as usize;
+            for k in 0..n {
+                let along = (k as f32 + 0.5) / n as f32;
+                let p = s.start + s.direction * s.length * along;
+                turn += 137.5;
+                let q = frame(s.direction)
+                    * Quat::from_rotation_z(turn.to_radians())
+                    * Quat::from_rotation_x((50.0 + rng.var(10.0) as f32).to_radians());
+                // Blade faces the sky where it can: roll it about its own axis.
+                let q = face_up(q);
+                let tip = (q * Vec3::Z).z * length + p.z;
+                if tip <= top && tip.min(p.z) >= floor {
+                    f(p, q);
+                }
+            }
+        }
+    }
+}
+
+/// Rolls a leaf frame about its own z so its normal (local y) points as far up as it can.
+pub(super) fn face_up(q: Quat) -> Quat {
+    let z = q * Vec3::Z;
+    let y = q * Vec3::Y;
+    let up = (Vec3::Z - z * z.dot(Vec3::Z)).normalize_or(y);
+    let angle = y.cross(up).dot(z).atan2(y.dot(up));
+    Quat::from_axis_angle(z, angle) * q
+}
