@@ -46,7 +46,7 @@ pub(crate) struct TreeData {
 pub struct RenderTree {
     pub(crate) data: TreeData,
     /// The GPU's copy, when the renderer has a GPU and the upload succeeded.
-    pub(crate) gpu: Option<crate::gpu::TreeBuffers>,
+    pub(crate) gpu: Option<TreeBuffers>,
     /// Lowest corner of the tree's bounds (metres, Z up).
     pub lo: Vec3,
     /// Highest corner.
@@ -145,4 +145,37 @@ pub(crate) fn prepare(mesh: &TreeMesh, data: TreeData, triangles: usize) -> Rend
         hi,
         triangles,
     }
+}
+
+// The GPU's buffers for a tree are declared here, beside the data they hold, and made by
+// `gpu::buffers`: the backend depends on the tree, not the other way round.
+
+/// One piece of a mesh: its own vertices and the triangles that use them.
+#[derive(Debug)]
+pub(crate) struct GpuPart {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub count: u32,
+}
+
+/// A mesh as one or more parts; more than one only when it outgrows `max_buffer_size`.
+#[derive(Debug)]
+pub(crate) struct GpuMesh {
+    pub parts: Vec<GpuPart>,
+}
+
+/// Per list of a range-degraded tree: triangle indices into the bark or leaf vertices, and
+/// line or point vertices.
+#[derive(Debug)]
+pub(crate) struct GpuLod {
+    pub indices: [wgpu::Buffer; 4],
+    pub points: [wgpu::Buffer; 4],
+}
+
+/// A tree's GPU buffers.
+#[derive(Debug)]
+pub(crate) struct TreeBuffers {
+    pub bark: GpuMesh,
+    pub leaves: GpuMesh,
+    pub lod: Option<GpuLod>,
 }

@@ -12,9 +12,29 @@
 //! the years), [`nagel`] (fractal, whisk and stick trees) and [`fields`] (lobe-driven trees), so
 //! meshes, exports, [`drawing`]s (vector files, SVG and PNG views) and the renderer take them all.
 //!
+//! Whole pipelines are plain functions over plain data, each a few lines to call:
+//!
+//! - [`forest::grow_meshes`] (or [`forest::grow_lod`] for range rendering) plants a
+//!   [`forest::ForestSpec`] and grows its variants in parallel; [`forest::Forest::to_glb`]
+//!   writes it with every tree a node sharing its variant's mesh.
+//! - [`growth::report::Cohort`] grows street trees side by side through a run of ages and
+//!   records each against the Urban Tree Database's equations ([`growth::report::csv`], the
+//!   chart data in [`growth::report::CHARTED`]).
+//! - [`lod::LodTree`] stores a tree for range rendering (Weber & Penn section 5);
+//!   [`lod::LodTree::engine_chain`] makes an engine's LOD meshes.
+//! - [`drawing::write_outputs`] writes any line-drawable tree to every file asked for, by
+//!   extension (Nagel's vector files, SVG, PNG, GLB, OBJ).
+//! - [`bench`](mod@bench) runs the measurements `sylva bench` prints.
+//!
+//! Pictures are drawn by the `sylva-render` crate, windows by `sylva-viewer`; this crate has no
+//! GPU or window code. Runnable programs are in `crates/sylva/examples` (`generate`,
+//! `grow_street_tree`, `plant_forest`).
+//!
 //! Conventions: metres; Z up in the model with the trunk base at the origin (exporters convert
 //! to Y up); degrees in parameter files, radians inside. The same parameters and seed always give
 //! the same bytes.
+//!
+//! A tree from a species, as a GLB:
 //!
 //! ```
 //! let params = sylva::species::builtin("quaking_aspen").unwrap();

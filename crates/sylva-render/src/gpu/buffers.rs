@@ -1,37 +1,7 @@
 //! A tree's buffers on the GPU, cut to fit the device's largest buffer.
 
 use crate::props::Vertex;
-use crate::tree::{MeshData, TreeData};
-
-/// One piece of a mesh: its own vertices and the triangles that use them.
-#[derive(Debug)]
-pub(crate) struct GpuPart {
-    pub vertices: wgpu::Buffer,
-    pub indices: wgpu::Buffer,
-    pub count: u32,
-}
-
-/// A mesh as one or more parts; more than one only when it outgrows `max_buffer_size`.
-#[derive(Debug)]
-pub(crate) struct GpuMesh {
-    pub parts: Vec<GpuPart>,
-}
-
-/// Per list of a range-degraded tree: triangle indices into the bark or leaf vertices, and
-/// line or point vertices.
-#[derive(Debug)]
-pub(crate) struct GpuLod {
-    pub indices: [wgpu::Buffer; 4],
-    pub points: [wgpu::Buffer; 4],
-}
-
-/// A tree's GPU buffers.
-#[derive(Debug)]
-pub(crate) struct TreeBuffers {
-    pub bark: GpuMesh,
-    pub leaves: GpuMesh,
-    pub lod: Option<GpuLod>,
-}
+use crate::tree::{GpuLod, GpuMesh, GpuPart, MeshData, TreeBuffers, TreeData};
 
 /// A buffer with `contents`; wgpu refuses empty buffers, so an empty one keeps 12 zero bytes.
 ///

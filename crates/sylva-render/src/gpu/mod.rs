@@ -7,7 +7,6 @@ mod buffers;
 mod pipelines;
 mod record;
 
-pub(crate) use buffers::TreeBuffers;
 use buffers::buffer;
 use pipelines::{DEPTH, Pipelines, SAMPLES};
 use record::{Props, Source, record};
@@ -15,7 +14,7 @@ use record::{Props, Source, record};
 use crate::RenderError;
 use crate::frame::{Frame, Primitive};
 use crate::props::PropMesh;
-use crate::tree::TreeData;
+use crate::tree::{TreeBuffers, TreeData};
 use std::sync::{Arc, Mutex};
 
 /// A device with Sylva's pipelines.
@@ -157,8 +156,8 @@ impl GpuRenderer {
         })
     }
 
-    fn prop(&self, label: &str, mesh: &PropMesh) -> buffers::GpuPart {
-        buffers::GpuPart {
+    fn prop(&self, label: &str, mesh: &PropMesh) -> crate::tree::GpuPart {
+        crate::tree::GpuPart {
             vertices: buffer(
                 &self.device,
                 label,

@@ -1,13 +1,12 @@
 //! Recording a frame's draws: which buffers each reads, and the calls that draw them.
 
-use super::buffers;
 use crate::RenderError;
 use crate::frame::{Draw, Part};
 
 /// The frame's own buffers (the props).
 pub(super) struct Props {
-    pub ground: buffers::GpuPart,
-    pub person: buffers::GpuPart,
+    pub ground: crate::tree::GpuPart,
+    pub person: crate::tree::GpuPart,
 }
 
 /// Buffers one draw reads: vertices, and indices for triangles.
@@ -24,7 +23,7 @@ impl Props {
             what: "drawing a frame",
             message: "a tree was not uploaded to this device".into(),
         };
-        let part = |p: &'a buffers::GpuPart, whole| Source {
+        let part = |p: &'a crate::tree::GpuPart, whole| Source {
             vertices: &p.vertices,
             indices: Some(&p.indices),
             whole,
