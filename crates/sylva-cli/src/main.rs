@@ -4,8 +4,6 @@
 
 mod args;
 mod bench;
-mod bench_forest;
-mod bench_growth;
 mod chart;
 mod draw;
 mod forest;

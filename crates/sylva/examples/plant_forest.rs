@@ -31,7 +31,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let (stored, placed) = forest.triangles();
     println!(
-        "{} trees of {} variants grown in {:.1} s: {stored} triangles stored, {placed} placed -> {out}",
+        "{} trees of {} variants grown in {:.2} s: {stored} triangles stored, {placed} placed -> {out}",
         forest.planting.trees.len(),
         forest.grown.len(),
         forest.seconds

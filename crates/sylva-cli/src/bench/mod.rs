@@ -1,6 +1,9 @@
 //! `sylva bench`: how fast trees are generated, meshed, chosen for range and drawn, each
 //! figure beside a baseline timed in the same run (these machines are shared and noisy).
-//! `--forest`, `--throughput` and `--growth` are in `bench_forest.rs` and `bench_growth.rs`.
+//! `--forest`, `--throughput` and `--growth` are in `forest.rs` and `growth.rs` beside this.
+
+mod forest;
+mod growth;
 
 use crate::args::BenchArgs;
 use crate::shared::headless;
@@ -51,13 +54,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         bench_lod()?;
     }
     if args.forest {
-        crate::bench_forest::bench_forest(runs.min(3))?;
+        forest::bench_forest(runs.min(3))?;
     }
     if let Some(n) = args.throughput {
-        crate::bench_forest::bench_throughput(n)?;
+        forest::bench_throughput(n)?;
     }
     if args.growth {
-        crate::bench_growth::bench_growth(runs.min(3))?;
+        growth::bench_growth(runs.min(3))?;
     }
     Ok(())
 }
