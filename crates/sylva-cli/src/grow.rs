@@ -6,7 +6,7 @@ use crate::args::{GrowArgs, parse_size};
 use crate::shared::{headless, save_picture};
 use anyhow::{Context, Result, bail};
 use sylva::export::{Materials, to_glb, write_atomically};
-use sylva::growth::report::{self, Cohort, age_label, run_ages};
+use sylva::growth::report::{self, AgeRecord, Cohort, age_label, run_ages};
 use sylva::growth::{Database, Measured};
 use sylva::mesh::mesh_tree;
 use sylva_render::caption::with_caption;
@@ -49,14 +49,16 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     } else {
         Some(headless()?)
     };
-    println!(
-        "{} in {} ({}), ages {} to {}",
-        names.join(", "),
-        first.region.name,
-        first.region.city,
-        ages[0],
-        args.to.unwrap_or(first.ages.1.floor())
-    );
+    if !args.json {
+        println!(
+            "{} in {} ({}), ages {} to {}",
+            names.join(", "),
+            first.region.name,
+            first.region.city,
+            ages[0],
+            args.to.unwrap_or(first.ages.1.floor())
+        );
+    }
     let mut cohort = Cohort::new(species, args.seed);
     // One frame for every age and species: the tallest and widest they reach.
     let extent = cohort.extent(&ages);
@@ -85,16 +87,20 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 let picture = with_caption(&picture, &lines, 18.0);
                 save_picture(&output.join(format!("{stem}.png")), &picture)?;
             }
-            println!(
-                "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments",
-                m.label(),
-                age_label(age),
-                model.height,
-                model.crown_diameter,
-                model.dbh,
-                model.leaf_area,
-                cohort.growers[i].segment_count()
-            );
+            if args.json {
+                println!("{}", record_json(m, grown));
+            } else {
+                println!(
+                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments",
+                    m.label(),
+                    age_label(age),
+                    model.height,
+                    model.crown_diameter,
+                    model.dbh,
+                    model.leaf_area,
+                    cohort.growers[i].segment_count()
+                );
+            }
             meshes.push(mesh);
         }
         if cohort.species.len() > 1
@@ -127,6 +133,9 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         )?;
         let chart = crate::chart::growth_chart(m, h)?;
         save_picture(&output.join(format!("{code}-chart.png")), &chart)?;
+        if args.json {
+            continue;
+        }
         let worst = report::worst_errors(h);
         println!(
             "{}: worst error against the equations: height {:+.1}%, DBH {:+.1}%, crown diameter \
@@ -139,6 +148,34 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             worst[4] * 100.0
         );
     }
-    println!("wrote {}", output.display());
+    if !args.json {
+        println!("wrote {}", output.display());
+    }
     Ok(())
+}
+
+/// One age of one species as a JSON line.
+fn record_json(m: &Measured, r: &AgeRecord) -> serde_json::Value {
+    let (d, t, f) = (&r.model, &r.measured, &r.form);
+    let round = |v: f64, k: f64| (v * k).round() / k;
+    serde_json::json!({
+        "species": m.species.code,
+        "age": r.age,
+        "height_m": round(d.height, 1e3),
+        "height_measured_m": round(t.height, 1e3),
+        "crown_height_m": round(d.crown_height, 1e3),
+        "crown_height_measured_m": round(t.crown_height, 1e3),
+        "crown_diameter_m": round(d.crown_diameter, 1e3),
+        "crown_diameter_measured_m": round(t.crown_diameter, 1e3),
+        "dbh_cm": round(d.dbh, 1e2),
+        "dbh_measured_cm": round(t.dbh, 1e2),
+        "leaf_area_m2": round(d.leaf_area, 10.0),
+        "leaf_area_measured_m2": round(t.leaf_area, 10.0),
+        "inner_leaf_share": round(f.inner_leaf_share, 1e3),
+        "leaders": f.leaders,
+        "scaffold_angle_deg": f.scaffold_angle.map(|a| round(a, 10.0)),
+        "pipe_exponent": f.pipe_exponent.map(|n| round(n, 1e2)),
+        "live_branches": r.branches.0,
+        "shed_branches": r.branches.1,
+    })
 }

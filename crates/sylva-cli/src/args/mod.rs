@@ -274,6 +274,12 @@ pub struct GrowArgs {
     #[arg(long)]
     pub no_pictures: bool,
 
+    /// Print one JSON object per species and age (the grown tree's dimensions beside the
+    /// equations', and its form: leaf share near the axis, leaders, scaffold angle, pipe
+    /// exponent, live and shed branches) instead of the table.
+    #[arg(long, conflicts_with = "view")]
+    pub json: bool,
+
     /// Watch the trees grow in a window instead (an age slider, play and pause, the species
     /// side by side); nothing is written.
     #[arg(long, conflicts_with_all = ["output", "no_pictures"])]

@@ -41,11 +41,42 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 4, "{csv}");
     assert!(lines[0].starts_with("age,height_model_m,height_measured_m"));
-    // Modelled height within 5% of the equation at every age written.
+    assert!(lines[0].ends_with("pipe_exponent,live_branches,shed_branches"));
+    // Modelled height within 5% of the equation at every age written; the form's columns
+    // hold a share, counts, and an empty cell only where there is nothing to measure.
     for line in &lines[1..] {
-        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), 17, "{line}");
+        let v: Vec<f64> = cells[..11].iter().map(|x| x.parse().unwrap()).collect();
         assert!((v[1] / v[2] - 1.0).abs() < 0.05, "{line}");
+        let share: f64 = cells[11].parse().unwrap();
+        assert!((0.0..=1.0).contains(&share), "{line}");
+        let leaders: usize = cells[12].parse().unwrap();
+        let live: usize = cells[15].parse().unwrap();
+        assert!(leaders >= 1 && live > 0, "{line}");
     }
+    // --json: one object per age, nothing else on stdout.
+    let run = sylva(&[
+        "grow",
+        "PLAC",
+        "--from",
+        "4",
+        "--to",
+        "5",
+        "--no-pictures",
+        "--json",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let records: Vec<serde_json::Value> = text(&run.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(records.len(), 2);
+    assert_eq!(records[1]["age"], 5.0);
+    assert!(records[1]["leaders"].as_u64().unwrap() >= 1);
+    assert!(records[1]["live_branches"].as_u64().unwrap() > 0);
     let chart = image::open(out.join("PLAC-chart.png")).unwrap();
     assert_eq!((chart.width(), chart.height()), (1500, 900));
 

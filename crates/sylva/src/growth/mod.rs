@@ -5,6 +5,7 @@
 
 pub mod database;
 pub mod equations;
+pub mod form;
 pub mod light;
 pub mod measure;
 pub mod measured;
@@ -13,6 +14,7 @@ pub mod report;
 
 pub use database::{Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};
+pub use form::{FormMeasures, measure_form};
 pub use measure::{Dimensions, measure};
 pub use measured::Measured;
 pub use model::{CrownShape, Grower, GrowthOptions, Targets};

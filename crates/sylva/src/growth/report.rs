@@ -15,6 +15,7 @@
 //! assert_eq!(csv.lines().count(), 3);
 //! ```
 
+use super::form::{FormMeasures, measure_form};
 use super::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
 use crate::Skeleton;
 use crate::mesh::MeshOptions;
@@ -74,6 +75,10 @@ pub struct AgeRecord {
     pub model: Dimensions,
     /// The equations at that age.
     pub measured: Targets,
+    /// The grown tree's form.
+    pub form: FormMeasures,
+    /// Branches alive, and shed since the tree was planted.
+    pub branches: (usize, usize),
 }
 
 /// Street trees of several species grown through the same ages from one seed.
@@ -113,10 +118,14 @@ impl Cohort {
         for (g, history) in self.growers.iter_mut().zip(&mut self.history) {
             g.advance_to(age);
             let skeleton = g.skeleton();
+            let model = measure(&skeleton);
+            let base = model.height - model.crown_height;
             history.push(AgeRecord {
                 age,
-                model: measure(&skeleton),
+                model,
                 measured: g.targets(age),
+                form: measure_form(&skeleton, base, model.height, model.crown_diameter),
+                branches: g.branch_counts(),
             });
             skeletons.push(skeleton);
         }
@@ -162,19 +171,22 @@ pub fn worst_errors(history: &[AgeRecord]) -> [f64; 5] {
     worst
 }
 
-/// A history as CSV: one row per age, model and measured side by side.
+/// A history as CSV: one row per age, model and measured side by side, then the form (an
+/// empty cell where a measure has nothing to measure).
 pub fn csv(history: &[AgeRecord]) -> String {
     let mut s = String::from(
         "age,height_model_m,height_measured_m,crown_height_model_m,crown_height_measured_m,\
          crown_diameter_model_m,crown_diameter_measured_m,dbh_model_cm,dbh_measured_cm,\
-         leaf_area_model_m2,leaf_area_measured_m2\n",
+         leaf_area_model_m2,leaf_area_measured_m2,inner_leaf_share,leaders,\
+         scaffold_angle_deg,pipe_exponent,live_branches,shed_branches\n",
     );
+    let cell = |v: Option<f64>, digits: usize| v.map_or(String::new(), |v| format!("{v:.digits$}"));
     for g in history {
-        let (m, t) = (&g.model, &g.measured);
+        let (m, t, f) = (&g.model, &g.measured, &g.form);
         // Writing into a String cannot fail.
         let _ = writeln!(
             s,
-            "{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.2},{:.2},{:.1},{:.1}",
+            "{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.2},{:.2},{:.1},{:.1},{:.3},{},{},{},{},{}",
             g.age,
             m.height,
             t.height,
@@ -185,7 +197,13 @@ pub fn csv(history: &[AgeRecord]) -> String {
             m.dbh,
             t.dbh,
             m.leaf_area,
-            t.leaf_area
+            t.leaf_area,
+            f.inner_leaf_share,
+            f.leaders,
+            cell(f.scaffold_angle, 1),
+            cell(f.pipe_exponent, 2),
+            g.branches.0,
+            g.branches.1
         );
     }
     s
@@ -264,5 +282,26 @@ mod tests {
         assert_eq!(age_label(5.0), "05");
         assert_eq!(age_label(5.5), "05.5");
         assert_eq!(age_label(120.0), "120");
+    }
+
+    #[test]
+    fn records_carry_the_form_and_the_csv_reads_back() {
+        let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+        let mut cohort = Cohort::new(vec![plane], 0);
+        cohort.advance_to(8.0);
+        let r = cohort.history[0][0];
+        assert!(r.branches.0 > 0, "{r:?}");
+        assert!(
+            r.form.leaders >= 1 && r.form.scaffold_angle.is_some(),
+            "{r:?}"
+        );
+        let text = csv(&cohort.history[0]);
+        let mut rows = csv::Reader::from_reader(text.as_bytes());
+        let header = rows.headers().unwrap().clone();
+        assert_eq!(header.len(), 17);
+        let row = rows.records().next().unwrap().unwrap();
+        assert_eq!(row.len(), 17);
+        let live: usize = row[15].parse().unwrap();
+        assert_eq!(live, r.branches.0);
     }
 }

@@ -376,6 +376,12 @@ impl Grower {
         self.age
     }
 
+    /// Branches (the trunk aside) alive, and shed since planting.
+    pub fn branch_counts(&self) -> (usize, usize) {
+        let live = self.branches[1..].iter().filter(|b| b.alive).count();
+        (live, self.branches.len() - 1 - live)
+    }
+
     /// Live branch segments.
     pub fn segment_count(&self) -> usize {
         self.branches
