@@ -261,6 +261,11 @@ impl Database {
         &self.regions
     }
 
+    /// Every species of every region.
+    pub fn species(&self) -> &[SpeciesEntry] {
+        &self.species
+    }
+
     /// Species of a region that have the five equations growth needs (age→DBH and DBH→height,
     /// crown diameter, crown height, leaf area).
     pub fn growable(&self, region: &str) -> Vec<&SpeciesEntry> {

@@ -6,6 +6,7 @@
 pub mod database;
 pub mod equations;
 pub mod form;
+pub mod habit;
 pub mod light;
 pub mod measure;
 pub mod measured;
@@ -15,6 +16,7 @@ pub mod report;
 pub use database::{Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};
 pub use form::{FormMeasures, measure_form};
+pub use habit::{Envelope, Habit, TreeForm, habit_of};
 pub use measure::{Dimensions, measure};
 pub use measured::Measured;
 pub use model::{CrownShape, Grower, GrowthOptions, Targets};

@@ -1,0 +1,304 @@
+//! Species habits: the few numbers that give a grown tree its architecture while the measured
+//! equations fix its size (growth-architecture spec section 3). A habit is chosen by species
+//! code where the table below names it, otherwise by the Urban Tree Database's tree type.
+//!
+//! The numbers are the spec's mid-range defaults per form:
+//!
+//! | form | apical control | branch angle | up-tropism | envelope |
+//! |---|---|---|---|---|
+//! | excurrent conifer | 0.59 | 80 (near horizontal, whorled) | 0.30 (laterals level) | cone |
+//! | oval / upright | 0.55 | 50 | 0.15 | cone, then ellipsoid |
+//! | round, decurrent | 0.49 | 45 | 0.10 | ellipsoid |
+//! | vase | 0.46 | 28 | 0.20 | inverted cone |
+//! | umbrella, spreading | 0.47 | 60 | 0.05 | flattened ellipsoid |
+//! | columnar | 0.57 | 18 | 0.30 | cylinder |
+//! | weeping | 0.50 | 52 | -0.15 (tips hang) | ellipsoid |
+//! | palm | - | no branches | - | a rosette of fronds |
+//!
+//! Apical control (lambda, Borchert-Honda) is the share of resource a branching point sends
+//! along its axis when both arms are equally lit: above 0.5 a leader dominates (excurrent),
+//! below it the laterals win and the crown forks (decurrent). The branch angle is measured from
+//! the parent axis, degrees.
+
+/// A tree's form, as street-tree references describe it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TreeForm {
+    /// One leader to the top, near-level whorled laterals: pines, firs, cedars.
+    ExcurrentConifer,
+    /// Upright, pyramidal when young and oval later, keeping a leader: sweetgum, magnolia.
+    Oval,
+    /// Broad and rounded, the trunk forking into ascending scaffolds: plane, ash, maples.
+    Round,
+    /// Many ascending limbs from a short trunk: zelkova, American elm, crape myrtle.
+    Vase,
+    /// Wide and flat-topped, limbs spreading: pistache, goldenrain tree, live oak.
+    Umbrella,
+    /// Narrow and upright: Italian cypress, Lombardy poplar.
+    Columnar,
+    /// Tips hanging: weeping willow, weeping cherry.
+    Weeping,
+    /// A single unbranched stem with a rosette of fronds.
+    Palm,
+}
+
+/// The shape of the space a crown may fill.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Envelope {
+    /// Widest at the base.
+    Cone,
+    /// Widest at mid-height.
+    Ellipsoid,
+    /// Widest near the top.
+    InvertedCone,
+    /// Widest a third of the way up, flat-topped.
+    FlatEllipsoid,
+    /// As wide at the top as at the base.
+    Cylinder,
+}
+
+/// The habit parameters of a form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Habit {
+    /// The form these numbers give.
+    pub form: TreeForm,
+    /// Apical control lambda, 0..1 (0.5: axis and lateral share equally).
+    pub apical_control: f32,
+    /// Angle of a new lateral from its parent axis, degrees.
+    pub branch_angle: f32,
+    /// Weight of the pull upward on new shoots (negative: tips hang).
+    pub tropism: f32,
+    /// The space the crown fills.
+    pub envelope: Envelope,
+    /// Stems from the ground (crape myrtle and other multi-stem trees: more than 1).
+    pub stems: u8,
+}
+
+impl TreeForm {
+    /// The spec's default habit for the form.
+    pub fn habit(self) -> Habit {
+        let (apical_control, branch_angle, tropism, envelope) = match self {
+            TreeForm::ExcurrentConifer => (0.59, 80.0, 0.30, Envelope::Cone),
+            TreeForm::Oval => (0.55, 50.0, 0.15, Envelope::Cone),
+            TreeForm::Round => (0.49, 45.0, 0.10, Envelope::Ellipsoid),
+            TreeForm::Vase => (0.46, 28.0, 0.20, Envelope::InvertedCone),
+            TreeForm::Umbrella => (0.47, 60.0, 0.05, Envelope::FlatEllipsoid),
+            TreeForm::Columnar => (0.57, 18.0, 0.30, Envelope::Cylinder),
+            TreeForm::Weeping => (0.50, 52.0, -0.15, Envelope::Ellipsoid),
+            TreeForm::Palm => (1.0, 0.0, 0.0, Envelope::Cylinder),
+        };
+        Habit {
+            form: self,
+            apical_control,
+            branch_angle,
+            tropism,
+            envelope,
+            stems: 1,
+        }
+    }
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            TreeForm::ExcurrentConifer => "excurrent conifer",
+            TreeForm::Oval => "oval",
+            TreeForm::Round => "round",
+            TreeForm::Vase => "vase",
+            TreeForm::Umbrella => "umbrella",
+            TreeForm::Columnar => "columnar",
+            TreeForm::Weeping => "weeping",
+            TreeForm::Palm => "palm",
+        }
+    }
+}
+
+/// Species with a form of their own: the Modesto seven, the twenty species planted in the most
+/// of the database's regions, and a few whose form no tree type would guess. Codes as the
+/// database writes them; a cultivar's suffix (`PYCA_B`) falls back to its species (`PYCA`).
+const SPECIES: [(&str, TreeForm, &str); 31] = [
+    // Modesto (region InlVal), the seeds' data.
+    (
+        "PLAC",
+        TreeForm::Round,
+        "London plane: pyramidal young, then broad and rounded, massive ascending scaffolds",
+    ),
+    (
+        "ACSA1",
+        TreeForm::Vase,
+        "silver maple: fast, upright-spreading, vase to oval, long limbs",
+    ),
+    ("FRVE_G", TreeForm::Round, "Modesto ash: rounded, dense"),
+    (
+        "KOPA",
+        TreeForm::Umbrella,
+        "goldenrain tree: small, rounded to irregular, spreading",
+    ),
+    (
+        "MAGR",
+        TreeForm::Oval,
+        "southern magnolia: dense evergreen, pyramidal to oval, keeps a leader",
+    ),
+    (
+        "PICH",
+        TreeForm::Umbrella,
+        "Chinese pistache: vase-like young, a broad umbrella when mature",
+    ),
+    (
+        "CESI4",
+        TreeForm::Round,
+        "Chinese hackberry: broad, rounded, spreading",
+    ),
+    // The most widely planted (by regions listing them).
+    (
+        "LIST",
+        TreeForm::Oval,
+        "sweetgum: pyramidal with a leader, oval when old",
+    ),
+    (
+        "GLTR",
+        TreeForm::Umbrella,
+        "honeylocust: open, spreading, flat-topped",
+    ),
+    ("PYCA", TreeForm::Oval, "Callery pear: upright, oval"),
+    (
+        "QURU",
+        TreeForm::Round,
+        "northern red oak: rounded, spreading",
+    ),
+    ("ACRU", TreeForm::Oval, "red maple: upright oval"),
+    (
+        "ACSA2",
+        TreeForm::Oval,
+        "sugar maple: upright oval to rounded",
+    ),
+    ("MA2", TreeForm::Round, "apple: small, rounded, spreading"),
+    ("ACPL", TreeForm::Round, "Norway maple: dense, rounded"),
+    (
+        "CICA",
+        TreeForm::Round,
+        "camphor tree: broad, rounded evergreen",
+    ),
+    (
+        "FRPE",
+        TreeForm::Round,
+        "green ash: upright-spreading, rounded",
+    ),
+    (
+        "GIBI",
+        TreeForm::Oval,
+        "ginkgo: sparse, pyramidal and irregular young, spreading old",
+    ),
+    ("ULPU", TreeForm::Round, "Siberian elm: rounded, open"),
+    ("ULAM", TreeForm::Vase, "American elm: the classic vase"),
+    ("PRCE", TreeForm::Round, "cherry plum: small, rounded"),
+    (
+        "TICO",
+        TreeForm::Oval,
+        "littleleaf linden: pyramidal to oval, keeps a leader",
+    ),
+    ("LAIN", TreeForm::Vase, "crape myrtle: several stems, vase"),
+    // Others whose form their tree type would not give.
+    (
+        "ZESE",
+        TreeForm::Vase,
+        "zelkova: vase, many ascending limbs from a short trunk",
+    ),
+    (
+        "ULPA",
+        TreeForm::Umbrella,
+        "Chinese elm: broad, spreading, arching",
+    ),
+    (
+        "QUVI",
+        TreeForm::Umbrella,
+        "southern live oak: broad, wide-spreading, low limbs",
+    ),
+    (
+        "QUAG",
+        TreeForm::Umbrella,
+        "coast live oak: broad, wide-spreading, low limbs",
+    ),
+    (
+        "CHLI",
+        TreeForm::Vase,
+        "desert willow: several stems, open vase",
+    ),
+    ("WARO", TreeForm::Palm, "Mexican fan palm"),
+    ("SAPA", TreeForm::Palm, "cabbage palmetto"),
+    ("PHCA", TreeForm::Palm, "Canary Island date palm"),
+];
+
+/// The form the database's tree type gives (`BDL`: broadleaf, deciduous, large; `C..`:
+/// conifer; `P..`: palm): conifers excurrent, palms unbranched, large broadleaves round,
+/// medium ones oval, small ones round.
+pub fn form_of_type(tree_type: &str) -> TreeForm {
+    let t = tree_type.as_bytes();
+    match (t.first(), t.get(2)) {
+        (Some(b'C'), _) => TreeForm::ExcurrentConifer,
+        (Some(b'P'), _) => TreeForm::Palm,
+        (_, Some(b'M')) => TreeForm::Oval,
+        _ => TreeForm::Round,
+    }
+}
+
+/// The habit of a species: its own row where the table has one, else its tree type's. Multi-
+/// stem species (crape myrtle, desert willow) grow three stems.
+pub fn habit_of(code: &str, tree_type: &str) -> Habit {
+    let base = code.split('_').next().unwrap_or(code);
+    let row = SPECIES
+        .iter()
+        .find(|(c, _, _)| *c == code)
+        .or_else(|| SPECIES.iter().find(|(c, _, _)| *c == base));
+    let mut habit = row.map_or_else(|| form_of_type(tree_type), |r| r.1).habit();
+    if matches!(base, "LAIN" | "CHLI") {
+        habit.stems = 3;
+    }
+    habit
+}
+
+/// Every species with a row of its own: code, form, and the form in words.
+pub fn species_rows() -> impl Iterator<Item = (&'static str, TreeForm, &'static str)> {
+    SPECIES.iter().copied()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::growth::Database;
+
+    #[test]
+    fn every_species_in_the_database_has_a_habit_and_the_named_ones_their_form() {
+        let db = Database::builtin();
+        for entry in db.species() {
+            let h = habit_of(&entry.code, &entry.tree_type);
+            assert!((0.0..=1.0).contains(&h.apical_control), "{}", entry.code);
+            if entry.tree_type.starts_with('P') {
+                assert_eq!(h.form, TreeForm::Palm, "{}", entry.code);
+            }
+            if entry.tree_type.starts_with('C') {
+                assert!(
+                    h.apical_control > 0.5,
+                    "a conifer keeps its leader: {}",
+                    entry.code
+                );
+            }
+        }
+        assert!(db.species().len() > 300, "{}", db.species().len());
+        assert_eq!(habit_of("PLAC", "BDL").form, TreeForm::Round);
+        assert!(
+            habit_of("PLAC", "BDL").apical_control < 0.5,
+            "a plane forks"
+        );
+        assert_eq!(habit_of("PYCA_B", "BDM").form, TreeForm::Oval);
+        assert_eq!(habit_of("LAIN", "BDS").stems, 3);
+        assert_eq!(habit_of("XXXX", "CEL").form, TreeForm::ExcurrentConifer);
+        // Every row names a species the database has.
+        for (code, _, words) in species_rows() {
+            assert!(!words.is_empty());
+            let known = db
+                .species()
+                .iter()
+                .any(|e| e.code == code || e.code.split('_').next() == Some(code));
+            assert!(known, "{code} is not in the database");
+        }
+    }
+}
