@@ -3,7 +3,8 @@
 //! growth); after that it only thickens (secondary growth). At the end of a year the apical
 //! bud continues every branch that still has room to grow, and lateral buds start branches of
 //! the next order with a probability from light, local density and chance. Lengths come from
-//! the crown shape function and the measured crown, radii from f_DBH, angles from f_CD / f_CH.
+//! the crown shape function and the measured crown, radii from the pipe model held to f_DBH,
+//! angles from f_CD / f_CH.
 //!
 //! The model is fitted to the data the way the seeds' title says, by inverse modelling: one
 //! gain on branch length is corrected every step so that the crown's measured diameter follows
@@ -28,6 +29,9 @@ mod leaves;
 mod skeleton;
 mod wood;
 
+/// Exponent of the pipe model: parent^n = sum of children^n (2 is da Vinci's area rule;
+/// measured trees lie around 2 to 3).
+const PIPE_EXPONENT: f32 = 2.5;
 /// Height at which DBH is measured, m.
 pub const BREAST_HEIGHT: f32 = 1.37;
 /// Most light cells along an axis.
@@ -260,8 +264,8 @@ pub struct Grower {
     leaf_spacing: f32,
     /// Leaves per segment, from the last allocation.
     leaves_on: Vec<u16>,
-    /// f_DBH (cm) of the ramped curve, by steps from the nursery's start.
-    dbh_by_step: Vec<f32>,
+    /// Radius of a live tip, m: what makes the pipe model's trunk f_DBH at breast height.
+    tip_radius: f32,
     /// Base radius of every segment this step (0 for dead ones): leaf allocation and the
     /// light's densities both need them.
     radii: Vec<f32>,
@@ -314,7 +318,7 @@ impl Grower {
             leaf_spacing,
             leaves_on: Vec::new(),
             radii: Vec::new(),
-            dbh_by_step: Vec::new(),
+            tip_radius: 0.001,
             leaf_boost: 1.0,
             times: StepTimes::default(),
             options,

@@ -19,7 +19,7 @@ impl Grower {
         sk.sections.clear();
         sk.leaves.clear();
         let mut stem_of = vec![u32::MAX; self.branches.len()];
-        let mut segs: Vec<&Segment> = Vec::new();
+        let mut segs: Vec<(u32, &Segment)> = Vec::new();
         let mut points: Vec<(Vec3, Vec3, f32)> = Vec::new();
         let (leaf_len, leaf_width) = self.drawn_leaf_size();
         let top = self.targets_now().height as f32;
@@ -37,16 +37,16 @@ impl Grower {
                 branch
                     .segments
                     .iter()
-                    .map(|&s| &self.segments[s as usize])
-                    .filter(|s| s.length > 1e-4),
+                    .map(|&s| (s, &self.segments[s as usize]))
+                    .filter(|(_, s)| s.length > 1e-4),
             );
             if segs.is_empty() {
                 continue;
             }
-            let total: f32 = segs.iter().map(|s| s.length).sum();
+            let total: f32 = segs.iter().map(|(_, s)| s.length).sum();
             points.clear();
             let mut run = 0.0f32;
-            for s in &segs {
+            for &(_, s) in &segs {
                 let pieces = if branch.order == 0 {
                     (s.length / 0.5).ceil().max(1.0) as usize
                 } else {
@@ -59,7 +59,7 @@ impl Grower {
                 }
                 run += s.length;
             }
-            let last = segs[segs.len() - 1];
+            let (last_id, last) = segs[segs.len() - 1];
             points.push((last.end(), last.direction, total));
             if branch.order == 0 {
                 // A section exactly at breast height, so DBH reads the trunk there.
@@ -78,9 +78,9 @@ impl Grower {
                 let radius = if branch.order == 0 {
                     self.trunk_radius(p.z)
                 } else if k < segs.len() {
-                    self.radius_at_base(segs[k])
+                    self.radius_of(segs[k].0)
                 } else {
-                    (self.radius_at_base(last) * 0.35).max(0.001)
+                    (self.radius_of(last_id) * 0.35).max(0.001)
                 };
                 sk.sections.push(CrossSection {
                     position: p,

@@ -1,6 +1,6 @@
 //! Primary and secondary growth: a segment elongates in its first year, bending toward light
 //! and sagging under its own weight within the crown's heights; then it only thickens, its
-//! radius following f_DBH down the trunk and the pipe model out to the twigs.
+//! radius following the pipe model with the trunk held to f_DBH.
 
 use super::*;
 
@@ -104,80 +104,80 @@ impl Grower {
         }
     }
 
+    /// Radii by the pipe model (Shinozaki; da Vinci's rule): a segment's base carries every
+    /// shoot beyond it, radius^n = the sum of their radius^n, each live tip counting one. The
+    /// tip's radius is then the one that makes the trunk at breast height f_DBH(t): DBH follows
+    /// the data while every branch stays pipe-consistent, so the trunk tapers as limbs leave it
+    /// and swells below forks.
     pub(super) fn refresh_radii(&mut self) {
-        // f_DBH along the sapling-ramped curve, by whole steps from the nursery's start: a
-        // segment's radius depends only on its age, and ages come in steps.
-        let dt = self.step_length();
-        let start = self.measured.ages.0 - NURSERY_YEARS;
-        let steps = ((self.age - start) / dt).round().max(0.0) as usize + 1;
-        for k in self.dbh_by_step.len()..steps {
-            let d = self.targets(start + k as f64 * dt).dbh;
-            self.dbh_by_step.push(d as f32);
+        let n = PIPE_EXPONENT;
+        let count = self.segments.len();
+        // What each segment's base carries, in tips (radius^n in units of a tip's).
+        let mut carried = vec![0.0f32; count];
+        let mut joining = vec![0.0f32; count];
+        // Children come after their parents: walking back, every child is summed before the
+        // segment it grows from.
+        for b in (0..self.branches.len()).rev() {
+            let branch = &self.branches[b];
+            if !branch.alive {
+                continue;
+            }
+            let mut acc = 1.0f32;
+            for &s in branch.segments.iter().rev() {
+                acc += joining[s as usize];
+                carried[s as usize] = acc;
+            }
+            if let Some((_, from)) = branch.parent {
+                joining[from as usize] += acc;
+            }
         }
-        let radii: Vec<f32> = self
-            .segments
-            .iter()
-            .map(|s| {
-                if self.branches[s.branch as usize].alive {
-                    self.radius_at_base(s)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        self.radii = radii;
+        let unit: Vec<f32> = carried.iter().map(|&c| c.powf(1.0 / n)).collect();
+        let at_breast = self.trunk_profile(&unit, 1.0, BREAST_HEIGHT);
+        let dbh = self.targets_now().dbh as f32;
+        self.tip_radius = if at_breast > 0.0 {
+            dbh / 200.0 / at_breast
+        } else {
+            0.001
+        };
+        let scale = self.tip_radius;
+        self.radii = unit.iter().map(|&u| u * scale).collect();
+    }
+
+    /// The trunk's radius at height z from per-segment base radii: from each segment's base to
+    /// the next one's, and down to half a tip's radius (`tip`) over the leader's last shoot.
+    fn trunk_profile(&self, base: &[f32], tip: f32, z: f32) -> f32 {
+        let trunk = &self.branches[0].segments;
+        let Some(&first) = trunk.first() else {
+            return 0.0;
+        };
+        if z <= self.segments[first as usize].start.z {
+            return base[first as usize];
+        }
+        for (k, &s) in trunk.iter().enumerate() {
+            let seg = &self.segments[s as usize];
+            let (z0, z1) = (seg.start.z, seg.end().z);
+            if z >= z0 && z < z1 {
+                let next = trunk.get(k + 1).map_or(tip * 0.5, |&t| base[t as usize]);
+                let f = (z - z0) / (z1 - z0).max(1e-6);
+                return base[s as usize] + (next - base[s as usize]) * f;
+            }
+        }
+        // Above the leader: its tip.
+        tip * 0.5
+    }
+
+    /// Trunk radius at height z now, m.
+    pub(super) fn trunk_radius(&self, z: f32) -> f32 {
+        self.trunk_profile(&self.radii, self.tip_radius, z)
     }
 
     pub(super) fn step_length(&self) -> f64 {
         1.0 / self.options.steps_per_year.max(1) as f64
     }
 
-    /// Radius of a segment's base section now, m.
-    pub(super) fn radius_at_base(&self, s: &Segment) -> f32 {
-        let b = &self.branches[s.branch as usize];
-        if b.order == 0 {
-            self.trunk_radius(s.start.z)
-        } else {
-            // f_DBH of the segment's own age, read on the sapling-ramped curve.
-            let age = (self.age - s.born).max(0.0);
-            let k = (age / self.step_length()).round() as usize;
-            let d = match self.dbh_by_step.get(k) {
-                Some(&d) => d as f64,
-                None => self.targets(self.measured.ages.0 - NURSERY_YEARS + age).dbh,
-            };
-            (b.c_d as f64 * d / 200.0) as f32
-        }
-    }
-
-    /// Trunk radius at height z, m: the DBH of the tree when the leader passed breast height,
-    /// shifted by how much later the leader passed z, so the trunk tapers and is f_DBH(t)
-    /// exactly at 1.37 m.
-    pub(super) fn trunk_radius(&self, z: f32) -> f32 {
-        let passed = |z: f32| -> f64 {
-            // The age at which the target height first reached z (bisection on the ramped,
-            // rising height).
-            let (mut lo, mut hi) = (self.measured.ages.0 - NURSERY_YEARS, self.age);
-            if self.targets(lo).height >= z as f64 {
-                return lo;
-            }
-            for _ in 0..40 {
-                let mid = 0.5 * (lo + hi);
-                if self.targets(mid).height < z as f64 {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            hi
-        };
-        let shift = passed(z) - passed(BREAST_HEIGHT);
-        let d = self.targets(self.age - shift).dbh;
-        let top = self.targets_now().height as f32;
-        // Thin to a point over the leader's last half metre (less on a sapling, never down
-        // to breast height).
-        let zone = ((top - BREAST_HEIGHT) * 0.9).clamp(0.05, 0.5);
-        let tip = ((top - z) / zone).clamp(0.05, 1.0);
-        (d / 200.0) as f32 * tip
+    /// Radius of a segment's base now, m.
+    pub(super) fn radius_of(&self, segment: u32) -> f32 {
+        self.radii.get(segment as usize).copied().unwrap_or(0.0)
     }
 }
 
