@@ -25,7 +25,7 @@ pub struct FormMeasures {
 
 /// Measures the form of a skeleton whose first stem is the trunk, standing at the origin, with
 /// its crown from `crown_base` to `top` metres and `crown_diameter` metres across (as
-/// [`super::measure`] finds them).
+/// [`super::measure()`] finds them).
 pub fn measure_form(
     skeleton: &Skeleton,
     crown_base: f64,
