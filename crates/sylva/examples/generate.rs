@@ -10,10 +10,25 @@ use sylva::export::{Materials, to_glb, write_atomically};
 use sylva::mesh::{MeshOptions, mesh_tree};
 use sylva::{GenerateOptions, species};
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> std::process::ExitCode {
+    match run() {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("generate: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let name = args.next().unwrap_or_else(|| "quaking_aspen".into());
-    let seed: u64 = args.next().map_or(Ok(0), |s| s.parse())?;
+    let seed: u64 = match args.next() {
+        Some(s) => s
+            .parse()
+            .map_err(|_| format!("SEED `{s}`: expected a whole number"))?,
+        None => 0,
+    };
     let out = args.next().unwrap_or_else(|| format!("{name}-{seed}.glb"));
 
     // A built-in name or a .toml / Arbaro .xml file.

@@ -7,18 +7,44 @@
 //! ```
 
 use sylva::export::{Materials, to_glb, write_atomically};
-use sylva::growth::report::MESH;
+use sylva::growth::report::{MAX_AGE, MESH};
 use sylva::growth::{Database, Grower, GrowthOptions, measure};
 use sylva::mesh::mesh_tree;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> std::process::ExitCode {
+    match run() {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("grow_street_tree: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let species = args.next().unwrap_or_else(|| "PLAC".into());
-    let age: f64 = args.next().map_or(Ok(20.0), |s| s.parse())?;
+    let age: f64 = match args.next() {
+        Some(s) => s
+            .parse()
+            .map_err(|_| format!("AGE `{s}`: expected a number of years"))?,
+        None => 20.0,
+    };
     let region = args.next().unwrap_or_else(|| "InlVal".into());
 
     // A species code, scientific or common name; the region's equations as functions of age.
     let measured = Database::builtin().find(&region, &species)?;
+    // The grower steps through every year up to the age asked for: bound it as `sylva grow`
+    // does.
+    if !(0.0..=MAX_AGE).contains(&age) {
+        return Err(format!(
+            "AGE {age}: expected 0..{MAX_AGE} years (the data for {} cover {:.0} to {:.0})",
+            measured.label(),
+            measured.ages.0,
+            measured.ages.1
+        )
+        .into());
+    }
     let label = measured.label();
     let (bark, leaves) = measured.colours();
     let mut grower = Grower::new(measured, GrowthOptions::default());

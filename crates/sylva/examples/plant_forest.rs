@@ -8,9 +8,24 @@
 use sylva::export::write_atomically;
 use sylva::forest::{ForestSpec, grow_meshes};
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> std::process::ExitCode {
+    match run() {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("plant_forest: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let count: u32 = args.next().map_or(Ok(200), |s| s.parse())?;
+    let count: u32 = match args.next() {
+        Some(s) => s
+            .parse()
+            .map_err(|_| format!("COUNT `{s}`: expected a whole number"))?,
+        None => 200,
+    };
     let out = args.next().unwrap_or_else(|| "forest.glb".into());
 
     let spec = ForestSpec {
