@@ -15,7 +15,7 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::Instant;
 use sylva::Skeleton;
 use sylva::growth::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
-use sylva::mesh::{MeshOptions, mesh_tree};
+use sylva::mesh::mesh_tree;
 use sylva_render::{Placement, RenderTree, Renderer, Scene, Stand, View};
 
 /// One species at one age, as the worker sends it.
@@ -203,10 +203,7 @@ impl GrowthViewer {
         if self.uploaded == Some(self.age) || self.age >= self.ready() {
             return;
         }
-        let options = MeshOptions {
-            quality: 0.6,
-            ..Default::default()
-        };
+        let options = sylva::growth::report::MESH;
         self.trees = self
             .grown
             .iter()
