@@ -11,9 +11,11 @@ pub struct FormMeasures {
     /// Share of the leaf area within half the crown radius of the trunk's vertical axis, 0..1
     /// (an evenly filled ellipsoid: 0.35; a shell of foliage: near 0).
     pub inner_leaf_share: f64,
-    /// Woody axes crossing the plane a third of the way up the crown with at least a quarter of
-    /// the largest radius there: 1 for a tree that keeps its leader, 2 or more where the trunk
-    /// has forked into codominant limbs, 0 for a palm (nothing woody in its crown).
+    /// Woody axes crossing the plane a third of the way up the crown with at least two-thirds
+    /// of the largest radius there (codominant: arborists call stems of about the trunk's
+    /// diameter codominant, and keep side branches under half of it): 1 for a tree that keeps
+    /// its leader, 2 or more where the trunk has forked into codominant limbs, 0 for a palm
+    /// (nothing woody in its crown).
     pub leaders: usize,
     /// Median angle above the horizontal of the first metre of each branch leaving the trunk,
     /// degrees (`None` without branches).
@@ -53,6 +55,9 @@ fn inner_leaf_share(skeleton: &Skeleton, crown_radius: f32) -> f64 {
     if total > 0.0 { inner / total } else { 0.0 }
 }
 
+/// Least share of the thickest axis's radius for an axis to count as a leader.
+const CODOMINANT: f32 = 2.0 / 3.0;
+
 fn leaders(skeleton: &Skeleton, height: f32) -> usize {
     // Radius where each stem crosses the plane going up (a stem may cross more than once).
     let mut crossings = Vec::new();
@@ -69,7 +74,7 @@ fn leaders(skeleton: &Skeleton, height: f32) -> usize {
     let widest = crossings.iter().copied().fold(0.0f32, f32::max);
     crossings
         .iter()
-        .filter(|&&r| widest > 0.0 && r >= widest / 4.0)
+        .filter(|&&r| widest > 0.0 && r >= widest * CODOMINANT)
         .count()
 }
 
@@ -126,8 +131,9 @@ fn fork_exponents(skeleton: &Skeleton) -> Vec<f64> {
     for ((parent, z), children) in forks {
         let z = z as f32 / 10_000.0;
         let s = skeleton.sections_of(StemId(parent));
-        let below = s.iter().rev().find(|c| c.z < z - 1e-4).map(|c| c.radius);
-        let above = s.iter().find(|c| c.z > z + 1e-4).map(|c| c.radius);
+        // A section exactly at the fork is the parent going on past it.
+        let below = s.iter().rev().find(|c| c.z < z - 1e-5).map(|c| c.radius);
+        let above = s.iter().find(|c| c.z >= z - 1e-5).map(|c| c.radius);
         let (Some(below), Some(above)) = (below, above) else {
             continue;
         };
@@ -215,7 +221,7 @@ mod tests {
         for x in [-1.0f32, 1.0] {
             let d = Vec3::new(x, 0.0, 1.0).normalize();
             let start = Vec3::new(0.0, 0.0, 4.05);
-            let limb = sk.push_polyline(&[start, start + d * 3.0], &[0.1, 0.02], 1, Some(trunk));
+            let limb = sk.push_polyline(&[start, start + d * 3.0], &[0.1, 0.08], 1, Some(trunk));
             sk.stems[limb.0 as usize].offset = 4.05;
         }
         sk
@@ -230,8 +236,8 @@ mod tests {
             (form.scaffold_angle.unwrap() - 45.0).abs() < 0.5,
             "{form:?}"
         );
-        // A third of the way up the crown (5.33 m): the trunk (0.092) and both limbs (0.09); at
-        // 8 m only the trunk.
+        // A third of the way up the crown (5.33 m): the trunk (0.092) and both limbs (0.088),
+        // codominant; at 8 m only the trunk.
         assert_eq!(form.leaders, 3);
         assert_eq!(measure_form(&sk, 7.0, 10.0, 4.0).leaders, 1);
         assert_eq!(

@@ -56,6 +56,31 @@ pub enum Envelope {
     Cylinder,
 }
 
+impl Envelope {
+    /// Radius of the envelope at relative height `p` in the crown (0 at the crown base, 1 at
+    /// the top), as a share of its widest radius.
+    pub fn relative_radius(self, p: f32) -> f32 {
+        let p = p.clamp(0.0, 1.0);
+        // An ellipse widest at `mid`, with its lower and upper halves stretched to fit.
+        let around = |mid: f32, power: f32| {
+            let q = if p < mid {
+                (mid - p) / mid
+            } else {
+                (p - mid) / (1.0 - mid)
+            };
+            (1.0 - q.min(1.0).powf(power)).powf(1.0 / power)
+        };
+        match self {
+            Envelope::Cone => (1.0 - p).powf(0.9),
+            Envelope::Ellipsoid => around(0.45, 2.0),
+            Envelope::InvertedCone => around(0.72, 2.0),
+            // A superellipse: flat-topped and full at the sides.
+            Envelope::FlatEllipsoid => around(0.4, 3.0),
+            Envelope::Cylinder => around(0.5, 6.0),
+        }
+    }
+}
+
 /// The habit parameters of a form.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Habit {

@@ -19,7 +19,7 @@ pub use form::{FormMeasures, measure_form};
 pub use habit::{Envelope, Habit, TreeForm, habit_of};
 pub use measure::{Dimensions, measure};
 pub use measured::Measured;
-pub use model::{CrownShape, Grower, GrowthOptions, Targets};
+pub use model::{Grower, GrowthOptions, Targets};
 
 /// What can go wrong finding or reading growth data.
 #[derive(Debug, thiserror::Error)]

@@ -358,7 +358,7 @@ fn print_ages() {
         let d = measure(&sk);
         let t = g.targets(age as f64);
         println!(
-            "{age:3} H {:5.2}/{:5.2} DBH {:5.1}/{:5.1} CD {:5.2}/{:5.2} CH {:5.2}/{:5.2} LA {:6.1}/{:6.1} segs {} leaves {} {:.0}ms (growth {:.1} light {:.1} ms/step) gain {:.2}",
+            "{age:3} H {:5.2}/{:5.2} DBH {:5.1}/{:5.1} CD {:5.2}/{:5.2} CH {:5.2}/{:5.2} LA {:6.1}/{:6.1} segs {} leaves {} {:.0}ms (growth {:.1} light {:.1} ms/step) vigour {:.2}",
             d.height,
             t.height,
             d.dbh,
@@ -374,7 +374,7 @@ fn print_ages() {
             dt * 1e3,
             g.times.growth * 1e3,
             g.times.light * 1e3,
-            g.gain()
+            g.vigour()
         );
     }
 }

@@ -1,193 +1,416 @@
-//! Buds and shoots at the end of a year: the apical bud continues every branch that still
-//! has room, lateral buds start branches of the next order by light, density and chance, and
-//! branches past the segment budget make room or die.
+//! Buds and shoots at the end of a year, after Palubicki et al. (2009): every bud's exposure
+//! comes from space colonisation of the coming year's crown envelope and the light grid; the
+//! tree's vigour is allocated to the buds by Borchert-Honda with the habit's apical control; a
+//! bud given at least one metamer's worth makes a shoot of that many metamers, steered by its
+//! markers and the habit's tropism, with a lateral bud at every node. The leader is held to
+//! the measured height; shaded branches die; past the segment budget the darkest make room.
 
+use super::colonise::{Markers, Space};
 use super::*;
 
+/// Dormant lateral buds older than this die, years.
+const BUD_YEARS: f64 = 4.0;
+/// Highest branch order.
+const MAX_ORDER: u8 = 4;
+/// Most metamers one shoot makes in a year.
+const MAX_METAMERS: f32 = 8.0;
+/// Weight of the direction toward a bud's markers in a new shoot's direction (xi).
+const ENVIRONMENT_WEIGHT: f32 = 0.3;
+/// Markers a bud must own to count as fully exposed.
+const SATURATION: f32 = 3.0;
+/// Share of the season in which a shoot elongates.
+pub(super) const GROWING_SEASON: f64 = 0.5;
+
+/// A lateral bud waiting in a leaf axil.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Bud {
+    pub branch: u32,
+    pub segment: u32,
+    /// Where on the segment, as a share of its length.
+    pub at: f32,
+    /// The direction a shoot from it sets out in.
+    pub direction: Vec3,
+    pub born: f64,
+}
+
+/// A shoot to be made this year.
+pub(super) struct Plan {
+    /// Terminal: the branch it continues; lateral: the bud's index in `Grower::buds`.
+    from: usize,
+    lateral: bool,
+    pub start: Vec3,
+    pub direction: Vec3,
+    pub length: f32,
+}
+
 impl Grower {
-    /// Apical and lateral buds at the end of a year.
-    pub(super) fn end_of_year(&mut self) {
-        let t = self.targets_now();
-        self.make_room();
-        let live_segments = self.segment_count();
-        let mut budget = self.options.max_segments.saturating_sub(live_segments);
-        let bifurcation = (t.crown_diameter / t.crown_height.max(0.1)).atan() as f32;
-        let n = self.branches.len();
-        for b in 0..n {
-            if !self.branches[b].alive {
+    /// The apex of every live branch and every waiting bud have their say; shoots are made.
+    /// At the end of a year every bud may break. In a young tree's mid-season (`sylleptic`)
+    /// only this year's buds on the leader may, for half a season's growth: a vigorous leader
+    /// branches the year it grows, so its crown keeps up with a crown base rising fast.
+    pub(super) fn flush(&mut self, sylleptic: bool) {
+        let next = self.targets((self.age + 0.25).floor() + 1.0);
+        if !sylleptic {
+            self.make_room();
+            self.shade_deaths();
+        }
+        let space = self.space(&next, self.spread as f32);
+        self.prune_buds(next.crown_base() as f32);
+        let terminals: Vec<u32> = (0..self.branches.len() as u32)
+            .filter(|&b| self.branches[b as usize].alive)
+            .collect();
+        let mut sites: Vec<(Vec3, Vec3)> = terminals
+            .iter()
+            .map(|&b| {
+                let s = self.apex_segment(b as usize);
+                (s.end(), s.direction)
+            })
+            .collect();
+        sites.extend(
+            self.buds
+                .iter()
+                .map(|b| (self.bud_position(b), b.direction)),
+        );
+        // Space is taken by the leafy shoots of the last years: old limbs inside the crown
+        // leave room for foliage around them.
+        let age = self.age;
+        let wood: Vec<(Vec3, Vec3)> = self
+            .segments
+            .iter()
+            .filter(|s| {
+                self.branches[s.branch as usize].alive
+                    && s.length > 1e-4
+                    && age - s.born <= LEAF_SHOOT_YEARS + 1.0
+            })
+            .map(|s| (s.start, s.end()))
+            .collect();
+        // One stream per half year (a sapling's ages are negative).
+        let half_year = (self.age * 2.0).round() as i64;
+        let mut rng = self.key.child((1_000_000 + half_year) as u64).stream();
+        let markers = Markers::scatter(&space, self.metamer_now(), &mut rng, &wood);
+        let (owned, towards) = markers.perceive(&sites);
+        let q: Vec<f32> = sites
+            .iter()
+            .zip(&owned)
+            .map(|(&(p, _), &n)| (n as f32 / SATURATION).min(1.0) * self.light.light_at(p).sqrt())
+            .collect();
+        let lambda = self.apical_control();
+        let v = self.allocate(&terminals, &q, lambda);
+        let mut plans = Vec::new();
+        let leader_holds = lambda >= 0.5;
+        for (i, &b) in terminals.iter().enumerate() {
+            if sylleptic || b == 0 && (leader_holds || self.habit.form == TreeForm::Palm) {
                 continue;
             }
-            let last = *self.branches[b]
-                .segments
-                .last()
-                .expect("a branch has a segment");
-            let seg = self.segments[last as usize];
-            let order = self.branches[b].order;
-            if order == 0 {
-                self.leader_buds(&mut budget, &t);
-            } else if order < 4 {
-                // Lateral buds 0.25 m apart along the year's shoot, at most four; each breaks
-                // with a probability from light, crowding and chance.
-                let buds = ((seg.length / 0.25).round() as usize).clamp(1, 4);
-                for k in 0..buds {
-                    if budget == 0 {
-                        break;
-                    }
-                    let along = (k as f32 + 0.3 + 0.6 * self.rng.unit() as f32) / buds as f32;
-                    let at = seg.start + seg.direction * seg.length * along;
-                    let light = self.light.light_at(at);
-                    let open = self.light.density_at(at);
-                    let p = 0.95 * light.powf(1.5) * open.sqrt();
-                    if self.rng.unit() as f32 >= p {
-                        continue;
-                    }
-                    self.add_lateral(b, last, seg.length * along, bifurcation);
-                    budget -= 1;
-                }
+            let n = v[i].min(MAX_METAMERS);
+            if n < 1.0 {
+                continue;
             }
-            // The apical bud always continues the branch. A bud that made no shoot this year
-            // (the branch had reached its length) is the same bud next year.
+            let order = self.branches[b as usize].order;
+            let (start, d) = sites[i];
+            let direction = self.steer(d, towards[i], order);
+            plans.push(Plan {
+                from: b as usize,
+                lateral: false,
+                start,
+                direction,
+                length: n * self.metamer_now(),
+            });
+        }
+        for (k, bud) in self.buds.iter().enumerate() {
+            let site = terminals.len() + k;
+            let n = v[site].min(MAX_METAMERS);
+            let order = self.branches[bud.branch as usize].order + 1;
+            if n < 1.0 || order > MAX_ORDER {
+                continue;
+            }
+            if sylleptic && (order > 1 || age - bud.born > 0.5 + 1e-6) {
+                continue;
+            }
+            plans.push(Plan {
+                from: k,
+                lateral: true,
+                start: sites[site].0,
+                direction: Vec3::ZERO,
+                length: n * self.metamer_now(),
+            });
+        }
+        for p in plans.iter_mut().filter(|p| p.lateral) {
+            let bud = self.buds[p.from];
+            let order = self.branches[bud.branch as usize].order + 1;
+            p.direction = self.steer(bud.direction, towards[terminals.len() + p.from], order);
+        }
+        // Nothing leaves next year's envelope: a shoot stops where it would.
+        // Branches whose scaffold the rising crown base passes this year are shed: they grow
+        // no more.
+        let floor = next.crown_base() as f32;
+        plans.retain(|p| {
+            let b = if p.lateral {
+                self.buds[p.from].branch as usize
+            } else {
+                p.from
+            };
             let branch = &self.branches[b];
-            if seg.length <= 1e-4 {
-                self.segments[last as usize].born = self.age;
-            } else if branch.alive && budget > 0 {
-                let light_dir = self.light.gradient_at(seg.end());
-                let wobble = Vec3::new(
-                    self.rng.var(1.0) as f32,
-                    self.rng.var(1.0) as f32,
-                    self.rng.var(1.0) as f32,
-                ) * 0.12;
-                let mut d = seg.direction + wobble;
-                if order > 0 {
-                    d += light_dir.normalize_or_zero() * 0.15;
-                } else {
-                    d = Vec3::Z + wobble * 0.1;
-                }
-                let d = d.normalize_or(seg.direction);
-                self.segments.push(Segment {
-                    branch: b as u32,
-                    start: seg.end(),
-                    direction: d,
-                    aim: d,
-                    length: 0.0,
-                    born: self.age,
-                    budded: 0.0,
-                });
-                let id = self.segments.len() as u32 - 1;
-                self.branches[b].segments.push(id);
-                self.branches[b].finished += seg.length;
-                budget = budget.saturating_sub(1);
-            }
-            // Deep shade for years on end kills a side branch: the interior thins out.
-            if order >= 2 {
-                let dark = self.light.light_at(seg.end()) < 0.05;
-                let br = &mut self.branches[b];
-                br.shaded_years = if dark { br.shaded_years + 1 } else { 0 };
-                if br.shaded_years >= 3 {
-                    self.kill(b);
-                }
-            }
+            let anchor = if p.lateral && branch.order == 0 {
+                p.start.z
+            } else {
+                branch.anchor
+            };
+            b == 0 || anchor >= floor
+        });
+        // Shoots low in the crown sag as far as the crown must reach down.
+        let sag = self.fit_sag(&plans, &next);
+        let (base, top) = (next.crown_base() as f32, next.height as f32);
+        for p in &mut plans {
+            p.direction = sag_down(p.direction, sag_at(sag, p.start.z, base, top));
         }
-    }
-
-    /// Lateral buds on the leader's shoot grown since its last buds were set: a fourteenth of
-    /// the crown height apart, at most 0.35 m, so the crown base can be matched closely. The
-    /// leader's buds are the tree's scaffolds: apical control makes them break regularly
-    /// wherever there is light. A vigorous leader also branches in mid-season (sylleptic
-    /// shoots), so this runs at mid-year too.
-    pub(super) fn leader_buds(&mut self, budget: &mut usize, t: &Targets) {
-        let last = *self.branches[0]
-            .segments
-            .last()
-            .expect("the trunk has a segment");
-        let seg = self.segments[last as usize];
-        let fresh = seg.length - seg.budded;
-        let node = (t.crown_height as f32 / 14.0).clamp(0.1, 0.35);
-        if fresh < node * 0.5 {
-            return;
+        // Nothing leaves next year's envelope, scaled so the crown comes out as wide as
+        // measured: a shoot stops where it would leave it.
+        let (scale, stretch) = self.fit_reach(&plans, &next);
+        let reach = self.space(&next, scale);
+        for p in &mut plans {
+            p.length = within(&reach, p.start, p.direction, p.length * stretch);
         }
-        let bifurcation = (t.crown_diameter / t.crown_height.max(0.1)).atan() as f32;
-        let buds = ((fresh / node).round() as usize).clamp(1, 12);
-        for k in 0..buds {
-            if *budget == 0 {
+        plans.retain(|p| p.length > 0.02);
+        if !sylleptic {
+            self.hold_height(&mut plans, &next, leader_holds);
+        }
+        let mut budget = self
+            .options
+            .max_segments
+            .saturating_sub(self.segment_count());
+        let mut broken = Vec::new();
+        for p in plans {
+            if budget == 0 {
                 break;
             }
-            let along =
-                seg.budded + fresh * (k as f32 + 0.3 + 0.6 * self.rng.unit() as f32) / buds as f32;
-            let at = seg.start + seg.direction * along;
-            if (at.z as f64) < t.crown_base() {
-                continue;
+            budget -= 1;
+            if p.lateral {
+                let bud = self.buds[p.from];
+                broken.push(p.from);
+                self.start_branch(&bud, p.direction, p.length);
+            } else {
+                self.extend(p.from, p.direction, p.length);
             }
-            let p = 0.95 * self.light.light_at(at).sqrt();
-            if self.rng.unit() as f32 >= p {
-                continue;
-            }
-            self.add_lateral(0, last, along, bifurcation);
-            *budget -= 1;
         }
-        self.segments[last as usize].budded = seg.length;
+        broken.sort_unstable();
+        let mut k = 0;
+        let mut index = 0;
+        self.buds.retain(|_| {
+            let keep = broken.get(k) != Some(&index);
+            if !keep {
+                k += 1;
+            }
+            index += 1;
+            keep
+        });
     }
 
-    pub(super) fn add_lateral(
-        &mut self,
-        parent: usize,
-        segment: u32,
-        along: f32,
-        bifurcation: f32,
-    ) {
-        let seg = self.segments[segment as usize];
-        let p = &mut self.branches[parent];
-        let azimuth = p.next_azimuth;
-        p.next_azimuth = (p.next_azimuth + DIVERGENCE) % 360.0;
-        let order = p.order + 1;
-        let (c_l_parent, c_d_parent) = (p.c_l, p.c_d);
-        let breakout = order >= 2 && self.rng.unit() < 0.05;
-        let s_l = if breakout {
-            1.2 + 0.3 * self.rng.unit() as f32
-        } else {
-            0.6 + 0.4 * self.rng.unit() as f32
-        };
-        let c_l = if order == 1 { s_l } else { c_l_parent * s_l };
-        let c_d = c_l.min(1.0) * c_d_parent * (1.0 - 0.7 * c_d_parent);
-        // Bifurcation angle from the crown's proportions, a few degrees either way, turned
-        // about the parent by the divergence.
-        let angle = bifurcation + (self.rng.var(5.0) as f32).to_radians();
-        let axis = seg.direction;
-        let side = axis.any_orthogonal_vector().normalize();
-        let side = Quat::from_axis_angle(axis, azimuth.to_radians()) * side;
-        let mut direction =
-            (Quat::from_axis_angle(axis.cross(side).normalize(), angle) * axis).normalize();
-        // Laterals of side branches keep out of the ground's way: never steeper than 20
-        // degrees below the horizontal.
-        if direction.z < -0.34 {
-            direction = Vec3::new(direction.x, direction.y, -0.34).normalize();
+    /// The leader follows the measured height: while the tree is excurrent the trunk's apex
+    /// grows straight to next year's height; once it has forked, the highest shoot near the
+    /// axis is lifted to reach it, so one of the codominant limbs holds the top.
+    fn hold_height(&mut self, plans: &mut Vec<Plan>, next: &Targets, leader_holds: bool) {
+        let top = next.height as f32;
+        if leader_holds || self.habit.form == TreeForm::Palm {
+            let apex = self.apex_segment(0);
+            let rise = top - apex.end().z;
+            if rise > 0.02 {
+                plans.insert(
+                    0,
+                    Plan {
+                        from: 0,
+                        lateral: false,
+                        start: apex.end(),
+                        direction: Vec3::Z,
+                        length: rise,
+                    },
+                );
+            }
+            return;
         }
-        let start = seg.start + seg.direction * along;
-        let id = self.branches.len() as u32;
+        let highest = plans
+            .iter()
+            .map(|p| p.start.z + p.direction.z * p.length)
+            .fold(self.apex_segment(0).end().z, f32::max);
+        if highest >= top - 0.02 {
+            return;
+        }
+        // The apex that is high and near the axis: the one a forester would call the leader.
+        // Not the trunk's: it has handed the top to its codominant limbs.
+        let score = |p: Vec3| p.z - 0.5 * p.truncate().length();
+        let best = (1..self.branches.len())
+            .filter(|&b| self.branches[b].alive)
+            .max_by(|&a, &b| {
+                let (sa, sb) = (
+                    score(self.apex_segment(a).end()),
+                    score(self.apex_segment(b).end()),
+                );
+                sa.total_cmp(&sb).then(b.cmp(&a))
+            })
+            .unwrap_or(0);
+        let apex = self.apex_segment(best);
+        let start = apex.end();
+        let i = match plans.iter().position(|p| !p.lateral && p.from == best) {
+            Some(i) => i,
+            None => {
+                plans.push(Plan {
+                    from: best,
+                    lateral: false,
+                    start,
+                    direction: apex.direction,
+                    length: 0.0,
+                });
+                plans.len() - 1
+            }
+        };
+        // It climbs steeply: a shoot that rose gently would reach far out of the crown first.
+        let p = &mut plans[i];
+        let rise = 0.9f32;
+        p.length = (top - start.z) / rise;
+        let heading = p.direction.truncate().normalize_or(glam::Vec2::X);
+        p.direction = (heading * (1.0 - rise * rise).sqrt()).extend(rise);
+    }
+
+    /// Apical control now. A decurrent species keeps a leader until its trunk stands 1 m
+    /// above the grown tree's crown base (street trees are trained so), then forks over the
+    /// next 3 m: its codominant limbs then leave the trunk where pruning never reaches.
+    pub(super) fn apical_control(&self) -> f32 {
+        let own = self.habit.apical_control;
+        if own >= 0.5 {
+            return own;
+        }
+        let young = 0.56;
+        let top = self.apex_segment(0).end().z;
+        let grown = ((top - self.fork_height - 1.0) / 3.0).clamp(0.0, 1.0);
+        young + (own - young) * grown
+    }
+
+    /// A new shoot's direction from its bud's: toward its markers, pulled by the habit's
+    /// tropism (up; level for a conifer's laterals; down where tips weep), a little at random.
+    fn steer(&mut self, d: Vec3, towards: Vec3, order: u8) -> Vec3 {
+        let tropism = if order == 0 {
+            Vec3::Z * 0.5
+        } else if self.habit.form == TreeForm::ExcurrentConifer {
+            Vec3::new(0.0, 0.0, -d.z * self.habit.tropism)
+        } else {
+            Vec3::Z * self.habit.tropism
+        };
+        let wobble = Vec3::new(
+            self.rng.var(1.0) as f32,
+            self.rng.var(1.0) as f32,
+            self.rng.var(1.0) as f32,
+        ) * 0.08;
+        let mut out = (d + towards * ENVIRONMENT_WEIGHT + tropism + wobble).normalize_or(d);
+        // Only weeping tips hang steeply.
+        let lowest = if self.habit.tropism < 0.0 {
+            -0.8
+        } else {
+            -0.34
+        };
+        if out.z < lowest {
+            out = Vec3::new(out.x, out.y, lowest).normalize();
+        }
+        out
+    }
+
+    /// Length of a metamer this year: a sapling's internodes are short, so its small crown
+    /// still branches; they lengthen with the crown to the species' own.
+    fn metamer_now(&self) -> f32 {
+        let crown = self.targets_now().crown_diameter as f32;
+        (crown / 6.0).clamp(0.1, self.metamer)
+    }
+
+    /// The segment at a branch's apex.
+    fn apex_segment(&self, b: usize) -> Segment {
+        let last = *self.branches[b]
+            .segments
+            .last()
+            .expect("a branch has a segment");
+        self.segments[last as usize]
+    }
+
+    pub(super) fn bud_position(&self, bud: &Bud) -> Vec3 {
+        let s = &self.segments[bud.segment as usize];
+        s.start + s.direction * s.length * bud.at
+    }
+
+    /// The crown's space next year: the measured crown, scaled by the fitted spread, less
+    /// the reach of the leaves beyond the shoots that carry them (a sapling's few leaves are
+    /// drawn large, and they count in its measured crown).
+    pub(super) fn space(&self, t: &Targets, scale: f32) -> Space {
+        let radius = t.crown_diameter as f32 * 0.5 * scale;
+        let overhang = LEAF_REACH * self.drawn_leaf_size().0;
+        Space {
+            top: t.height as f32,
+            base: t.crown_base() as f32,
+            radius: (radius - overhang).max(radius * 0.5),
+            envelope: self.habit.envelope,
+        }
+    }
+
+    /// Buds below the coming crown base are pruned; buds on dead wood and old dormant ones die.
+    fn prune_buds(&mut self, floor: f32) {
+        let age = self.age;
+        let keep: Vec<bool> = self
+            .buds
+            .iter()
+            .map(|b| {
+                // The trunk's buds stay dormant for good: they sprout again where shed
+                // limbs leave light near the crown base (epicormic shoots).
+                self.branches[b.branch as usize].alive
+                    && (b.branch == 0 || age - b.born <= BUD_YEARS)
+                    && self.bud_position(b).z >= floor
+            })
+            .collect();
+        let mut it = keep.into_iter();
+        self.buds.retain(|_| it.next().unwrap_or(false));
+    }
+
+    /// A branch's apex makes this year's shoot.
+    fn extend(&mut self, b: usize, direction: Vec3, length: f32) {
+        let apex = self.apex_segment(b);
+        let done = apex.length;
+        self.segments.push(Segment {
+            branch: b as u32,
+            start: apex.end(),
+            direction,
+            length: 0.0,
+            goal: length,
+            born: self.age,
+        });
+        let id = self.segments.len() as u32 - 1;
+        let branch = &mut self.branches[b];
+        branch.segments.push(id);
+        branch.finished += done;
+        self.set_buds(b, id);
+    }
+
+    /// A lateral bud breaks: a branch of the next order.
+    fn start_branch(&mut self, bud: &Bud, direction: Vec3, length: f32) {
+        let parent = bud.branch as usize;
+        let start = self.bud_position(bud);
+        let seg = self.segments[bud.segment as usize];
         let offset = {
             let p = &self.branches[parent];
-            let mut before = 0.0;
-            for &s in &p.segments {
-                if s == segment {
-                    break;
-                }
-                before += self.segments[s as usize].length;
-            }
-            before + along
+            let before: f32 = p
+                .segments
+                .iter()
+                .take_while(|&&s| s != bud.segment)
+                .map(|&s| self.segments[s as usize].length)
+                .sum();
+            before + seg.length * bud.at
         };
+        let order = self.branches[parent].order + 1;
         let anchor = if order == 1 {
             start.z
         } else {
             self.branches[parent].anchor
         };
+        let id = self.branches.len() as u32;
         self.branches[parent].children.push(id);
         self.branches.push(Branch {
             order,
-            parent: Some((parent as u32, segment)),
-            along,
-            s_l,
-            c_l,
-            c_d,
+            parent: Some((bud.branch, bud.segment)),
             segments: vec![self.segments.len() as u32],
             next_azimuth: (self.rng.unit() * 360.0) as f32,
             alive: true,
@@ -198,14 +421,66 @@ impl Grower {
             shaded_years: 0,
         });
         self.segments.push(Segment {
-            branch: self.branches.len() as u32 - 1,
+            branch: id,
             start,
             direction,
-            aim: direction,
             length: 0.0,
+            goal: length,
             born: self.age,
-            budded: 0.0,
         });
+        self.set_buds(id as usize, self.segments.len() as u32 - 1);
+    }
+
+    /// Lateral buds at the nodes of a new shoot, one a metamer, turned about it by the
+    /// divergence and leaning out by the habit's branch angle. A palm's trunk has none, and a
+    /// branch of the highest order makes none.
+    pub(super) fn set_buds(&mut self, b: usize, segment: u32) {
+        let order = self.branches[b].order;
+        if order >= MAX_ORDER || (order == 0 && self.habit.form == TreeForm::Palm) {
+            return;
+        }
+        let seg = self.segments[segment as usize];
+        let n = (seg.goal / self.metamer_now()).round().clamp(1.0, 12.0) as usize;
+        let angle = if order == 0 {
+            self.habit.branch_angle
+        } else {
+            self.habit.branch_angle.min(50.0)
+        };
+        for k in 0..n {
+            let azimuth = self.branches[b].next_azimuth;
+            self.branches[b].next_azimuth = (azimuth + DIVERGENCE) % 360.0;
+            let tilt = (angle + self.rng.var(5.0) as f32).to_radians();
+            let axis = seg.direction;
+            let side = Quat::from_axis_angle(axis, azimuth.to_radians())
+                * axis.any_orthogonal_vector().normalize();
+            let mut direction =
+                (Quat::from_axis_angle(axis.cross(side).normalize(), tilt) * axis).normalize();
+            if direction.z < -0.34 {
+                direction = Vec3::new(direction.x, direction.y, -0.34).normalize();
+            }
+            self.buds.push(Bud {
+                branch: b as u32,
+                segment,
+                at: (k as f32 + 0.5 + 0.3 * self.rng.var(1.0) as f32) / n as f32,
+                direction,
+                born: self.age,
+            });
+        }
+    }
+
+    /// Deep shade for years on end kills a side branch: the interior thins out.
+    fn shade_deaths(&mut self) {
+        for b in 1..self.branches.len() {
+            if !self.branches[b].alive || self.branches[b].order < 2 {
+                continue;
+            }
+            let dark = self.light.light_at(self.apex_segment(b).end()) < 0.05;
+            let br = &mut self.branches[b];
+            br.shaded_years = if dark { br.shaded_years + 1 } else { 0 };
+            if br.shaded_years >= 3 {
+                self.kill(b);
+            }
+        }
     }
 
     /// Near the segment budget, the darkest side branches die, so the crown keeps renewing
@@ -223,10 +498,7 @@ impl Grower {
             .iter()
             .enumerate()
             .filter(|(_, b)| b.alive && b.order >= 2)
-            .map(|(i, b)| {
-                let last = &self.segments[*b.segments.last().expect("a segment") as usize];
-                (self.light.light_at(last.end()), i)
-            })
+            .map(|(i, _)| (self.light.light_at(self.apex_segment(i).end()), i))
             .collect();
         dark.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let mut left = live;
@@ -255,4 +527,44 @@ impl Grower {
         }
         segments
     }
+}
+
+/// How far a shoot starting at height z sags, radians: `sag` at the crown base, none at
+/// the top.
+pub(super) fn sag_at(sag: f32, z: f32, base: f32, top: f32) -> f32 {
+    let rel = ((z - base) / (top - base).max(0.1)).clamp(0.0, 1.0);
+    sag * (1.0 - rel) * (1.0 - rel)
+}
+
+/// `d` turned `sag` radians further down in its vertical plane, never steeper than 40 degrees
+/// below the horizontal.
+pub(super) fn sag_down(d: Vec3, sag: f32) -> Vec3 {
+    if sag <= 0.0 {
+        return d;
+    }
+    let horizontal = d.truncate().normalize_or(glam::Vec2::X);
+    let elevation = (d.z.clamp(-1.0, 1.0).asin() - sag).max(-0.7);
+    (horizontal * elevation.cos()).extend(elevation.sin())
+}
+
+/// The longest length up to `length` at which a shoot from `start` along `direction` ends
+/// inside `space` (0 if it starts outside).
+pub(super) fn within(space: &Space, start: Vec3, direction: Vec3, length: f32) -> f32 {
+    let tip = |l: f32| start + direction * l;
+    if space.contains(tip(length)) {
+        return length;
+    }
+    if !space.contains(tip(0.0)) {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (0.0, length);
+    for _ in 0..16 {
+        let mid = 0.5 * (lo + hi);
+        if space.contains(tip(mid)) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
 }

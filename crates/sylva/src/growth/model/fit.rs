@@ -1,8 +1,15 @@
 //! Shedding and fitting to the measured targets: lower branches are shed as the crown base
-//! (monotone) rises, and one gain on branch length is corrected every step so that the
-//! crown's measured diameter follows f_CD.
+//! (monotone) rises, and the vigour and the envelope's spread are corrected every step so
+//! that the crown's measured diameter follows f_CD.
 
+use super::buds::{Plan, sag_at, sag_down, within};
 use super::*;
+use glam::Vec2;
+
+/// Widest scale of the envelope the crown's fit may use.
+const MAX_SCALE: f32 = 2.0;
+/// Most the year's shoots may be lengthened to reach the measured crown.
+const MAX_STRETCH: f32 = 3.0;
 
 impl Grower {
     /// Sheds what the rising crown base leaves below it.
@@ -93,12 +100,113 @@ impl Grower {
         )
     }
 
-    /// Inverse modelling: corrects the length gain toward the measured crown diameter and the
-    /// sag toward the measured crown height.
+    /// The scale of next year's envelope, and a stretch of the shoots' lengths (the year's
+    /// vigour, where they fall short whatever the envelope), at which this year's shoots,
+    /// stopped at it, make
+    /// the crown as wide as measured next year (times the learnt bias, `spread`): the crown
+    /// is predicted from the wood that will still be there and the shoots' planned tips, and
+    /// the scale found by bisection. A sparse sapling crown needs a wide envelope to reach
+    /// its measured width; a full one only its own.
+    pub(super) fn fit_reach(&self, plans: &[Plan], next: &Targets) -> (f32, f32) {
+        let base = next.crown_base() as f32;
+        let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+        for s in &self.segments {
+            let b = &self.branches[s.branch as usize];
+            if b.alive && b.order > 0 && b.anchor >= base && s.goal > 1e-4 {
+                let end = (s.start + s.direction * s.goal.max(s.length)).truncate();
+                lo = lo.min(s.start.truncate().min(end));
+                hi = hi.max(s.start.truncate().max(end));
+            }
+        }
+        let leaves = 2.0 * LEAF_REACH * self.drawn_leaf_size().0;
+        let want = next.crown_diameter as f32;
+        let predicted = |scale: f32, stretch: f32| {
+            let space = self.space(next, scale);
+            let (mut lo, mut hi) = (lo, hi);
+            for p in plans {
+                let l = within(&space, p.start, p.direction, p.length * stretch);
+                let tip = (p.start + p.direction * l).truncate();
+                lo = lo.min(tip);
+                hi = hi.max(tip);
+            }
+            if lo.x > hi.x {
+                return leaves;
+            }
+            ((hi.x - lo.x) + (hi.y - lo.y)) / 2.0 + leaves
+        };
+        let solve = |f: &dyn Fn(f32) -> f32, (mut a, mut b): (f32, f32)| {
+            for _ in 0..14 {
+                let mid = 0.5 * (a + b);
+                if f(mid) < want {
+                    a = mid;
+                } else {
+                    b = mid;
+                }
+            }
+            b
+        };
+        if predicted(MAX_SCALE, 1.0) >= want {
+            return (solve(&|s| predicted(s, 1.0), (0.5, MAX_SCALE)), 1.0);
+        }
+        // The shoots are too short to reach the crown whatever the envelope: the year's
+        // vigour is raised until they do (up to threefold).
+        let scale = 1.2;
+        if predicted(scale, MAX_STRETCH) < want {
+            return (scale, MAX_STRETCH);
+        }
+        (scale, solve(&|k| predicted(scale, k), (1.0, MAX_STRETCH)))
+    }
+
+    /// The sag of this year's shoots at the crown base (radians, less higher up) at which
+    /// next year's lowest wood comes down to the measured crown base: basal buds starve under
+    /// apical control, so without it the crown would end above its measured base. Found by
+    /// bisection on the predicted lowest point, as `fit_reach` finds the width.
+    pub(super) fn fit_sag(&self, plans: &[Plan], next: &Targets) -> f32 {
+        let (base, top) = (next.crown_base() as f32, next.height as f32);
+        let space = self.space(next, 2.0);
+        let mut wood = f32::INFINITY;
+        for s in &self.segments {
+            let b = &self.branches[s.branch as usize];
+            if b.alive && b.order > 0 && b.anchor >= base && s.goal > 1e-4 {
+                let end = s.start + s.direction * s.goal.max(s.length);
+                wood = wood.min(s.start.z.min(end.z));
+            }
+        }
+        let lowest = |sag: f32| {
+            plans
+                .iter()
+                .map(|p| {
+                    let d = sag_down(p.direction, sag_at(sag, p.start.z, base, top));
+                    let l = within(&space, p.start, d, p.length);
+                    (p.start + d * l).z
+                })
+                .fold(wood, f32::min)
+        };
+        let goal = base + 0.03 * (top - base);
+        if lowest(0.0) <= goal {
+            return 0.0;
+        }
+        let (mut a, mut b) = (0.0f32, 1.2f32);
+        if lowest(b) > goal {
+            return b;
+        }
+        for _ in 0..12 {
+            let mid = 0.5 * (a + b);
+            if lowest(mid) > goal {
+                a = mid;
+            } else {
+                b = mid;
+            }
+        }
+        b
+    }
+
+    /// Inverse modelling: corrects the vigour, so the crown grows out to its envelope, and
+    /// the bias of the envelope's fitting (`spread`) by how the crown came out.
     pub(super) fn fit_crown(&mut self) {
         let t = self.targets_now();
-        let (diameter, height) = self.crown_now();
-        // The gain steers the crown that will still be there in a year: scaffolds the crown
+        let (diameter, _) = self.crown_now();
+        // The vigour steers the crown that will still be there in a year: scaffolds the crown
         // base is about to pass are shed soon whatever their length.
         let coming_base = self.targets(self.age + 1.0).crown_base() as f32;
         let (mut coming, _) = self.crown_above(coming_base);
@@ -106,21 +214,12 @@ impl Grower {
             coming = diameter;
         }
         if diameter > 1e-3 {
-            // Two corrections. The gain lets branches reach for a crown a fifth wider than
-            // measured, so their tips meet the envelope; the envelope's scale then holds the
-            // crown to the measured diameter. It also widens where a sparse crown (a
-            // sapling's few scaffolds) meets its envelope in only a few directions. Both move
-            // a little every step: the crown answers a year late, so haste overshoots.
-            let ratio = (1.2 * t.crown_diameter / coming)
+            let ratio = (1.1 * t.crown_diameter / coming)
                 .powf(0.5)
                 .clamp(0.95, 1.05);
-            self.gain = (self.gain * ratio).clamp(0.05, 20.0);
-            let ratio = (t.crown_diameter / diameter).clamp(0.97, 1.03);
-            self.spread = (self.spread * ratio).clamp(0.8, 1.6);
-        }
-        if height > 1e-3 {
-            let short = (t.crown_height - height) / t.crown_height.max(0.1);
-            self.droop = (self.droop + (0.5 * short).clamp(-0.03, 0.03)).clamp(0.0, 1.5);
+            self.vigour = (self.vigour * ratio).clamp(2.0, 12.0);
+            let ratio = (t.crown_diameter / diameter).powf(0.2).clamp(0.995, 1.005);
+            self.spread = (self.spread * ratio).clamp(0.85, 1.15);
         }
     }
 }

@@ -60,7 +60,7 @@ impl Grower {
                     0
                 };
                 weights[i] = if eligible {
-                    s.length * lights[i].max(0.01)
+                    s.length * lights[i].max(0.01).sqrt()
                 } else {
                     0.0
                 };
@@ -99,9 +99,9 @@ impl Grower {
             placed += n;
         }
         // A sapling with too little shoot for its measured leaf area carries larger leaves
-        // (at most five times the area).
+        // (at most eight times the area).
         self.leaf_boost = if placed > 0 && placed < wanted {
-            (wanted as f32 / placed as f32).min(5.0)
+            (wanted as f32 / placed as f32).min(8.0)
         } else {
             1.0
         };

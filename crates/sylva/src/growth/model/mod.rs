@@ -1,21 +1,23 @@
-//! The growth model (Rudnick et al. 2007 with Linsen et al. 2005): branches made of annual
-//! segments, grown in steps of 1/n year. In its first year a segment elongates (primary
-//! growth); after that it only thickens (secondary growth). At the end of a year the apical
-//! bud continues every branch that still has room to grow, and lateral buds start branches of
-//! the next order with a probability from light, local density and chance. Lengths come from
-//! the crown shape function and the measured crown, radii from the pipe model held to f_DBH,
-//! angles from f_CD / f_CH.
+//! The growth model: street trees grown in steps of 1/n year (Rudnick et al. 2007 with
+//! Linsen et al. 2005), their form emerging as in self-organising tree models (Palubicki et
+//! al. 2009). Branches are made of annual segments: in its first year a segment elongates,
+//! after that it only thickens. At the end of a year every bud's exposure is found by space
+//! colonisation of next year's crown envelope and the light grid, the tree's vigour is shared
+//! among the buds by Borchert-Honda allocation with the species' apical control, and buds
+//! given enough make shoots, with a lateral bud at every node. Radii follow the pipe model.
 //!
-//! The model is fitted to the data the way the seeds' title says, by inverse modelling: one
-//! gain on branch length is corrected every step so that the crown's measured diameter follows
-//! f_CD; the trunk follows f_H; lower branches are shed as the crown base (monotone) rises;
-//! the leaves on young, thin, lit shoots add up to f_LA.
+//! The measured equations steer the environment, not the finished geometry: the envelope is
+//! the measured crown (its width fitted by one spread factor), the vigour is fitted so the
+//! crown fills it, the leader is held to f_H, the pipe model's tip radius to f_DBH, the crown
+//! base rises as pruning raises it, and the leaves on young lit shoots add up to f_LA.
 //!
 //! This file holds the tree's state and the order of a step; the steps live beside it:
-//! `buds.rs` (buds and shoots at the end of a year), `wood.rs` (elongation and thickening),
-//! `fit.rs` (shedding and fitting the crown to the measured targets), `leaves.rs` (leaf area
-//! and light) and `skeleton.rs` (the tree as a Skeleton).
+//! `buds.rs` (buds and shoots at the end of a year), `colonise.rs` (the buds' environment),
+//! `allocate.rs` (Borchert-Honda), `wood.rs` (elongation and thickening), `fit.rs` (shedding
+//! and fitting the crown to the measured targets), `leaves.rs` (leaf area and light) and
+//! `skeleton.rs` (the tree as a Skeleton).
 
+use super::habit::{Envelope, Habit, TreeForm, habit_of};
 use super::light::{LightGrid, Ray, daylight};
 use super::measured::Measured;
 use crate::rng::{Random, StreamKey};
@@ -23,7 +25,9 @@ use crate::skeleton::{CrossSection, Leaf, LeafShape, Skeleton, Stem, StemId};
 use glam::{Quat, Vec3};
 use std::f32::consts::PI;
 
+mod allocate;
 mod buds;
+mod colonise;
 mod fit;
 mod leaves;
 mod skeleton;
@@ -36,8 +40,14 @@ const PIPE_EXPONENT: f32 = 2.5;
 pub const BREAST_HEIGHT: f32 = 1.37;
 /// Most light cells along an axis.
 const MAX_LIGHT_CELLS: usize = 28;
-/// Divergence between successive laterals of a branch, degrees (scaffolds spiral evenly).
-const DIVERGENCE: f32 = 130.0;
+/// Divergence between successive lateral buds of a branch, degrees: the golden angle's
+/// spiral, so buds never stack above each other.
+const DIVERGENCE: f32 = 137.5;
+/// How far the leaves reach out beyond the shoots at the crown's edge, in leaf lengths (they
+/// leave the shoot at 50 degrees and turn their blades to the sky).
+const LEAF_REACH: f32 = 0.5;
+/// Crown height below which a tree is vigorous enough to branch in mid-season, m.
+const SYLLEPTIC_CROWN: f64 = 5.0;
 /// Years before the first fitted age in which the tree is brought up from a small sapling.
 const NURSERY_YEARS: f64 = 3.0;
 /// Leaves grow on shoots at most this many years old...
@@ -45,74 +55,7 @@ const LEAF_SHOOT_YEARS: f64 = 2.0;
 /// ...thinner than this (radius, m)...
 const LEAF_MAX_RADIUS: f32 = 0.02;
 /// ...with at least this much light.
-const LEAF_MIN_LIGHT: f32 = 0.12;
-
-/// The shape of a crown: the relative length c(p) of a branch starting at relative position p
-/// along its parent (0 base, 1 tip), at most 1.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CrownShape {
-    /// Widest at mid-height (Rudnick's figure 2).
-    Ellipse,
-    /// Widest at the base, as conifers and the southern magnolia.
-    Cone,
-    /// Widest a third of the way up, a rounded dome.
-    Dome,
-    /// Widest near the top, narrow at the base: vase-shaped.
-    Vase,
-}
-
-impl CrownShape {
-    /// c(p).
-    pub fn relative_length(self, p: f32) -> f32 {
-        let p = p.clamp(0.0, 1.0);
-        match self {
-            CrownShape::Ellipse => 2.0 * (p * (1.0 - p)).sqrt(),
-            CrownShape::Cone => (1.0 - p).powf(0.9),
-            CrownShape::Dome => {
-                let q = ((p - 0.33) / if p < 0.33 { 0.45 } else { 0.67 }).clamp(-1.0, 1.0);
-                (1.0 - q * q).sqrt()
-            }
-            CrownShape::Vase => {
-                let q = ((p - 0.72) / if p < 0.72 { 0.8 } else { 0.28 }).clamp(-1.0, 1.0);
-                (1.0 - q * q).sqrt()
-            }
-        }
-    }
-
-    /// The shape for a species: a few known street trees by code, otherwise by the database's
-    /// tree type (conifers conical, the rest elliptical).
-    pub fn for_species(code: &str, tree_type: &str) -> CrownShape {
-        match code {
-            "MAGR" => CrownShape::Cone,
-            "PICH" | "KOPA" | "PLAC" => CrownShape::Dome,
-            "CESI4" | "ZESE" | "ULPA" => CrownShape::Vase,
-            _ if tree_type.starts_with('C') => CrownShape::Cone,
-            _ => CrownShape::Ellipse,
-        }
-    }
-
-    /// How far the crown's top falls from the leader to the crown's edge, as a share of the
-    /// crown height: a rounded top for broadleaves. A cone needs none: the reach of its
-    /// scaffolds already narrows to the top (a roof there made its branches dive).
-    pub fn roof(self) -> f32 {
-        match self {
-            CrownShape::Ellipse => 0.4,
-            CrownShape::Cone => 0.0,
-            CrownShape::Dome => 0.35,
-            CrownShape::Vase => 0.2,
-        }
-    }
-
-    /// Lower-case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            CrownShape::Ellipse => "ellipse",
-            CrownShape::Cone => "cone",
-            CrownShape::Dome => "dome",
-            CrownShape::Vase => "vase",
-        }
-    }
-}
+const LEAF_MIN_LIGHT: f32 = 0.05;
 
 /// Settings of a growth run.
 #[derive(Clone, Debug, PartialEq)]
@@ -147,16 +90,9 @@ struct Branch {
     order: u8,
     /// Parent branch and the segment it grows from.
     parent: Option<(u32, u32)>,
-    /// Where on the parent segment it starts, m from the segment's start.
-    along: f32,
-    /// Length scale s_l and the cumulated c_l.
-    s_l: f32,
-    c_l: f32,
-    /// Diameter factor c_d.
-    c_d: f32,
     /// Segments, oldest first.
     segments: Vec<u32>,
-    /// Azimuth of this branch's next lateral, degrees.
+    /// Azimuth of this branch's next lateral bud, degrees.
     next_azimuth: f32,
     alive: bool,
     /// Branches growing from this one.
@@ -166,8 +102,7 @@ struct Branch {
     /// Distance along the parent to where it starts, m (fixed: it starts on a finished
     /// segment).
     offset: f32,
-    /// Height where its scaffold (its order-1 ancestor, or itself) leaves the trunk, m: the
-    /// crown shape function is read there.
+    /// Height where its scaffold (its order-1 ancestor, or itself) leaves the trunk, m.
     anchor: f32,
     /// Consecutive years its apex has been deep in shade.
     shaded_years: u8,
@@ -179,14 +114,11 @@ struct Segment {
     branch: u32,
     start: Vec3,
     direction: Vec3,
-    /// Direction the bud set out in: while the shoot elongates it sags from here, and bends
-    /// to stay under the crown's top and above its base.
-    aim: Vec3,
     length: f32,
+    /// The length it reaches at the end of its first season, m.
+    goal: f32,
     /// Age of the tree when it started.
     born: f64,
-    /// Length of it on which lateral buds have been set, m.
-    budded: f32,
 }
 
 impl Segment {
@@ -241,7 +173,7 @@ pub struct StepTimes {
 /// A tree growing over the years.
 pub struct Grower {
     measured: Measured,
-    shape: CrownShape,
+    habit: Habit,
     options: GrowthOptions,
     age: f64,
     key: StreamKey,
@@ -250,13 +182,18 @@ pub struct Grower {
     segments: Vec<Segment>,
     light: LightGrid,
     sky: Vec<Ray>,
-    /// Inverse-modelling gain on branch length (fits the crown diameter).
-    gain: f64,
-    /// Inverse-modelling sag of young shoots in the lower crown, radians (fits the crown
-    /// height).
-    droop: f64,
+    /// Resource per unit of exposure at the tree's base (Borchert-Honda's alpha), fitted so
+    /// the crown fills its envelope.
+    vigour: f64,
     /// Inverse-modelling scale of the crown envelope, about 1.
     spread: f64,
+    /// Length of a metamer (an internode with its node), m.
+    metamer: f32,
+    /// Height of the crown base when the tree is grown, m: a decurrent tree forks above it, so
+    /// its codominant limbs are never pruned away.
+    fork_height: f32,
+    /// Lateral buds waiting.
+    buds: Vec<buds::Bud>,
     /// Leaf blade length and width, m, and area of one leaf, m².
     leaf_size: (f32, f32),
     leaf_shape: LeafShape,
@@ -287,7 +224,12 @@ impl Grower {
 
     /// The sapling `NURSERY_YEARS` before the first fitted age: a trunk alone.
     pub(crate) fn sapling(measured: Measured, options: GrowthOptions) -> Self {
-        let shape = CrownShape::for_species(&measured.species.code, &measured.species.tree_type);
+        let habit = habit_of(&measured.species.code, &measured.species.tree_type);
+        // Metamers in proportion to the grown crown: a large tree's shoots carry longer
+        // internodes, and the segment budget goes as far.
+        let grown = measured.crown_diameter(measured.ages.1) as f32;
+        let metamer = (grown / 40.0).clamp(0.12, 0.35);
+        let fork_height = measured.crown_base(measured.ages.1).max(1.5) as f32;
         let conifer = measured.species.tree_type.starts_with('C');
         // A conifer's "leaf" is a tuft of needles, set far closer along the shoot than a
         // broadleaf's leaves.
@@ -302,7 +244,7 @@ impl Grower {
         let key = StreamKey::from_seed(options.seed);
         let start = measured.ages.0 - NURSERY_YEARS;
         let mut g = Grower {
-            shape,
+            habit,
             age: start,
             rng: key.child(1).stream(),
             key,
@@ -310,9 +252,11 @@ impl Grower {
             segments: Vec::new(),
             light,
             sky: daylight(),
-            gain: 1.0,
-            droop: 0.3,
+            vigour: 2.0,
             spread: 1.0,
+            metamer,
+            fork_height,
+            buds: Vec::new(),
             leaf_size,
             leaf_shape,
             leaf_spacing,
@@ -325,18 +269,10 @@ impl Grower {
             measured,
         };
         let t = g.targets(start);
-        // The gain at which an average scaffold (s_l and c(p) about 0.8) leaving the trunk at
-        // the bifurcation angle reaches the measured crown radius.
-        let angle = (t.crown_diameter / t.crown_height.max(0.1)).atan();
-        g.gain = t.crown_diameter / (1.28 * angle.sin() * t.crown_height.max(0.3));
         // The trunk: order 0, one segment, growing straight up.
         g.branches.push(Branch {
             order: 0,
             parent: None,
-            along: 0.0,
-            s_l: 1.0,
-            c_l: 1.0,
-            c_d: 1.0,
             segments: vec![0],
             next_azimuth: 0.0,
             alive: true,
@@ -350,11 +286,11 @@ impl Grower {
             branch: 0,
             start: Vec3::ZERO,
             direction: Vec3::Z,
-            aim: Vec3::Z,
             length: t.height as f32,
+            goal: t.height as f32,
             born: start,
-            budded: 0.0,
         });
+        g.set_buds(0, 0);
         g.refresh_radii();
         g.update_light();
         g
@@ -365,14 +301,14 @@ impl Grower {
         &self.measured
     }
 
-    /// The inverse-modelling gain on scaffold length now.
-    pub fn gain(&self) -> f64 {
-        self.gain
+    /// The fitted vigour now (Borchert-Honda's alpha).
+    pub fn vigour(&self) -> f64 {
+        self.vigour
     }
 
-    /// The crown shape used.
-    pub fn shape(&self) -> CrownShape {
-        self.shape
+    /// The species' habit the tree grows by.
+    pub fn habit(&self) -> &Habit {
+        &self.habit
     }
 
     /// Current age, years since planting.
@@ -412,10 +348,13 @@ impl Grower {
         // Before the fitted range the equations mean nothing (a log-log fit runs to zero at
         // age 0): the sapling is the tree at the first age, scaled down.
         let m = Targets::of(&self.measured, t.max(first));
+        // The crown base comes down faster than the height, so the sapling's crown starts on
+        // its trunk and not above its top.
+        let base = m.crown_base() * ramp * ramp;
         Targets {
             height: m.height * ramp,
             crown_diameter: m.crown_diameter * ramp,
-            crown_height: m.crown_height * ramp,
+            crown_height: m.height * ramp - base,
             dbh: m.dbh * ramp,
             leaf_area: m.leaf_area * ramp,
         }
@@ -436,14 +375,11 @@ impl Grower {
         self.age += dt;
         // End of a year: primary growth of this year's segments ends; buds break.
         if (before + 1e-9).floor() < (self.age + 1e-9).floor() {
-            self.end_of_year();
-        } else if (before + 0.5 + 1e-9).floor() < (self.age + 0.5 + 1e-9).floor() {
-            let t = self.targets_now();
-            let mut budget = self
-                .options
-                .max_segments
-                .saturating_sub(self.segment_count());
-            self.leader_buds(&mut budget, &t);
+            self.flush(false);
+        } else if (before + 0.5 + 1e-9).floor() < (self.age + 0.5 + 1e-9).floor()
+            && self.targets_now().crown_height < SYLLEPTIC_CROWN
+        {
+            self.flush(true);
         }
         self.elongate();
         self.shed();

@@ -4,8 +4,8 @@ use super::*;
 
 impl Grower {
     /// The tree now as a Skeleton: one stem per live branch, sections at the segment joints
-    /// (the trunk also at breast height and every half metre), leaves spiralled along the
-    /// young shoots.
+    /// and just past every side branch (the trunk also at breast height and every half metre),
+    /// leaves spiralled along the young shoots.
     pub fn skeleton(&self) -> Skeleton {
         let mut sk = Skeleton::default();
         self.skeleton_into(&mut sk);
@@ -20,7 +20,11 @@ impl Grower {
         sk.leaves.clear();
         let mut stem_of = vec![u32::MAX; self.branches.len()];
         let mut segs: Vec<(u32, &Segment)> = Vec::new();
-        let mut points: Vec<(Vec3, Vec3, f32)> = Vec::new();
+        // (position, direction, distance along the stem, radius)
+        let mut points: Vec<(Vec3, Vec3, f32, f32)> = Vec::new();
+        let mut junctions: Vec<(u32, f32, f32, u32)> = Vec::new();
+        // Where each branch leaves its parent, m along the parent's stem.
+        let mut offsets = vec![0.0f32; self.branches.len()];
         let (leaf_len, leaf_width) = self.drawn_leaf_size();
         let top = self.targets_now().height as f32;
         for (b, branch) in self.branches.iter().enumerate() {
@@ -43,45 +47,60 @@ impl Grower {
             if segs.is_empty() {
                 continue;
             }
+            // Where each live side branch leaves this one: (segment, distance along it, its
+            // base radius), in order.
+            junctions.clear();
+            for &c in &branch.children {
+                let child = &self.branches[c as usize];
+                if let (true, Some((_, from))) = (child.alive, child.parent) {
+                    let s = &self.segments[from as usize];
+                    let first = child.segments[0];
+                    let along = self.segments[first as usize].start.distance(s.start);
+                    junctions.push((from, along, self.radius_of(first), c));
+                }
+            }
+            junctions.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
             let total: f32 = segs.iter().map(|(_, s)| s.length).sum();
             points.clear();
             let mut run = 0.0f32;
-            for &(_, s) in &segs {
-                let pieces = if branch.order == 0 {
-                    (s.length / 0.5).ceil().max(1.0) as usize
-                } else {
-                    1
-                };
-                for k in 0..pieces {
-                    let f = k as f32 / pieces as f32;
-                    let p = s.start + s.direction * s.length * f;
-                    points.push((p, s.direction, run + s.length * f));
+            for &(id, s) in &segs {
+                let lo = junctions.partition_point(|j| j.0 < id);
+                let hi = junctions.partition_point(|j| j.0 <= id);
+                let children: Vec<(f32, f32)> = junctions[lo..hi]
+                    .iter()
+                    .map(|j| (j.1.min(s.length), j.2))
+                    .collect();
+                for j in &junctions[lo..hi] {
+                    offsets[j.3 as usize] = run + j.1.min(s.length);
+                }
+                let profile = self.radii_along(id, &children);
+                // The trunk also every half metre and at breast height, so DBH reads it there.
+                let mut at: Vec<f32> = profile.iter().map(|p| p.0).collect();
+                if branch.order == 0 {
+                    let pieces = (s.length / 0.5).ceil().max(1.0) as usize;
+                    at.extend((1..pieces).map(|k| s.length * k as f32 / pieces as f32));
+                    let breast = (BREAST_HEIGHT - s.start.z) / s.direction.z.max(1e-6);
+                    if breast > 1e-3 && breast < s.length - 1e-3 {
+                        at.push(breast);
+                    }
+                }
+                at.sort_by(f32::total_cmp);
+                at.dedup_by(|a, b| (*a - *b).abs() < 1e-4);
+                for along in at {
+                    let k = profile.partition_point(|p| p.0 <= along + 1e-5).max(1);
+                    let r = profile[k - 1].1;
+                    points.push((s.start + s.direction * along, s.direction, run + along, r));
                 }
                 run += s.length;
             }
             let (last_id, last) = segs[segs.len() - 1];
-            points.push((last.end(), last.direction, total));
-            if branch.order == 0 {
-                // A section exactly at breast height, so DBH reads the trunk there.
-                if let Some(i) = points.iter().position(|p| p.0.z > BREAST_HEIGHT)
-                    && i > 0
-                    && (points[i - 1].0.z - BREAST_HEIGHT).abs() > 1e-3
-                {
-                    let (a, b) = (points[i - 1], points[i]);
-                    let f = (BREAST_HEIGHT - a.0.z) / (b.0.z - a.0.z);
-                    points.insert(i, (a.0.lerp(b.0, f), a.1, a.2 + (b.2 - a.2) * f));
-                }
-            }
-            for (k, &(p, d, at)) in points.iter().enumerate() {
-                // Side branches: one section per segment (its base radius, older and thicker
-                // toward the base), then a thin tip.
-                let radius = if branch.order == 0 {
-                    self.trunk_radius(p.z)
-                } else if k < segs.len() {
-                    self.radius_of(segs[k].0)
-                } else {
-                    (self.radius_of(last_id) * 0.35).max(0.001)
-                };
+            let tip_radius = if branch.order == 0 {
+                self.tip_radius * 0.5
+            } else {
+                self.radius_of(last_id) * 0.35
+            };
+            points.push((last.end(), last.direction, total, tip_radius));
+            for &(p, d, at, radius) in &points {
                 sk.sections.push(CrossSection {
                     position: p,
                     orientation: frame(d),
@@ -91,7 +110,7 @@ impl Grower {
             }
             let id = sk.stems.len() as u32;
             stem_of[b] = id;
-            let offset = branch.offset;
+            let offset = if b == 0 { 0.0 } else { offsets[b] };
             sk.stems.push(Stem {
                 level: branch.order,
                 parent,

@@ -1,0 +1,187 @@
+//! The buds' environment by space colonisation (Runions et al. 2007, as Palubicki et al. 2009
+//! use it): each year marker points are scattered through the space the crown may fill next
+//! year, the measured crown's envelope. Markers near wood already there are taken; each free
+//! marker belongs to the nearest bud that sees it (within a perception radius, inside a cone
+//! about the bud's direction). A bud's exposure is how many markers it owns, its preferred
+//! direction the mean direction to them. The crown therefore fills the envelope, and
+//! expands as the envelope does, without any branch being told its length.
+
+use super::*;
+use std::collections::HashMap;
+
+/// Most markers scattered in a year: beyond this they are spaced wider, not made more.
+const MAX_MARKERS: usize = 6000;
+/// Cosine of the perception cone's half-angle (about 55 degrees).
+const PERCEPTION_COS: f32 = 0.57;
+
+/// The space the crown may fill at an age: a solid of revolution about the trunk's axis.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Space {
+    /// Tree top, m.
+    pub top: f32,
+    /// Crown base, m.
+    pub base: f32,
+    /// Widest radius, m.
+    pub radius: f32,
+    /// Its profile.
+    pub envelope: Envelope,
+}
+
+impl Space {
+    /// Radius of the space at height z, m (never under 15% of the widest: the crown's bottom
+    /// and top are rounded, not pointed).
+    pub fn reach_at(&self, z: f32) -> f32 {
+        let p = (z - self.base) / (self.top - self.base).max(0.1);
+        self.radius * self.envelope.relative_radius(p).max(0.15)
+    }
+
+    /// Whether `p` lies inside (a little under the top, which the leader holds).
+    pub fn contains(&self, p: Vec3) -> bool {
+        p.z <= self.top - 0.04 && p.z >= self.base && p.truncate().length() <= self.reach_at(p.z)
+    }
+
+    fn volume(&self) -> f32 {
+        // Midpoint sum over twenty slices.
+        let h = (self.top - self.base).max(0.0);
+        (0..20)
+            .map(|k| {
+                let z = self.base + h * (k as f32 + 0.5) / 20.0;
+                PI * self.reach_at(z).powi(2) * h / 20.0
+            })
+            .sum()
+    }
+}
+
+/// Points hashed into cubes of one size, for neighbour queries.
+struct PointGrid {
+    cell: f32,
+    cells: HashMap<(i32, i32, i32), Vec<u32>>,
+}
+
+impl PointGrid {
+    fn new(cell: f32) -> Self {
+        PointGrid {
+            cell,
+            cells: HashMap::new(),
+        }
+    }
+
+    fn key(&self, p: Vec3) -> (i32, i32, i32) {
+        let k = (p / self.cell).floor();
+        (k.x as i32, k.y as i32, k.z as i32)
+    }
+
+    fn insert(&mut self, p: Vec3, id: u32) {
+        let k = self.key(p);
+        self.cells.entry(k).or_default().push(id);
+    }
+
+    /// Every id within one cell of `p`'s cell (a superset of those within `cell` of `p`), in
+    /// a fixed order.
+    fn near(&self, p: Vec3, mut f: impl FnMut(u32)) {
+        let (x, y, z) = self.key(p);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    if let Some(ids) = self.cells.get(&(x + dx, y + dy, z + dz)) {
+                        ids.iter().for_each(|&i| f(i));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// This year's markers and the distances the colonisation works at.
+pub(super) struct Markers {
+    pub points: Vec<Vec3>,
+    /// Mean spacing of the markers, m.
+    pub spacing: f32,
+}
+
+impl Markers {
+    /// Markers scattered evenly through `space`, at least `spacing` apart on average, then
+    /// those within the spacing of any of the `wood` segments (start, end) removed: that
+    /// space is taken.
+    pub fn scatter(
+        space: &Space,
+        spacing: f32,
+        rng: &mut Random,
+        wood: &[(Vec3, Vec3)],
+    ) -> Markers {
+        let volume = space.volume();
+        let spacing = spacing.max((volume / MAX_MARKERS as f32).cbrt());
+        let count = ((volume / spacing.powi(3)) as usize).min(MAX_MARKERS);
+        let mut points = Vec::with_capacity(count);
+        let r = space.radius;
+        // Rejection sampling in the bounding cylinder; a bounded number of tries.
+        for _ in 0..count * 4 {
+            if points.len() >= count {
+                break;
+            }
+            let p = Vec3::new(
+                rng.var(r as f64) as f32,
+                rng.var(r as f64) as f32,
+                space.base + (space.top - space.base) * rng.unit() as f32,
+            );
+            if space.contains(p) {
+                points.push(p);
+            }
+        }
+        let mut taken = PointGrid::new(spacing);
+        let mut wood_points = Vec::new();
+        for &(a, b) in wood {
+            // Points half a spacing apart: every point of the segment is then within a
+            // quarter spacing of one.
+            let pieces = (a.distance(b) / (spacing * 0.5)).ceil().max(1.0) as usize;
+            for k in 0..=pieces {
+                let p = a.lerp(b, k as f32 / pieces as f32);
+                taken.insert(p, wood_points.len() as u32);
+                wood_points.push(p);
+            }
+        }
+        let limit = spacing * spacing;
+        points.retain(|&m| {
+            let mut free = true;
+            taken.near(m, |i| {
+                free &= wood_points[i as usize].distance_squared(m) > limit
+            });
+            free
+        });
+        Markers { points, spacing }
+    }
+
+    /// For every bud (position, direction): the markers it owns and the unit direction toward
+    /// them (zero if none). A marker belongs to the nearest bud that perceives it.
+    pub fn perceive(&self, buds: &[(Vec3, Vec3)]) -> (Vec<u32>, Vec<Vec3>) {
+        let radius = self.spacing * 4.0;
+        let mut grid = PointGrid::new(radius);
+        for (i, (p, _)) in buds.iter().enumerate() {
+            grid.insert(*p, i as u32);
+        }
+        let mut owned = vec![0u32; buds.len()];
+        let mut towards = vec![Vec3::ZERO; buds.len()];
+        for &m in &self.points {
+            let mut best: Option<(f32, u32)> = None;
+            grid.near(m, |i| {
+                let (p, d) = buds[i as usize];
+                let to = m - p;
+                let dist = to.length();
+                if dist > radius || dist < 1e-5 || to.dot(d) < PERCEPTION_COS * dist {
+                    return;
+                }
+                if best.is_none_or(|(bd, bi)| dist < bd || (dist == bd && i < bi)) {
+                    best = Some((dist, i));
+                }
+            });
+            if let Some((dist, i)) = best {
+                owned[i as usize] += 1;
+                towards[i as usize] += (m - buds[i as usize].0) / dist;
+            }
+        }
+        for t in &mut towards {
+            *t = t.normalize_or_zero();
+        }
+        (owned, towards)
+    }
+}
