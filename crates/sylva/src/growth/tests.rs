@@ -342,7 +342,19 @@ fn print_fidelity() {
 fn print_ages() {
     let code = std::env::var("SP").unwrap_or("PLAC".into());
     let m = Database::builtin().find("InlVal", &code).unwrap();
-    let ages = m.whole_ages();
+    let fine: f64 = std::env::var("FINE")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1.0);
+    let last: f64 = std::env::var("LAST")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1e9);
+    let ages: Vec<f64> = m
+        .whole_ages()
+        .flat_map(|a| (0..(1.0 / fine).round() as usize).map(move |k| a as f64 + k as f64 * fine))
+        .filter(|&a| a <= last)
+        .collect();
     let mut g = Grower::new(
         m,
         GrowthOptions {
@@ -352,13 +364,13 @@ fn print_ages() {
     );
     for age in ages {
         let t0 = std::time::Instant::now();
-        g.advance_to(age as f64);
+        g.advance_to(age);
         let dt = t0.elapsed().as_secs_f64();
         let sk = g.skeleton();
         let d = measure(&sk);
-        let t = g.targets(age as f64);
+        let t = g.targets(age);
         println!(
-            "{age:3} H {:5.2}/{:5.2} DBH {:5.1}/{:5.1} CD {:5.2}/{:5.2} CH {:5.2}/{:5.2} LA {:6.1}/{:6.1} segs {} leaves {} {:.0}ms (growth {:.1} light {:.1} ms/step) vigour {:.2}",
+            "{age:5.2} H {:5.2}/{:5.2} DBH {:5.1}/{:5.1} CD {:5.2}/{:5.2} CH {:5.2}/{:5.2} LA {:6.1}/{:6.1} segs {} leaves {} {:.0}ms (growth {:.1} light {:.1} ms/step) vigour {:.2}",
             d.height,
             t.height,
             d.dbh,

@@ -16,8 +16,10 @@ const MAX_ORDER: u8 = 4;
 const MAX_METAMERS: f32 = 8.0;
 /// Weight of the direction toward a bud's markers in a new shoot's direction (xi).
 const ENVIRONMENT_WEIGHT: f32 = 0.3;
-/// Markers a bud must own to count as fully exposed.
-const SATURATION: f32 = 3.0;
+/// How much wider than next year's crown the markers are scattered: buds at the crown's
+/// edge see the open space beyond it (where the shoots that reach out will be stopped at the
+/// crown), and a young crown, filled by its own shoots, still has buds that do.
+const MARKER_MARGIN: f32 = 1.3;
 /// Share of the season in which a shoot elongates.
 pub(super) const GROWING_SEASON: f64 = 0.5;
 
@@ -54,7 +56,7 @@ impl Grower {
             self.make_room();
             self.shade_deaths();
         }
-        let space = self.space(&next, self.spread as f32);
+        let space = self.space(&next, self.spread as f32 * MARKER_MARGIN);
         self.prune_buds(next.crown_base() as f32);
         let terminals: Vec<u32> = (0..self.branches.len() as u32)
             .filter(|&b| self.branches[b as usize].alive)
@@ -92,7 +94,9 @@ impl Grower {
         let q: Vec<f32> = sites
             .iter()
             .zip(&owned)
-            .map(|(&(p, _), &n)| (n as f32 / SATURATION).min(1.0) * self.light.light_at(p).sqrt())
+            .map(|(&(p, _), &n)| {
+                (n as f32 / markers.saturation).min(1.0) * self.light.light_at(p).sqrt()
+            })
             .collect();
         let lambda = self.apical_control();
         let v = self.allocate(&terminals, &q, lambda);

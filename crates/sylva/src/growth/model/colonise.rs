@@ -95,22 +95,25 @@ impl PointGrid {
 /// This year's markers and the distances the colonisation works at.
 pub(super) struct Markers {
     pub points: Vec<Vec3>,
-    /// Mean spacing of the markers, m.
-    pub spacing: f32,
+    /// The occupancy radius: markers this near the wood are taken, m. The perception radius
+    /// is four times it.
+    pub reach: f32,
+    /// Markers a bud must own to count as fully exposed: three for every cube of `reach`'s
+    /// side.
+    pub saturation: f32,
 }
 
 impl Markers {
-    /// Markers scattered evenly through `space`, at least `spacing` apart on average, then
-    /// those within the spacing of any of the `wood` segments (start, end) removed: that
-    /// space is taken.
-    pub fn scatter(
-        space: &Space,
-        spacing: f32,
-        rng: &mut Random,
-        wood: &[(Vec3, Vec3)],
-    ) -> Markers {
+    /// Markers scattered evenly through `space`, half `reach` apart on average (wider where
+    /// `MAX_MARKERS` would be passed, and `reach` with them), then those within `reach` of
+    /// any of the `wood` segments (start, end) removed: that space is taken. A sapling's few
+    /// buds then still see a space sampled finely enough for most of them to own a marker
+    /// or two, where markers one metamer apart left a handful in its whole crown.
+    pub fn scatter(space: &Space, reach: f32, rng: &mut Random, wood: &[(Vec3, Vec3)]) -> Markers {
         let volume = space.volume();
-        let spacing = spacing.max((volume / MAX_MARKERS as f32).cbrt());
+        let widest = (volume / MAX_MARKERS as f32).cbrt();
+        let spacing = (0.5 * reach).max(widest);
+        let reach = reach.max(widest);
         let count = ((volume / spacing.powi(3)) as usize).min(MAX_MARKERS);
         let mut points = Vec::with_capacity(count);
         let r = space.radius;
@@ -128,19 +131,19 @@ impl Markers {
                 points.push(p);
             }
         }
-        let mut taken = PointGrid::new(spacing);
+        let mut taken = PointGrid::new(reach);
         let mut wood_points = Vec::new();
         for &(a, b) in wood {
-            // Points half a spacing apart: every point of the segment is then within a
-            // quarter spacing of one.
-            let pieces = (a.distance(b) / (spacing * 0.5)).ceil().max(1.0) as usize;
+            // Points half a reach apart: every point of the segment is then within a
+            // quarter reach of one.
+            let pieces = (a.distance(b) / (reach * 0.5)).ceil().max(1.0) as usize;
             for k in 0..=pieces {
                 let p = a.lerp(b, k as f32 / pieces as f32);
                 taken.insert(p, wood_points.len() as u32);
                 wood_points.push(p);
             }
         }
-        let limit = spacing * spacing;
+        let limit = reach * reach;
         points.retain(|&m| {
             let mut free = true;
             taken.near(m, |i| {
@@ -148,13 +151,17 @@ impl Markers {
             });
             free
         });
-        Markers { points, spacing }
+        Markers {
+            points,
+            reach,
+            saturation: 3.0 * (reach / spacing).powi(3),
+        }
     }
 
     /// For every bud (position, direction): the markers it owns and the unit direction toward
     /// them (zero if none). A marker belongs to the nearest bud that perceives it.
     pub fn perceive(&self, buds: &[(Vec3, Vec3)]) -> (Vec<u32>, Vec<Vec3>) {
-        let radius = self.spacing * 4.0;
+        let radius = self.reach * 4.0;
         let mut grid = PointGrid::new(radius);
         for (i, (p, _)) in buds.iter().enumerate() {
             grid.insert(*p, i as u32);

@@ -10,6 +10,8 @@ use glam::Vec2;
 const MAX_SCALE: f32 = 2.0;
 /// Most the year's shoots may be lengthened to reach the measured crown.
 const MAX_STRETCH: f32 = 3.0;
+/// Scale of the envelope while the shoots are stretched.
+const REACH_SCALE: f32 = 1.2;
 
 impl Grower {
     /// Sheds what the rising crown base leaves below it.
@@ -146,15 +148,15 @@ impl Grower {
             b
         };
         if predicted(MAX_SCALE, 1.0) >= want {
-            return (solve(&|s| predicted(s, 1.0), (0.5, MAX_SCALE)), 1.0);
+            (solve(&|s| predicted(s, 1.0), (0.5, MAX_SCALE)), 1.0)
+        } else if predicted(REACH_SCALE, MAX_STRETCH) < want {
+            // The shoots are too short to reach the crown whatever the envelope: the year's
+            // vigour is raised until they do (up to threefold).
+            (REACH_SCALE, MAX_STRETCH)
+        } else {
+            let k = solve(&|k| predicted(REACH_SCALE, k), (1.0, MAX_STRETCH));
+            (REACH_SCALE, k)
         }
-        // The shoots are too short to reach the crown whatever the envelope: the year's
-        // vigour is raised until they do (up to threefold).
-        let scale = 1.2;
-        if predicted(scale, MAX_STRETCH) < want {
-            return (scale, MAX_STRETCH);
-        }
-        (scale, solve(&|k| predicted(scale, k), (1.0, MAX_STRETCH)))
     }
 
     /// The sag of this year's shoots at the crown base (radians, less higher up) at which
