@@ -11,7 +11,7 @@ pub struct FormMeasures {
     /// Share of the leaf area within half the crown radius of the trunk's vertical axis, 0..1
     /// (an evenly filled ellipsoid: 0.35; a shell of foliage: near 0).
     pub inner_leaf_share: f64,
-    /// Woody axes crossing the plane a third of the way up the crown with at least two-thirds
+    /// Woody axes crossing the plane half way up the crown with at least two-thirds
     /// of the largest radius there (codominant: arborists call stems of about the trunk's
     /// diameter codominant, and keep side branches under half of it): 1 for a tree that keeps
     /// its leader, 2 or more where the trunk has forked into codominant limbs, 0 for a palm
@@ -36,7 +36,7 @@ pub fn measure_form(
 ) -> FormMeasures {
     FormMeasures {
         inner_leaf_share: inner_leaf_share(skeleton, crown_diameter as f32 / 2.0),
-        leaders: leaders(skeleton, (crown_base + (top - crown_base) / 3.0) as f32),
+        leaders: leaders(skeleton, (crown_base + (top - crown_base) / 2.0) as f32),
         scaffold_angle: median(scaffold_angles(skeleton)),
         pipe_exponent: median(fork_exponents(skeleton)),
     }
@@ -221,7 +221,7 @@ mod tests {
         for x in [-1.0f32, 1.0] {
             let d = Vec3::new(x, 0.0, 1.0).normalize();
             let start = Vec3::new(0.0, 0.0, 4.05);
-            let limb = sk.push_polyline(&[start, start + d * 3.0], &[0.1, 0.08], 1, Some(trunk));
+            let limb = sk.push_polyline(&[start, start + d * 4.0], &[0.1, 0.08], 1, Some(trunk));
             sk.stems[limb.0 as usize].offset = 4.05;
         }
         sk
@@ -236,8 +236,8 @@ mod tests {
             (form.scaffold_angle.unwrap() - 45.0).abs() < 0.5,
             "{form:?}"
         );
-        // A third of the way up the crown (5.33 m): the trunk (0.092) and both limbs (0.088),
-        // codominant; at 8 m only the trunk.
+        // Half way up the crown (6.5 m): the trunk (0.080) and both limbs (0.083),
+        // codominant; at 8.5 m only the trunk.
         assert_eq!(form.leaders, 3);
         assert_eq!(measure_form(&sk, 7.0, 10.0, 4.0).leaders, 1);
         assert_eq!(

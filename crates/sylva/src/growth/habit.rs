@@ -10,7 +10,7 @@
 //! | oval / upright | 0.55 | 50 | 0.15 | cone, then ellipsoid |
 //! | round, decurrent | 0.49 | 45 | 0.10 | ellipsoid |
 //! | vase | 0.46 | 28 | 0.20 | inverted cone |
-//! | umbrella, spreading | 0.47 | 60 | 0.05 | flattened ellipsoid |
+//! | umbrella, spreading | 0.47 | 55 | 0.05 | flattened ellipsoid |
 //! | columnar | 0.57 | 18 | 0.30 | cylinder |
 //! | weeping | 0.50 | 52 | -0.15 (tips hang) | ellipsoid |
 //! | palm | - | no branches | - | a rosette of fronds |
@@ -75,7 +75,7 @@ impl Envelope {
             Envelope::Ellipsoid => around(0.45, 2.0),
             Envelope::InvertedCone => around(0.72, 2.0),
             // A superellipse: flat-topped and full at the sides.
-            Envelope::FlatEllipsoid => around(0.4, 3.0),
+            Envelope::FlatEllipsoid => around(0.4, 2.5),
             Envelope::Cylinder => around(0.5, 6.0),
         }
     }
@@ -106,7 +106,7 @@ impl TreeForm {
             TreeForm::Oval => (0.55, 50.0, 0.15, Envelope::Cone),
             TreeForm::Round => (0.49, 45.0, 0.10, Envelope::Ellipsoid),
             TreeForm::Vase => (0.46, 28.0, 0.20, Envelope::InvertedCone),
-            TreeForm::Umbrella => (0.47, 60.0, 0.05, Envelope::FlatEllipsoid),
+            TreeForm::Umbrella => (0.47, 55.0, 0.05, Envelope::FlatEllipsoid),
             TreeForm::Columnar => (0.57, 18.0, 0.30, Envelope::Cylinder),
             TreeForm::Weeping => (0.50, 52.0, -0.15, Envelope::Ellipsoid),
             TreeForm::Palm => (1.0, 0.0, 0.0, Envelope::Cylinder),

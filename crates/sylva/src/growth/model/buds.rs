@@ -5,7 +5,7 @@
 //! markers and the habit's tropism, with a lateral bud at every node. The leader is held to
 //! the measured height; shaded branches die; past the segment budget the darkest make room.
 
-use super::colonise::{Markers, Space};
+use super::colonise::{LOBE_DEPTH, Markers, Space};
 use super::*;
 
 /// Dormant lateral buds older than this die, years.
@@ -20,6 +20,9 @@ const ENVIRONMENT_WEIGHT: f32 = 0.3;
 /// edge see the open space beyond it (where the shoots that reach out will be stopped at the
 /// crown), and a young crown, filled by its own shoots, still has buds that do.
 const MARKER_MARGIN: f32 = 1.3;
+/// Height over which a decurrent trunk hands its lead to its laterals, m: the buds in it
+/// become the tree's few codominant scaffolds.
+const FORK_ZONE: f32 = 1.0;
 /// Share of the season in which a shoot elongates.
 pub(super) const GROWING_SEASON: f64 = 0.5;
 
@@ -103,7 +106,10 @@ impl Grower {
         let mut plans = Vec::new();
         let leader_holds = lambda >= 0.5;
         for (i, &b) in terminals.iter().enumerate() {
-            if sylleptic || b == 0 && (leader_holds || self.habit.form == TreeForm::Palm) {
+            // The trunk's apex grows only as the held leader. Once a decurrent tree forks its
+            // terminal bud stops (sympodial growth), and the laterals below it take the top
+            // between them: the trunk ends in a fork instead of running on through the crown.
+            if sylleptic || b == 0 {
                 continue;
             }
             let n = v[i].min(MAX_METAMERS);
@@ -275,9 +281,9 @@ impl Grower {
         p.direction = (heading * (1.0 - rise * rise).sqrt()).extend(rise);
     }
 
-    /// Apical control now. A decurrent species keeps a leader until its trunk stands 1 m
-    /// above the grown tree's crown base (street trees are trained so), then forks over the
-    /// next 3 m: its codominant limbs then leave the trunk where pruning never reaches.
+    /// Apical control now. A decurrent species keeps a leader until its trunk reaches the
+    /// grown tree's crown base (street trees are trained so), then forks within `FORK_ZONE`:
+    /// its codominant limbs then leave the trunk where pruning never reaches.
     pub(super) fn apical_control(&self) -> f32 {
         let own = self.habit.apical_control;
         if own >= 0.5 {
@@ -285,7 +291,7 @@ impl Grower {
         }
         let young = 0.56;
         let top = self.apex_segment(0).end().z;
-        let grown = ((top - self.fork_height - 1.0) / 3.0).clamp(0.0, 1.0);
+        let grown = ((top - self.fork_height) / FORK_ZONE).clamp(0.0, 1.0);
         young + (own - young) * grown
     }
 
@@ -349,6 +355,9 @@ impl Grower {
             base: t.crown_base() as f32,
             radius: (radius - overhang).max(radius * 0.5),
             envelope: self.habit.envelope,
+            lobes: self.lobes,
+            // A young crown of a few shoots has no limbs to lobe it.
+            lobe_depth: LOBE_DEPTH * ((t.crown_diameter as f32 - 3.0) / 3.0).clamp(0.0, 1.0),
         }
     }
 

@@ -11,6 +11,8 @@ use std::collections::HashMap;
 
 /// Most markers scattered in a year: beyond this they are spaced wider, not made more.
 const MAX_MARKERS: usize = 6000;
+/// Most the lobes push a grown crown's outline in or out, as a share of its radius.
+pub(super) const LOBE_DEPTH: f32 = 0.18;
 /// Cosine of the perception cone's half-angle (about 55 degrees).
 const PERCEPTION_COS: f32 = 0.57;
 
@@ -25,6 +27,10 @@ pub(super) struct Space {
     pub radius: f32,
     /// Its profile.
     pub envelope: Envelope,
+    /// Phases of the crown's lobes, radians (see `lobe`).
+    pub lobes: [f32; 3],
+    /// How deep they are, a share of the radius.
+    pub lobe_depth: f32,
 }
 
 impl Space {
@@ -37,7 +43,25 @@ impl Space {
 
     /// Whether `p` lies inside (a little under the top, which the leader holds).
     pub fn contains(&self, p: Vec3) -> bool {
-        p.z <= self.top - 0.04 && p.z >= self.base && p.truncate().length() <= self.reach_at(p.z)
+        p.z <= self.top - 0.04
+            && p.z >= self.base
+            && p.truncate().length() <= self.reach_at(p.z) * self.lobe(p)
+    }
+
+    /// The crown's outline is not a solid of revolution: limbs of unequal vigour make it
+    /// lobed. A factor about 1 (within `lobe_depth`) from two and three lobes around the
+    /// axis that twist with height, fixed for a tree by its phases; it averages 1 around
+    /// the axis, so the envelope's volume and width stay the measured ones.
+    fn lobe(&self, p: Vec3) -> f32 {
+        if p.x == 0.0 && p.y == 0.0 {
+            return 1.0;
+        }
+        let azimuth = p.y.atan2(p.x);
+        let rel = (p.z - self.base) / (self.top - self.base).max(0.1);
+        let [a, b, c] = self.lobes;
+        let wave = 0.6 * (2.0 * azimuth + a + 2.0 * rel * c.sin()).sin()
+            + 0.4 * (3.0 * azimuth + b + 3.0 * rel * c.cos()).sin();
+        1.0 + self.lobe_depth * wave
     }
 
     fn volume(&self) -> f32 {

@@ -184,7 +184,7 @@ impl Grower {
                 })
                 .fold(wood, f32::min)
         };
-        let goal = base + 0.03 * (top - base);
+        let goal = base + 0.01 * (top - base);
         if lowest(0.0) <= goal {
             return 0.0;
         }

@@ -192,6 +192,8 @@ pub struct Grower {
     /// Height of the crown base when the tree is grown, m: a decurrent tree forks above it, so
     /// its codominant limbs are never pruned away.
     fork_height: f32,
+    /// Phases of the crown's lobes (`colonise::Space`), fixed for the tree.
+    lobes: [f32; 3],
     /// Lateral buds waiting.
     buds: Vec<buds::Bud>,
     /// Leaf blade length and width, m, and area of one leaf, m².
@@ -256,6 +258,10 @@ impl Grower {
             spread: 1.0,
             metamer,
             fork_height,
+            lobes: {
+                let mut r = key.child(2).stream();
+                [0; 3].map(|_| (r.unit() * std::f64::consts::TAU) as f32)
+            },
             buds: Vec::new(),
             leaf_size,
             leaf_shape,
