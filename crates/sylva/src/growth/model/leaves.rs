@@ -188,11 +188,15 @@ impl Grower {
         for &si in &self.branches[b].segments {
             let s = &self.segments[si as usize];
             let n = self.leaves_on.get(si as usize).copied().unwrap_or(0) as usize;
+            if n == 0 {
+                continue;
+            }
+            let base = frame(s.direction);
             for k in 0..n {
                 let along = (k as f32 + 0.5) / n as f32;
                 let p = s.start + s.direction * s.length * along;
                 turn += 137.5;
-                let q = frame(s.direction)
+                let q = base
                     * Quat::from_rotation_z(turn.to_radians())
                     * Quat::from_rotation_x((50.0 + rng.var(10.0) as f32).to_radians());
                 // Blade faces the sky where it can: roll it about its own axis.

@@ -23,6 +23,9 @@ impl Grower {
         // (position, direction, distance along the stem, radius)
         let mut points: Vec<(Vec3, Vec3, f32, f32)> = Vec::new();
         let mut junctions: Vec<(u32, f32, f32, u32)> = Vec::new();
+        // Per segment, reused: its side branches (distance, radius), its radius profile and
+        // the distances its sections sit at.
+        let (mut children, mut profile, mut at) = (Vec::new(), Vec::new(), Vec::new());
         // Where each branch leaves its parent, m along the parent's stem.
         let mut offsets = vec![0.0f32; self.branches.len()];
         let (leaf_len, leaf_width) = self.drawn_leaf_size();
@@ -66,16 +69,15 @@ impl Grower {
             for &(id, s) in &segs {
                 let lo = junctions.partition_point(|j| j.0 < id);
                 let hi = junctions.partition_point(|j| j.0 <= id);
-                let children: Vec<(f32, f32)> = junctions[lo..hi]
-                    .iter()
-                    .map(|j| (j.1.min(s.length), j.2))
-                    .collect();
+                children.clear();
+                children.extend(junctions[lo..hi].iter().map(|j| (j.1.min(s.length), j.2)));
                 for j in &junctions[lo..hi] {
                     offsets[j.3 as usize] = run + j.1.min(s.length);
                 }
-                let profile = self.radii_along(id, &children);
+                self.radii_along(id, &children, &mut profile);
                 // The trunk also every half metre and at breast height, so DBH reads it there.
-                let mut at: Vec<f32> = profile.iter().map(|p| p.0).collect();
+                at.clear();
+                at.extend(profile.iter().map(|p| p.0));
                 if branch.order == 0 {
                     let pieces = (s.length / 0.5).ceil().max(1.0) as usize;
                     at.extend((1..pieces).map(|k| s.length * k as f32 / pieces as f32));
@@ -86,7 +88,7 @@ impl Grower {
                 }
                 at.sort_by(f32::total_cmp);
                 at.dedup_by(|a, b| (*a - *b).abs() < 1e-4);
-                for along in at {
+                for &along in &at {
                     let k = profile.partition_point(|p| p.0 <= along + 1e-5).max(1);
                     let r = profile[k - 1].1;
                     points.push((s.start + s.direction * along, s.direction, run + along, r));

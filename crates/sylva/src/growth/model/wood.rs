@@ -82,18 +82,23 @@ impl Grower {
 
     /// Radii along a segment: at its base, then just past each side branch leaving it (`children`:
     /// distance from the segment's start and the branch's base radius, in order), by the pipe
-    /// model. Returns (distance from the start, radius) pairs.
-    pub(super) fn radii_along(&self, segment: u32, children: &[(f32, f32)]) -> Vec<(f32, f32)> {
+    /// model. Fills `out` with (distance from the start, radius) pairs.
+    pub(super) fn radii_along(
+        &self,
+        segment: u32,
+        children: &[(f32, f32)],
+        out: &mut Vec<(f32, f32)>,
+    ) {
         let n = PIPE_EXPONENT;
         let tip = self.tip_radius.max(1e-6);
         let base = self.radius_of(segment);
         let mut c = (base / tip).powf(n);
-        let mut out = vec![(0.0, base)];
+        out.clear();
+        out.push((0.0, base));
         for &(along, child_radius) in children {
             c -= (child_radius / tip).powf(n);
             out.push((along, tip * c.max(1.0).powf(1.0 / n)));
         }
-        out
     }
 
     pub(super) fn step_length(&self) -> f64 {
