@@ -11,11 +11,11 @@ pub struct FormMeasures {
     /// Share of the leaf area within half the crown radius of the trunk's vertical axis, 0..1
     /// (an evenly filled ellipsoid: 0.35; a shell of foliage: near 0).
     pub inner_leaf_share: f64,
-    /// Woody axes crossing the plane half way up the crown with at least two-thirds
-    /// of the largest radius there (codominant: arborists call stems of about the trunk's
-    /// diameter codominant, and keep side branches under half of it): 1 for a tree that keeps
-    /// its leader, 2 or more where the trunk has forked into codominant limbs, 0 for a palm
-    /// (nothing woody in its crown).
+    /// Woody axes crossing a plane a third or half way up the crown (whichever has more) with
+    /// at least two-thirds of the largest radius there (codominant: arborists call stems of
+    /// about the trunk's diameter codominant, and keep side branches under half of it) that
+    /// carry the crown to its top quarter: 1 for a tree that keeps its leader, 2 or more where
+    /// the trunk has forked into codominant limbs, 0 for a palm (nothing woody in its crown).
     pub leaders: usize,
     /// Median angle above the horizontal of the first metre of each branch leaving the trunk,
     /// degrees (`None` without branches).
@@ -36,7 +36,7 @@ pub fn measure_form(
 ) -> FormMeasures {
     FormMeasures {
         inner_leaf_share: inner_leaf_share(skeleton, crown_diameter as f32 / 2.0),
-        leaders: leaders(skeleton, (crown_base + (top - crown_base) / 2.0) as f32),
+        leaders: leaders(skeleton, crown_base as f32, top as f32),
         scaffold_angle: median(scaffold_angles(skeleton)),
         pipe_exponent: median(fork_exponents(skeleton)),
     }
@@ -58,7 +58,24 @@ fn inner_leaf_share(skeleton: &Skeleton, crown_radius: f32) -> f64 {
 /// Least share of the thickest axis's radius for an axis to count as a leader.
 const CODOMINANT: f32 = 2.0 / 3.0;
 
-fn leaders(skeleton: &Skeleton, height: f32) -> usize {
+/// Where, between the crown base and the top, an axis must reach to lead (the top quarter).
+const LEADS_FROM: f32 = 0.75;
+
+/// Heights, as shares of the crown from its base, at which leaders are counted.
+const LEADER_PLANES: [f32; 2] = [1.0 / 3.0, 0.5];
+
+/// Leaders where the crown is most divided: a decurrent trunk may fork low or high in the crown,
+/// and one plane alone would see the crown before its fork or after one limb has won.
+fn leaders(skeleton: &Skeleton, base: f32, top: f32) -> usize {
+    let reach = reaches(skeleton);
+    LEADER_PLANES
+        .iter()
+        .map(|share| leaders_at(skeleton, &reach, base, top, base + (top - base) * share))
+        .max()
+        .unwrap_or(0)
+}
+
+fn leaders_at(skeleton: &Skeleton, reach: &[f32], base: f32, top: f32, height: f32) -> usize {
     // Radius where each stem crosses the plane going up (a stem may cross more than once).
     let mut crossings = Vec::new();
     for (i, _) in skeleton.stems.iter().enumerate() {
@@ -67,15 +84,45 @@ fn leaders(skeleton: &Skeleton, height: f32) -> usize {
             let (a, b) = (w[0], w[1]);
             if a.position.z <= height && b.position.z > height {
                 let t = (height - a.position.z) / (b.position.z - a.position.z);
-                crossings.push(a.radius + (b.radius - a.radius) * t);
+                crossings.push((a.radius + (b.radius - a.radius) * t, reach[i]));
             }
         }
     }
-    let widest = crossings.iter().copied().fold(0.0f32, f32::max);
+    let widest = crossings.iter().map(|c| c.0).fold(0.0f32, f32::max);
+    // A thick limb that bends out and ends in the crown's middle does not lead it: a leader
+    // (or a codominant stem) carries the crown to its top.
+    let upper = base + (top - base) * LEADS_FROM;
     crossings
         .iter()
-        .filter(|&&r| widest > 0.0 && r >= widest * CODOMINANT)
+        .filter(|&&(r, z)| widest > 0.0 && r >= widest * CODOMINANT && z >= upper)
         .count()
+}
+
+/// Highest point of each stem with everything that grows from it.
+fn reaches(skeleton: &Skeleton) -> Vec<f32> {
+    let mut reach: Vec<f32> = (0..skeleton.stems.len())
+        .map(|i| {
+            let s = skeleton.sections_of(StemId(i as u32));
+            s.iter()
+                .map(|c| c.position.z)
+                .fold(f32::NEG_INFINITY, f32::max)
+        })
+        .collect();
+    // Lift every ancestor to its descendants' height; a parent's chain is short (the
+    // branching order), so walking it from each stem is cheap.
+    for i in 0..skeleton.stems.len() {
+        let z = reach[i];
+        let mut parent = skeleton.stems[i].parent;
+        while let Some(StemId(p)) = parent {
+            let p = p as usize;
+            if reach[p] >= z {
+                break;
+            }
+            reach[p] = z;
+            parent = skeleton.stems[p].parent;
+        }
+    }
+    reach
 }
 
 fn scaffold_angles(skeleton: &Skeleton) -> Vec<f64> {
@@ -193,9 +240,9 @@ mod tests {
     use crate::skeleton::{Leaf, LeafShape};
     use glam::Quat;
 
-    /// A trunk from the ground to 10 m with two limbs leaving it at 4 m, rising at 45 degrees.
-    /// The trunk above the fork and each limb have radius 0.1, the trunk below 3^(1/2.5) x 0.1:
-    /// a pipe exponent of 2.5.
+    /// A trunk from the ground to 10 m with two limbs `limb` metres long leaving it at 4 m,
+    /// rising at 45 degrees. The trunk above the fork and each limb have radius 0.1, the trunk
+    /// below 3^(1/2.5) x 0.1: a pipe exponent of 2.5.
     ///
     /// ```text
     ///    \   /
@@ -203,7 +250,7 @@ mod tests {
     ///      |  4 m
     ///      |
     /// ```
-    fn forked() -> Skeleton {
+    fn forked(limb: f32) -> Skeleton {
         let mut sk = Skeleton::default();
         let below = 0.1 * 3f32.powf(1.0 / 2.5);
         // The trunk is thick below the fork and as thick as each limb above it.
@@ -221,25 +268,28 @@ mod tests {
         for x in [-1.0f32, 1.0] {
             let d = Vec3::new(x, 0.0, 1.0).normalize();
             let start = Vec3::new(0.0, 0.0, 4.05);
-            let limb = sk.push_polyline(&[start, start + d * 4.0], &[0.1, 0.08], 1, Some(trunk));
-            sk.stems[limb.0 as usize].offset = 4.05;
+            let id = sk.push_polyline(&[start, start + d * limb], &[0.1, 0.08], 1, Some(trunk));
+            sk.stems[id.0 as usize].offset = 4.05;
         }
         sk
     }
 
     #[test]
     fn a_fork_gives_its_exponent_angle_and_leaders() {
-        let sk = forked();
+        let sk = forked(8.0);
         let form = measure_form(&sk, 3.0, 10.0, 4.0);
         assert!((form.pipe_exponent.unwrap() - 2.5).abs() < 0.05, "{form:?}");
         assert!(
             (form.scaffold_angle.unwrap() - 45.0).abs() < 0.5,
             "{form:?}"
         );
-        // Half way up the crown (6.5 m): the trunk (0.080) and both limbs (0.083),
-        // codominant; at 8.5 m only the trunk.
+        // Half way up the crown (6.5 m): the trunk (0.080) and both limbs (0.091),
+        // codominant, and all reach the top quarter (above 8.25 m; the limbs end at 9.7 m);
+        // with limbs 4 m long, only the trunk crosses 8.5 m.
         assert_eq!(form.leaders, 3);
-        assert_eq!(measure_form(&sk, 7.0, 10.0, 4.0).leaders, 1);
+        assert_eq!(measure_form(&forked(4.0), 7.0, 10.0, 4.0).leaders, 1);
+        // Limbs that end at 6.9 m, in the crown's middle, are thick there but lead nothing.
+        assert_eq!(measure_form(&forked(4.0), 3.0, 10.0, 4.0).leaders, 1);
         assert_eq!(
             pipe_exponent(1.0, &[0.5, 0.5]).map(|n| (n * 1e6).round()),
             Some(1e6)
@@ -249,7 +299,7 @@ mod tests {
 
     #[test]
     fn leaves_near_the_axis_count_by_area() {
-        let mut sk = forked();
+        let mut sk = forked(4.0);
         let leaf = |x: f32, size: f32| Leaf {
             position: Vec3::new(x, 0.0, 6.0),
             orientation: Quat::IDENTITY,

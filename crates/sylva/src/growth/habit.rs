@@ -10,7 +10,7 @@
 //! | oval / upright | 0.55 | 50 | 0.15 | cone, then ellipsoid |
 //! | round, decurrent | 0.49 | 45 | 0.10 | ellipsoid |
 //! | vase | 0.46 | 28 | 0.20 | inverted cone |
-//! | umbrella, spreading | 0.47 | 55 | 0.05 | flattened ellipsoid |
+//! | umbrella, spreading | 0.47 | 50 | 0.05 | flattened ellipsoid |
 //! | columnar | 0.57 | 18 | 0.30 | cylinder |
 //! | weeping | 0.50 | 52 | -0.15 (tips hang) | ellipsoid |
 //! | palm | - | no branches | - | a rosette of fronds |
@@ -106,7 +106,7 @@ impl TreeForm {
             TreeForm::Oval => (0.55, 50.0, 0.15, Envelope::Cone),
             TreeForm::Round => (0.49, 45.0, 0.10, Envelope::Ellipsoid),
             TreeForm::Vase => (0.46, 28.0, 0.20, Envelope::InvertedCone),
-            TreeForm::Umbrella => (0.47, 55.0, 0.05, Envelope::FlatEllipsoid),
+            TreeForm::Umbrella => (0.47, 50.0, 0.05, Envelope::FlatEllipsoid),
             TreeForm::Columnar => (0.57, 18.0, 0.30, Envelope::Cylinder),
             TreeForm::Weeping => (0.50, 52.0, -0.15, Envelope::Ellipsoid),
             TreeForm::Palm => (1.0, 0.0, 0.0, Envelope::Cylinder),
@@ -146,9 +146,13 @@ const SPECIES: [(&str, TreeForm, &str); 31] = [
         TreeForm::Round,
         "London plane: pyramidal young, then broad and rounded, massive ascending scaffolds",
     ),
+    // The spec's habit table puts maples with the round, broad decurrent trees (scaffolds
+    // 35-55 degrees), and its vases (20-35 degrees from vertical) are zelkova, elm and crape
+    // myrtle. The silver maple's upright-spreading oval comes from its measured crown, taller
+    // than wide.
     (
         "ACSA1",
-        TreeForm::Vase,
+        TreeForm::Round,
         "silver maple: fast, upright-spreading, vase to oval, long limbs",
     ),
     ("FRVE_G", TreeForm::Round, "Modesto ash: rounded, dense"),

@@ -39,6 +39,9 @@ impl Grower {
             (8.0, 0.05, 0.04),
             (f64::INFINITY, f32::INFINITY, 0.0),
         ];
+        // Spurs come with a mature crown: a sapling leafs out on its long shoots, and its few
+        // branches set its width. They fade in as the crown grows from 3 to 6 m tall.
+        let spur_weight = SPUR_WEIGHT * ((t.crown_height as f32 - 3.0) / 3.0).clamp(0.0, 1.0);
         let mut weights = vec![0.0f32; self.segments.len()];
         let mut capacity = vec![0u32; self.segments.len()];
         for (k, &(years, radius, min_light)) in levels.iter().enumerate() {
@@ -48,19 +51,29 @@ impl Grower {
                 // The leader's young shoot is leafy too, or it would stand bare above the
                 // crown.
                 let leader = b.order == 0 && self.age - s.born <= LEAF_SHOOT_YEARS;
-                let eligible = b.alive
-                    && (b.order > 0 || leader)
-                    && s.start.z.min(s.end().z) >= floor
+                let placed_ok =
+                    b.alive && (b.order > 0 || leader) && s.start.z.min(s.end().z) >= floor;
+                let eligible = placed_ok
                     && (self.age - s.born <= years || tip_shoot[i])
                     && radii[i] <= radius
                     && lights[i] >= min_light;
-                capacity[i] = if eligible {
-                    (s.length / self.leaf_spacing).floor() as u32
+                // Short shoots (spurs) on older lit limbs: each bears a rosette of leaves a
+                // year, so the crown is leafy along its limbs inside, not only at its rim.
+                let spur = !eligible
+                    && spur_weight > 0.0
+                    && placed_ok
+                    && radii[i] <= SPUR_MAX_RADIUS
+                    && lights[i] >= LEAF_MIN_LIGHT;
+                let (slots, weight) = if eligible {
+                    (s.length / self.leaf_spacing, 1.0)
+                } else if spur {
+                    (s.length / self.leaf_spacing * SPUR_DENSITY, spur_weight)
                 } else {
-                    0
+                    (0.0, 0.0)
                 };
-                weights[i] = if eligible {
-                    s.length * lights[i].max(0.01).sqrt()
+                capacity[i] = slots.floor() as u32;
+                weights[i] = if capacity[i] > 0 {
+                    weight * s.length * lights[i].max(0.01).sqrt()
                 } else {
                     0.0
                 };
@@ -196,11 +209,8 @@ impl Grower {
                 let along = (k as f32 + 0.5) / n as f32;
                 let p = s.start + s.direction * s.length * along;
                 turn += 137.5;
-                let q = base
-                    * Quat::from_rotation_z(turn.to_radians())
-                    * Quat::from_rotation_x((50.0 + rng.var(10.0) as f32).to_radians());
-                // Blade faces the sky where it can: roll it about its own axis.
-                let q = face_up(q);
+                let tilt = 50.0 + rng.var(10.0) as f32;
+                let q = leaf_frame(base, turn.to_radians(), tilt.to_radians());
                 let tip = (q * Vec3::Z).z * length + p.z;
                 if tip <= top && tip.min(p.z) >= floor {
                     f(p, q);
@@ -210,11 +220,53 @@ impl Grower {
     }
 }
 
-/// Rolls a leaf frame about its own z so its normal (local y) points as far up as it can.
-pub(super) fn face_up(q: Quat) -> Quat {
-    let z = q * Vec3::Z;
-    let y = q * Vec3::Y;
-    let up = (Vec3::Z - z * z.dot(Vec3::Z)).normalize_or(y);
-    let angle = y.cross(up).dot(z).atan2(y.dot(up));
-    Quat::from_axis_angle(z, angle) * q
+/// The frame of a leaf on a shoot whose frame is `shoot`: turned `turn` about the shoot, tilted
+/// `tilt` off it (radians), then rolled about its own axis so the blade faces the sky (local y
+/// as near to up as it can be). Built from its axes: the leaf's axis is the shoot frame applied
+/// to z turned and tilted, and the roll leaves that axis alone, so there is no need to compose
+/// the three rotations and measure the roll's angle.
+pub(super) fn leaf_frame(shoot: Quat, turn: f32, tilt: f32) -> Quat {
+    let (sin_tilt, cos_tilt) = tilt.sin_cos();
+    let (sin_turn, cos_turn) = turn.sin_cos();
+    let z = shoot * Vec3::new(sin_turn * sin_tilt, -cos_turn * sin_tilt, cos_tilt);
+    let up = Vec3::Z - z * z.z;
+    let y = if up.length_squared() > 1e-12 {
+        up.normalize()
+    } else {
+        // A leaf standing upright: keep the roll it came with.
+        shoot * Vec3::new(-cos_tilt * sin_turn, cos_tilt * cos_turn, sin_tilt)
+    };
+    Quat::from_mat3(&glam::Mat3::from_cols(y.cross(z), y, z)).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The frame built from its axes is the one three rotations and a roll to the sky give.
+    #[test]
+    fn a_leaf_frame_is_the_turned_tilted_frame_rolled_to_the_sky() {
+        let mut rng = crate::rng::StreamKey::from_seed(3).stream();
+        for _ in 0..500 {
+            let d = Vec3::new(
+                rng.var(1.0) as f32,
+                rng.var(1.0) as f32,
+                rng.var(1.0) as f32,
+            );
+            let shoot = frame(d);
+            let turn = (rng.var(180.0) as f32).to_radians();
+            let tilt = (50.0 + rng.var(10.0) as f32).to_radians();
+            let q = shoot * Quat::from_rotation_z(turn) * Quat::from_rotation_x(tilt);
+            // Roll about the leaf's own axis until its y points as far up as it can.
+            let z = q * Vec3::Z;
+            let y = q * Vec3::Y;
+            let up = (Vec3::Z - z * z.z).normalize_or(y);
+            let want = Quat::from_axis_angle(z, y.cross(up).dot(z).atan2(y.dot(up))) * q;
+            let got = leaf_frame(shoot, turn, tilt);
+            for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
+                let miss = (got * axis - want * axis).length();
+                assert!(miss < 1e-4, "{d} {turn} {tilt}: {axis} off by {miss}");
+            }
+        }
+    }
 }

@@ -56,6 +56,13 @@ const LEAF_SHOOT_YEARS: f64 = 2.0;
 const LEAF_MAX_RADIUS: f32 = 0.02;
 /// ...with at least this much light.
 const LEAF_MIN_LIGHT: f32 = 0.05;
+/// Older wood up to this radius (m) bears short shoots (spurs) where it has the light leaves
+/// need (`LEAF_MIN_LIGHT`)...
+const SPUR_MAX_RADIUS: f32 = 0.08;
+/// ...with this share of a young shoot's leaf slots per metre...
+const SPUR_DENSITY: f32 = 0.5;
+/// ...and this share of its weight when the leaf area is shared out.
+const SPUR_WEIGHT: f32 = 0.5;
 
 /// Settings of a growth run.
 #[derive(Clone, Debug, PartialEq)]
