@@ -67,6 +67,9 @@ pub struct Row {
     pub output: Quantity,
     /// The equation.
     pub equation: Equation,
+    /// `Some(n)` for an equation the database does not publish, fitted by Sylva to `n` of its
+    /// raw measured trees (a palm's age→DBH: see `palm_ages.rs`).
+    pub fitted_to: Option<usize>,
 }
 
 /// A species as table TS2 lists it in one region.
@@ -107,6 +110,8 @@ pub struct Database {
 const TS6: &str = "TS6_Growth_coefficients.csv";
 const TS2: &str = "TS2_Regional_species_and_counts.csv";
 const TS1: &str = "TS1_Regional_information.csv";
+/// The raw measurements, whole (as published) or only their palm rows (as built in).
+const TS3: [&str; 2] = ["TS3_Raw_tree_data.csv", "TS3_palm_ages.csv"];
 
 impl Database {
     /// The database shipped inside the library (2,402 equations, 17 regions).
@@ -114,13 +119,19 @@ impl Database {
         static DB: OnceLock<Database> = OnceLock::new();
         DB.get_or_init(|| {
             let dir = "data/urban-tree-database";
-            Database::parse(
+            let mut db = Database::parse(
                 include_str!("../../data/urban-tree-database/TS6_Growth_coefficients.csv"),
                 include_str!("../../data/urban-tree-database/TS2_Regional_species_and_counts.csv"),
                 include_str!("../../data/urban-tree-database/TS1_Regional_information.csv"),
                 dir,
             )
-            .expect("the built-in Urban Tree Database parses (tested)")
+            .expect("the built-in Urban Tree Database parses (tested)");
+            db.fit_palm_ages(
+                include_str!("../../data/urban-tree-database/TS3_palm_ages.csv"),
+                &format!("{dir}/{}", TS3[1]),
+            )
+            .expect("the built-in palm measurements parse (tested)");
+            db
         })
     }
 
@@ -133,12 +144,25 @@ impl Database {
                 message: e.to_string(),
             })
         };
-        Database::parse(
+        let mut db = Database::parse(
             &read(TS6)?,
             &read(TS2)?,
             &read(TS1)?,
             &dir.display().to_string(),
-        )
+        )?;
+        // The raw trees are optional: without them the palms cannot be grown.
+        if let Some(name) = TS3.iter().find(|n| dir.join(n).is_file()) {
+            db.fit_palm_ages(&read(name)?, &dir.join(name).display().to_string())?;
+        }
+        Ok(db)
+    }
+
+    /// Adds an age→DBH for every palm that has none, fitted to its raw measured trees
+    /// (`raw`: TS3 or its palm rows, read from `source`).
+    fn fit_palm_ages(&mut self, raw: &str, source: &str) -> Result<(), GrowthError> {
+        let fitted = super::palm_ages::palm_age_rows(raw, source, &self.rows)?;
+        self.rows.extend(fitted);
+        Ok(())
     }
 
     /// Parses the tables' text; `source` names the folder in messages.
@@ -203,6 +227,7 @@ impl Database {
                     mse,
                     range: (number(13, "Apps min")?, number(14, "Apps max")?),
                 },
+                fitted_to: None,
             });
         }
         for (_, r) in records(ts2, &format!("{source}/{TS2}"))? {
@@ -304,7 +329,7 @@ impl Database {
             .iter()
             .filter(|s| s.region == region.code)
             .collect();
-        // Suggestions name only species that can be grown (the palms have no age→DBH fit).
+        // Suggestions name only species that can be grown (all five equations).
         let growable: Vec<&SpeciesEntry> = in_region
             .iter()
             .copied()

@@ -11,6 +11,7 @@ pub mod light;
 pub mod measure;
 pub mod measured;
 pub mod model;
+mod palm_ages;
 pub mod report;
 
 pub use database::{Database, Quantity, Region, SpeciesEntry};
@@ -44,7 +45,7 @@ pub enum GrowthError {
     },
     /// The species lacks one of the five equations growth needs.
     #[error(
-        "{code} in {region} has no {which} equation, so it cannot be grown (palms lack age -> DBH)"
+        "{code} in {region} has no {which} equation, so it cannot be grown (a palm's age -> DBH is fitted to the database's measured palms of its region; this region measured none)"
     )]
     MissingEquation {
         /// Species code.

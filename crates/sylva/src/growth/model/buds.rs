@@ -380,7 +380,7 @@ impl Grower {
     }
 
     /// A branch's apex makes this year's shoot.
-    fn extend(&mut self, b: usize, direction: Vec3, length: f32) {
+    pub(super) fn extend(&mut self, b: usize, direction: Vec3, length: f32) {
         let apex = self.apex_segment(b);
         let done = apex.length;
         self.segments.push(Segment {

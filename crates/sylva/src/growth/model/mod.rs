@@ -30,6 +30,7 @@ mod buds;
 mod colonise;
 mod fit;
 mod leaves;
+mod palm;
 mod skeleton;
 mod wood;
 
@@ -386,6 +387,11 @@ impl Grower {
         let t0 = std::time::Instant::now();
         let before = self.age;
         self.age += dt;
+        if self.habit.form == TreeForm::Palm {
+            self.grow_palm();
+            self.finish_step(t0);
+            return;
+        }
         // End of a year: primary growth of this year's segments ends; buds break.
         if (before + 1e-9).floor() < (self.age + 1e-9).floor() {
             self.flush(false);
@@ -399,6 +405,11 @@ impl Grower {
         self.fit_crown();
         self.refresh_radii();
         self.allocate_leaves();
+        self.finish_step(t0);
+    }
+
+    /// The light for the step's tree, and the step's times (it began at `t0`).
+    fn finish_step(&mut self, t0: std::time::Instant) {
         let t1 = std::time::Instant::now();
         self.update_light();
         self.times = StepTimes {

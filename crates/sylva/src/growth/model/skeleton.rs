@@ -135,5 +135,20 @@ impl Grower {
                 })
             });
         }
+        if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
+            for f in self.fronds() {
+                sk.leaves.push(Leaf {
+                    light: self
+                        .light
+                        .light_at(f.position + f.orientation * Vec3::Z * f.length * 0.5),
+                    position: f.position,
+                    orientation: f.orientation,
+                    length: f.length,
+                    width: f.width,
+                    shape: LeafShape::Palm,
+                    stem: StemId(0),
+                });
+            }
+        }
     }
 }
