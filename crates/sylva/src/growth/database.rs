@@ -160,8 +160,33 @@ impl Database {
     /// Adds an age→DBH for every palm that has none, fitted to its raw measured trees
     /// (`raw`: TS3 or its palm rows, read from `source`).
     fn fit_palm_ages(&mut self, raw: &str, source: &str) -> Result<(), GrowthError> {
-        let fitted = super::palm_ages::palm_age_rows(raw, source, &self.rows)?;
-        self.rows.extend(fitted);
+        for fit in super::palm_ages::fit_palm_ages(raw, source)? {
+            let published = self.rows.iter().any(|r| {
+                r.region == fit.region
+                    && r.code == fit.code
+                    && (r.input, r.output) == (Quantity::Age, Quantity::Dbh)
+            });
+            // A palm without DBH equations could not be grown by its age anyway.
+            let Some(scientific) = self
+                .rows
+                .iter()
+                .find(|r| r.region == fit.region && r.code == fit.code)
+                .map(|r| r.scientific.clone())
+            else {
+                continue;
+            };
+            if !published {
+                self.rows.push(Row {
+                    region: fit.region,
+                    scientific,
+                    code: fit.code,
+                    input: Quantity::Age,
+                    output: Quantity::Dbh,
+                    equation: fit.equation,
+                    fitted_to: Some(fit.trees),
+                });
+            }
+        }
         Ok(())
     }
 

@@ -10,23 +10,28 @@
 //!
 //! A palm thickens only while young and then mostly grows in height, and measured palms
 //! scatter widely (their trunks were planted at many sizes), so the fit is a rough guide and
-//! is said to be one wherever it is shown ([`Row::fitted_to`]).
+//! is said to be one wherever it is shown (`Row::fitted_to`).
 
 use super::GrowthError;
-use super::database::{Quantity, Row};
 use super::equations::{Equation, Form};
 use std::collections::BTreeMap;
 
 /// Fewest measured trees of a species for a fit.
 const MIN_TREES: usize = 10;
 
-/// An age→DBH row for every palm (tree type `P..`) of `raw` (TS3, or its palm rows) that `rows`
-/// has no age→DBH for. `source` names the file for errors.
-pub(super) fn palm_age_rows(
-    raw: &str,
-    source: &str,
-    rows: &[Row],
-) -> Result<Vec<Row>, GrowthError> {
+/// An age→DBH fitted to the measured palms of one species in one region.
+#[derive(Clone, Debug)]
+pub(super) struct PalmFit {
+    pub region: String,
+    pub code: String,
+    /// How many measured trees it was fitted to.
+    pub trees: usize,
+    pub equation: Equation,
+}
+
+/// An age→DBH for every palm (tree type `P..`) of `raw` (TS3, or its palm rows) with enough
+/// measured trees whose DBH rises with age. `source` names the file for errors.
+pub(super) fn fit_palm_ages(raw: &str, source: &str) -> Result<Vec<PalmFit>, GrowthError> {
     let text = raw.trim_start_matches('\u{feff}');
     let mut reader = csv::ReaderBuilder::new()
         .flexible(true)
@@ -75,37 +80,18 @@ pub(super) fn palm_age_rows(
                 .push(((a + 1.0).ln().ln(), d.ln()));
         }
     }
-    let published = |r: &str, c: &str| {
-        rows.iter().any(|row| {
-            row.region == r
-                && row.code == c
-                && row.input == Quantity::Age
-                && row.output == Quantity::Dbh
+    Ok(trees
+        .into_iter()
+        .filter(|(_, points)| points.len() >= MIN_TREES)
+        .filter_map(|((region, code), points)| {
+            fit(&points).map(|equation| PalmFit {
+                region,
+                code,
+                trees: points.len(),
+                equation,
+            })
         })
-    };
-    let mut out = Vec::new();
-    for ((r, c), points) in trees {
-        if points.len() < MIN_TREES || published(&r, &c) {
-            continue;
-        }
-        let Some(equation) = fit(&points) else {
-            continue;
-        };
-        let scientific = rows
-            .iter()
-            .find(|row| row.region == r && row.code == c)
-            .map_or_else(String::new, |row| row.scientific.clone());
-        out.push(Row {
-            region: r,
-            scientific,
-            code: c,
-            input: Quantity::Age,
-            output: Quantity::Dbh,
-            equation,
-            fitted_to: Some(points.len()),
-        });
-    }
-    Ok(out)
+        .collect())
 }
 
 /// Least squares of y on x; `None` unless DBH rises with age.
@@ -138,32 +124,6 @@ fn fit(points: &[(f64, f64)]) -> Option<Equation> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::growth::Database;
-
-    /// Every palm whose measured trees thicken with age gets a rising fit inside them;
-    /// species with a published age→DBH get none.
-    #[test]
-    fn every_palm_gets_a_rising_age_to_dbh_within_its_trees() {
-        let db = Database::builtin();
-        let fitted: Vec<&Row> = db.rows().iter().filter(|r| r.fitted_to.is_some()).collect();
-        // 13 palm species and regions have measured ages; in one, the desert fan palm of the
-        // Southwest desert (71 trees), DBH does not rise with age at all.
-        assert_eq!(fitted.len(), 12, "one fit per palm species and region");
-        assert!(!fitted.iter().any(|r| r.code == "WAFI"));
-        for r in &fitted {
-            assert!(r.code.len() >= 4, "{r:?}");
-            let (lo, hi) = r.equation.range;
-            assert!(
-                lo > 1.0 && hi > lo && hi < 150.0,
-                "{} {}: {lo} {hi}",
-                r.region,
-                r.code
-            );
-            assert!(r.equation.raw(20.0) > r.equation.raw(5.0), "{r:?}");
-        }
-        // Nothing else is fitted: the plane keeps its published equation.
-        assert!(fitted.iter().all(|r| r.code != "PLAC"));
-    }
 
     /// The fit recovers a log-log law from points on it.
     #[test]

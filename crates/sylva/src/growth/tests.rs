@@ -186,6 +186,32 @@ fn species_are_found_by_code_scientific_or_common_name_and_errors_say_what_exist
     assert!(e.contains("PLAC") && !e.contains("WARO"), "{e}");
 }
 
+/// Every palm whose measured trees thicken with age gets a rising fit inside them;
+/// species with a published age→DBH get none.
+#[test]
+fn every_palm_gets_a_rising_age_to_dbh_within_its_trees() {
+    let db = Database::builtin();
+    let fitted: Vec<&crate::growth::database::Row> =
+        db.rows().iter().filter(|r| r.fitted_to.is_some()).collect();
+    // 13 palm species and regions have measured ages; in one, the desert fan palm of the
+    // Southwest desert (71 trees), DBH does not rise with age at all.
+    assert_eq!(fitted.len(), 12, "one fit per palm species and region");
+    assert!(!fitted.iter().any(|r| r.code == "WAFI"));
+    for r in &fitted {
+        assert!(r.code.len() >= 4, "{r:?}");
+        let (lo, hi) = r.equation.range;
+        assert!(
+            lo > 1.0 && hi > lo && hi < 150.0,
+            "{} {}: {lo} {hi}",
+            r.region,
+            r.code
+        );
+        assert!(r.equation.raw(20.0) > r.equation.raw(5.0), "{r:?}");
+    }
+    // Nothing else is fitted: the plane keeps its published equation.
+    assert!(fitted.iter().all(|r| r.code != "PLAC"));
+}
+
 #[test]
 fn a_broken_table_names_its_file_and_line() {
     let ts6 = "Region,Scientific Name,SpCode,Independent variable,Predicts component ,Units,Model weight,EqName,a,b,c,d,e,Apps min,Apps max\n\
