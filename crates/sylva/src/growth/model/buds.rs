@@ -364,14 +364,24 @@ impl Grower {
     /// Buds below the coming crown base are pruned; buds on dead wood and old dormant ones die.
     fn prune_buds(&mut self, floor: f32) {
         let age = self.age;
+        // Once a decurrent trunk has forked, its scaffolds hold back the trunk's buds below
+        // the fork for good: the crown is carried by the limbs of the fork, not a broom of
+        // shoots from the trunk beneath it.
+        let forked = self.apical_control() < 0.5;
+        let fork = self.fork_height;
         let keep: Vec<bool> = self
             .buds
             .iter()
             .map(|b| {
-                // The trunk's buds stay dormant for good: they sprout again where shed
-                // limbs leave light near the crown base (epicormic shoots).
+                // Until then the trunk's buds stay dormant for good: they sprout again where
+                // shed limbs leave light near the crown base (epicormic shoots).
+                let trunk = b.branch == 0;
                 self.branches[b.branch as usize].alive
-                    && (b.branch == 0 || age - b.born <= BUD_YEARS)
+                    && (if trunk {
+                        !forked || self.bud_position(b).z >= fork
+                    } else {
+                        age - b.born <= BUD_YEARS
+                    })
                     && self.bud_position(b).z >= floor
             })
             .collect();
