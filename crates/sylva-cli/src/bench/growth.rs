@@ -11,8 +11,8 @@ pub fn bench_growth(runs: u32) -> Result<()> {
     println!();
     println!(
         "growth steps of a silver maple (InlVal), 1/20 year each, {GROWTH_STEPS} steps per row; \
-         light: the sky's directions spread over the cores, the rest on one thread; mesh = \
-         skeleton and mesh (quality 0.6), fastest of {runs}; x copy = step total / time to copy \
+         light: the sky's directions spread over the cores, and the skeleton's leaves runs of \
+         branches, the rest on one thread; mesh = skeleton and mesh (quality 0.6), fastest of {runs}; x copy = step total / time to copy \
          the tree's skeleton"
     );
     println!(

@@ -1,6 +1,10 @@
 //! The growing tree as a Skeleton, the form every output reads.
 
 use super::*;
+use rayon::prelude::*;
+
+/// Branches whose leaves one task lays out.
+const LEAF_RUN: usize = 64;
 
 impl Grower {
     /// The tree now as a Skeleton: one stem per live branch, sections at the segment joints
@@ -13,7 +17,7 @@ impl Grower {
     }
 
     /// Like [`Grower::skeleton`], but reuses `sk`'s buffers (cleared first), so showing the
-    /// tree after every step allocates nothing once the buffers have grown.
+    /// tree after every step allocates only small lists once the buffers have grown.
     pub fn skeleton_into(&self, sk: &mut Skeleton) {
         sk.stems.clear();
         sk.sections.clear();
@@ -28,8 +32,8 @@ impl Grower {
         let (mut children, mut profile, mut at) = (Vec::new(), Vec::new(), Vec::new());
         // Where each branch leaves its parent, m along the parent's stem.
         let mut offsets = vec![0.0f32; self.branches.len()];
-        let (leaf_len, leaf_width) = self.drawn_leaf_size();
-        let top = self.targets_now().height as f32;
+        // Live branches drawn, with their stems: their leaves come after the wood.
+        let mut leafy: Vec<(usize, u32)> = Vec::new();
         for (b, branch) in self.branches.iter().enumerate() {
             if !branch.alive {
                 continue;
@@ -123,18 +127,10 @@ impl Grower {
                 lobes: 0,
                 lobe_depth: 0.0,
             });
-            self.for_each_leaf(b, leaf_len, top, |position, orientation| {
-                sk.leaves.push(Leaf {
-                    light: self.light.light_at(position),
-                    position,
-                    orientation,
-                    length: leaf_len,
-                    width: leaf_width,
-                    shape: self.leaf_shape,
-                    stem: StemId(id),
-                })
-            });
+            leafy.push((b, id));
         }
+        self.leaves_into(&leafy, &mut sk.leaves);
+
         if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
             for f in self.fronds() {
                 sk.leaves.push(Leaf {
@@ -151,4 +147,72 @@ impl Grower {
             }
         }
     }
+
+    /// The leaves of `leafy` (live branches and their stems) into `out`, in branch order.
+    /// Each branch's leaves depend on that branch alone (their own random stream), so runs of
+    /// branches are laid out in parallel, each into its own part of `out`, and closed up
+    /// after: the same skeleton on any number of cores, and `out`'s buffer is reused.
+    fn leaves_into(&self, leafy: &[(usize, u32)], out: &mut Vec<Leaf>) {
+        // At most the leaves the segments carry (those that would hang above the top or
+        // below the crown base are left out).
+        let most: Vec<usize> = leafy
+            .chunks(LEAF_RUN)
+            .map(|run| {
+                run.iter()
+                    .flat_map(|&(b, _)| &self.branches[b].segments)
+                    .map(|&s| self.leaves_on.get(s as usize).copied().unwrap_or(0) as usize)
+                    .sum()
+            })
+            .collect();
+        out.clear();
+        out.resize(most.iter().sum(), NO_LEAF);
+        let mut parts = Vec::with_capacity(most.len());
+        let mut rest = &mut out[..];
+        for (run, &n) in leafy.chunks(LEAF_RUN).zip(&most) {
+            let (part, tail) = rest.split_at_mut(n);
+            parts.push((run, part));
+            rest = tail;
+        }
+        let (leaf_len, leaf_width) = self.drawn_leaf_size();
+        let top = self.targets_now().height as f32;
+        let written: Vec<usize> = parts
+            .into_par_iter()
+            .map(|(run, part)| {
+                let mut k = 0;
+                for &(b, id) in run {
+                    self.for_each_leaf(b, leaf_len, top, |position, orientation| {
+                        part[k] = Leaf {
+                            light: self.light.light_at(position),
+                            position,
+                            orientation,
+                            length: leaf_len,
+                            width: leaf_width,
+                            shape: self.leaf_shape,
+                            stem: StemId(id),
+                        };
+                        k += 1;
+                    });
+                }
+                k
+            })
+            .collect();
+        let (mut to, mut from) = (0, 0);
+        for (&n, &room) in written.iter().zip(&most) {
+            out.copy_within(from..from + n, to);
+            to += n;
+            from += room;
+        }
+        out.truncate(to);
+    }
 }
+
+/// A blank leaf, written over before it is read.
+const NO_LEAF: Leaf = Leaf {
+    position: Vec3::ZERO,
+    orientation: Quat::IDENTITY,
+    length: 0.0,
+    width: 0.0,
+    shape: LeafShape::Oval,
+    stem: StemId(0),
+    light: 0.0,
+};
