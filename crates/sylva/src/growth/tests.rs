@@ -440,14 +440,25 @@ fn the_grower_measures_its_crown_as_the_survey_does() {
     }
 }
 
-/// Prints the worst errors; SEED, REGION and CODES (comma-separated) choose what.
+/// Prints the worst errors; SEED, REGION and CODES (comma-separated, or `all`) choose what.
 #[test]
 #[ignore]
 fn print_fidelity() {
     let seed: u64 = std::env::var("SEED").map_or(1, |s| s.parse().unwrap());
     let region = std::env::var("REGION").unwrap_or("InlVal".into());
     let codes = std::env::var("CODES").unwrap_or("PLAC,ACSA1,FRVE_G,KOPA,MAGR,PICH,CESI4".into());
-    for code in codes.split(',') {
+    // `CODES=all`: every species of the region that can be grown.
+    let codes: Vec<String> = if codes == "all" {
+        let db = Database::builtin();
+        db.growable(&region)
+            .iter()
+            .map(|s| s.code.clone())
+            .collect()
+    } else {
+        codes.split(',').map(str::to_string).collect()
+    };
+    for code in &codes {
+        let code = code.as_str();
         let t = std::time::Instant::now();
         let run = fidelity(&region, code, seed, u32::MAX);
         let mut problems = run_problems(&run);
@@ -485,7 +496,8 @@ fn print_fidelity() {
 #[ignore]
 fn print_ages() {
     let code = std::env::var("SP").unwrap_or("PLAC".into());
-    let m = Database::builtin().find("InlVal", &code).unwrap();
+    let region = std::env::var("REGION").unwrap_or("InlVal".into());
+    let m = Database::builtin().find(&region, &code).unwrap();
     let fine: f64 = std::env::var("FINE")
         .ok()
         .and_then(|v| v.parse().ok())

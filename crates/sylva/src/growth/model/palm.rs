@@ -16,6 +16,11 @@ const FROND_STEEPEST: f32 = 70.0;
 const FROND_WIDTH: f32 = 0.7;
 /// Fewest and most fronds in a crown.
 const FRONDS: (usize, usize) = (8, 40);
+/// Narrowest blade, as a share of the frond's length: where a region's leaf-area equation
+/// gives a big crown almost no leaves (it turns over inside the measured trunks, as the
+/// Canary Island date palm's of southern California does), the fronds stay fronds and the
+/// leaf area comes out above the equation's, which the run reports.
+const FROND_NARROWEST: f32 = 0.15;
 
 /// One frond: where it leaves the trunk, its frame (local z along it, y its blade's normal),
 /// its length and its blade's width, m.
@@ -56,7 +61,8 @@ impl Grower {
         let count = (t.leaf_area as f32 / (area * length * length * FROND_WIDTH))
             .round()
             .clamp(FRONDS.0 as f32, FRONDS.1 as f32) as usize;
-        let width = t.leaf_area as f32 / (count as f32 * area * length);
+        let width =
+            (t.leaf_area as f32 / (count as f32 * area * length)).max(FROND_NARROWEST * length);
         let apex = Vec3::new(0.0, 0.0, palm_apex(&t));
         let mut rng = self.key.child(3000).stream();
         (0..count)
