@@ -1,6 +1,6 @@
 //! Measuring a grown tree the way the Urban Tree Database's trees were measured.
 
-use super::model::BREAST_HEIGHT;
+use super::model::diameter_height;
 use crate::skeleton::Skeleton;
 use glam::Vec3;
 
@@ -13,7 +13,7 @@ pub struct Dimensions {
     pub crown_height: f64,
     /// Mean of the crown's x and y extents, m.
     pub crown_diameter: f64,
-    /// Trunk diameter at 1.37 m, cm.
+    /// Trunk diameter at 1.37 m (at 0.15 m, caliper height, on a tree not that tall), cm.
     pub dbh: f64,
     /// Sum of one side of every leaf, m².
     pub leaf_area: f64,
@@ -69,12 +69,13 @@ pub fn measure(skeleton: &Skeleton) -> Dimensions {
         .first()
         .map(|_| {
             let s = skeleton.sections_of(crate::StemId(0));
-            let i = s.partition_point(|c| c.position.z < BREAST_HEIGHT);
+            let at = diameter_height(top);
+            let i = s.partition_point(|c| c.position.z < at);
             if i == 0 || i >= s.len() {
                 return s.first().map_or(0.0, |c| c.radius) * 2.0;
             }
             let (a, b) = (s[i - 1], s[i]);
-            let f = (BREAST_HEIGHT - a.position.z) / (b.position.z - a.position.z).max(1e-6);
+            let f = (at - a.position.z) / (b.position.z - a.position.z).max(1e-6);
             (a.radius + (b.radius - a.radius) * f) * 2.0
         })
         .unwrap_or(0.0);

@@ -655,3 +655,21 @@ fn print_form_detail() {
     let (live, shed) = g.branch_counts();
     println!("segments {} live {live} shed {shed}", g.segment_count());
 }
+
+/// A tree too short to have a breast-height diameter (the Brazilian pepper of southern
+/// California is 1.37 m tall at age 0) is measured at caliper height, as the grower holds it.
+#[test]
+fn a_tree_below_breast_height_is_measured_at_caliper_height() {
+    use super::model::{BREAST_HEIGHT, CALIPER_HEIGHT, diameter_height};
+    assert_eq!(diameter_height(1.2), CALIPER_HEIGHT);
+    assert_eq!(diameter_height(3.0), BREAST_HEIGHT);
+    let m = Database::builtin().find("SoCalC", "SCTE").unwrap();
+    let first = m.ages.0;
+    let mut g = Grower::new(m, GrowthOptions::default());
+    for age in [first, first + 1.0] {
+        g.advance_to(age);
+        let d = measure(&g.skeleton());
+        let t = g.targets(age);
+        assert!(close(d.dbh, t.dbh, 0.05), "age {age}: {d:?} against {t:?}");
+    }
+}

@@ -39,6 +39,25 @@ mod wood;
 const PIPE_EXPONENT: f32 = 2.5;
 /// Height at which DBH is measured, m.
 pub const BREAST_HEIGHT: f32 = 1.37;
+/// Height at which a tree too short for a breast-height diameter has its trunk measured
+/// instead, m: the nursery trade's caliper height (6 inches).
+pub const CALIPER_HEIGHT: f32 = 0.15;
+
+/// Trunk a tree needs above breast height for its DBH to be read there, m: less, and the
+/// reading would fall on the leader's tip.
+const ABOVE_BREAST: f32 = 0.25;
+
+/// Where the trunk of a tree `height` metres tall is measured for DBH: at breast height, or at
+/// caliper height on a tree that barely reaches it (some equations give DBH to trees of 1.37 m
+/// or less at age 0, such as the deodar cedar's and the Brazilian pepper's of southern
+/// California).
+pub fn diameter_height(height: f32) -> f32 {
+    if height < BREAST_HEIGHT + ABOVE_BREAST {
+        CALIPER_HEIGHT
+    } else {
+        BREAST_HEIGHT
+    }
+}
 /// Most light cells along an axis.
 const MAX_LIGHT_CELLS: usize = 28;
 /// Divergence between successive lateral buds of a branch, degrees: the golden angle's

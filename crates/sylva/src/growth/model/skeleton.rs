@@ -8,7 +8,7 @@ const LEAF_RUN: usize = 64;
 
 impl Grower {
     /// The tree now as a Skeleton: one stem per live branch, sections at the segment joints
-    /// and just past every side branch (the trunk also at breast height and every half metre),
+    /// and just past every side branch (the trunk also where DBH is read and every half metre),
     /// leaves spiralled along the young shoots.
     pub fn skeleton(&self) -> Skeleton {
         let mut sk = Skeleton::default();
@@ -32,6 +32,8 @@ impl Grower {
         let (mut children, mut profile, mut at) = (Vec::new(), Vec::new(), Vec::new());
         // Where each branch leaves its parent, m along the parent's stem.
         let mut offsets = vec![0.0f32; self.branches.len()];
+        // Where DBH is read (breast height, or caliper height on a tree too short for it).
+        let dbh_at = self.dbh_read_at();
         // Live branches drawn, with their stems: their leaves come after the wood.
         let mut leafy: Vec<(usize, u32)> = Vec::new();
         for (b, branch) in self.branches.iter().enumerate() {
@@ -79,15 +81,16 @@ impl Grower {
                     offsets[j.3 as usize] = run + j.1.min(s.length);
                 }
                 self.radii_along(id, &children, &mut profile);
-                // The trunk also every half metre and at breast height, so DBH reads it there.
+                // The trunk also every half metre and where DBH is read, so it is read from a
+                // section.
                 at.clear();
                 at.extend(profile.iter().map(|p| p.0));
                 if branch.order == 0 {
                     let pieces = (s.length / 0.5).ceil().max(1.0) as usize;
                     at.extend((1..pieces).map(|k| s.length * k as f32 / pieces as f32));
-                    let breast = (BREAST_HEIGHT - s.start.z) / s.direction.z.max(1e-6);
-                    if breast > 1e-3 && breast < s.length - 1e-3 {
-                        at.push(breast);
+                    let reading = (dbh_at - s.start.z) / s.direction.z.max(1e-6);
+                    if reading > 1e-3 && reading < s.length - 1e-3 {
+                        at.push(reading);
                     }
                 }
                 at.sort_by(f32::total_cmp);

@@ -47,7 +47,9 @@ impl Grower {
                 joining[from as usize] += acc;
             }
         }
-        let at_breast = self.trunk_carried(&carried, BREAST_HEIGHT).powf(1.0 / n);
+        let at_breast = self
+            .trunk_carried(&carried, self.dbh_read_at())
+            .powf(1.0 / n);
         let dbh = self.targets_now().dbh as f32;
         self.tip_radius = if at_breast > 0.0 {
             dbh / 200.0 / at_breast
@@ -56,6 +58,14 @@ impl Grower {
         };
         let scale = self.tip_radius;
         self.radii = carried.iter().map(|&c| c.powf(1.0 / n) * scale).collect();
+    }
+
+    /// Where the trunk's diameter is held to f_DBH: breast height, or caliper height for a
+    /// species whose measured trees are too short for it (by the data's height, not the
+    /// nursery sapling's on its way up to it).
+    pub(super) fn dbh_read_at(&self) -> f32 {
+        let age = self.age.max(self.measured.ages.0);
+        diameter_height(self.targets(age).height as f32)
     }
 
     /// What the trunk carries at height z, in tips: its segment's base less the side
