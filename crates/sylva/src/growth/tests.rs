@@ -673,3 +673,16 @@ fn a_tree_below_breast_height_is_measured_at_caliper_height() {
         assert!(close(d.dbh, t.dbh, 0.05), "age {age}: {d:?} against {t:?}");
     }
 }
+
+/// Asked for an age past the data, the grower stops at the data's last age instead of
+/// stepping for ever.
+#[test]
+fn growing_past_the_data_stops_at_its_last_age() {
+    let m = Database::builtin().find("CenFla", "WARO").unwrap();
+    let last = m.ages.1;
+    let mut g = Grower::new(m, GrowthOptions::default());
+    g.advance_to(f64::INFINITY);
+    assert!((g.age() - last).abs() < 0.1, "{} against {last}", g.age());
+    g.advance_to(f64::NAN);
+    assert!((g.age() - last).abs() < 0.1);
+}

@@ -393,8 +393,11 @@ impl Grower {
         }
     }
 
-    /// Grows until `age` (never backwards: a tree that is older stays as it is).
+    /// Grows until `age` (never backwards: a tree that is older stays as it is), at most to the
+    /// last age the data cover: past it the measured functions hold still, and an age of
+    /// 10^9 years would otherwise step for ever.
     pub fn advance_to(&mut self, age: f64) {
+        let age = age.min(self.measured.ages.1);
         let dt = self.step_length();
         while self.age + dt * 0.5 < age {
             self.step_once(dt);
