@@ -331,7 +331,7 @@ impl Grower {
     }
 
     /// The segment at a branch's apex.
-    fn apex_segment(&self, b: usize) -> Segment {
+    pub(super) fn apex_segment(&self, b: usize) -> Segment {
         let last = *self.branches[b]
             .segments
             .last()

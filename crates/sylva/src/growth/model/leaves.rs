@@ -229,12 +229,21 @@ pub(super) fn leaf_frame(shoot: Quat, turn: f32, tilt: f32) -> Quat {
     let (sin_tilt, cos_tilt) = tilt.sin_cos();
     let (sin_turn, cos_turn) = turn.sin_cos();
     let z = shoot * Vec3::new(sin_turn * sin_tilt, -cos_turn * sin_tilt, cos_tilt);
+    // A leaf standing upright keeps the roll it came with.
+    facing_sky(z, || {
+        shoot * Vec3::new(-cos_tilt * sin_turn, cos_tilt * cos_turn, sin_tilt)
+    })
+}
+
+/// The frame of a blade lying along `z` (unit) and rolled about it so that its normal (local
+/// y) points as near to the sky as it can; `upright` gives the normal where `z` is vertical
+/// and any roll would do.
+pub(super) fn facing_sky(z: Vec3, upright: impl FnOnce() -> Vec3) -> Quat {
     let up = Vec3::Z - z * z.z;
     let y = if up.length_squared() > 1e-12 {
         up.normalize()
     } else {
-        // A leaf standing upright: keep the roll it came with.
-        shoot * Vec3::new(-cos_tilt * sin_turn, cos_tilt * cos_turn, sin_tilt)
+        upright()
     };
     Quat::from_mat3(&glam::Mat3::from_cols(y.cross(z), y, z)).normalize()
 }

@@ -22,24 +22,13 @@ const FRONDS: (usize, usize) = (8, 40);
 /// leaf area comes out above the equation's, which the run reports.
 const FROND_NARROWEST: f32 = 0.15;
 
-/// One frond: where it leaves the trunk, its frame (local z along it, y its blade's normal),
-/// its length and its blade's width, m.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Frond {
-    pub position: Vec3,
-    pub orientation: Quat,
-    pub length: f32,
-    pub width: f32,
-}
-
 impl Grower {
     /// A palm's step: the trunk rises to where the fronds leave it, one segment a year, as
     /// thick as the measured DBH (a palm's trunk does not taper).
     pub(super) fn grow_palm(&mut self) {
         let t = self.targets_now();
         let apex = palm_apex(&t);
-        let last = *self.branches[0].segments.last().expect("a trunk") as usize;
-        if self.age - self.segments[last].born >= 1.0 {
+        if self.age - self.apex_segment(0).born >= 1.0 {
             self.extend(0, Vec3::Z, 0.0);
         }
         let last = *self.branches[0].segments.last().expect("a trunk") as usize;
@@ -51,8 +40,9 @@ impl Grower {
         self.leaves_on.resize(self.segments.len(), 0);
     }
 
-    /// The fronds of the crown now, youngest (steepest) first, turned by the golden angle.
-    pub(super) fn fronds(&self) -> Vec<Frond> {
+    /// The fronds of the crown now, as leaves of the trunk added to `out`: youngest (steepest)
+    /// first, turned by the golden angle.
+    pub(super) fn fronds_into(&self, out: &mut Vec<Leaf>) {
         let t = self.targets_now();
         let (length, rise) = frond_reach(&t);
         let droop = (t.crown_height as f32 - rise).min(length);
@@ -65,28 +55,26 @@ impl Grower {
             (t.leaf_area as f32 / (count as f32 * area * length)).max(FROND_NARROWEST * length);
         let apex = Vec3::new(0.0, 0.0, palm_apex(&t));
         let mut rng = self.key.child(3000).stream();
-        (0..count)
-            .map(|k| {
-                let share = k as f32 / (count - 1) as f32;
-                let elevation = high + (low - high) * share + rng.var(0.05) as f32;
-                let azimuth = (k as f32 * DIVERGENCE).to_radians() + rng.var(0.1) as f32;
-                let z = Vec3::new(
-                    elevation.cos() * azimuth.cos(),
-                    elevation.cos() * azimuth.sin(),
-                    elevation.sin(),
-                );
+        for k in 0..count {
+            let share = k as f32 / (count - 1) as f32;
+            let elevation = high + (low - high) * share + rng.var(0.05) as f32;
+            let azimuth = (k as f32 * DIVERGENCE).to_radians() + rng.var(0.1) as f32;
+            let z = Vec3::new(
+                elevation.cos() * azimuth.cos(),
+                elevation.cos() * azimuth.sin(),
+                elevation.sin(),
+            );
+            out.push(Leaf {
+                light: self.light.light_at(apex + z * length * 0.5),
+                position: apex,
                 // The blade faces the sky as far as the frond lets it.
-                let y = (Vec3::Z - z * z.z).normalize_or(Vec3::X);
-                let orientation =
-                    Quat::from_mat3(&glam::Mat3::from_cols(y.cross(z), y, z)).normalize();
-                Frond {
-                    position: apex,
-                    orientation,
-                    length,
-                    width,
-                }
-            })
-            .collect()
+                orientation: leaves::facing_sky(z, || Vec3::X),
+                length,
+                width,
+                shape: LeafShape::Palm,
+                stem: StemId(0),
+            });
+        }
     }
 }
 

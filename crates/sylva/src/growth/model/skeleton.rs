@@ -133,21 +133,8 @@ impl Grower {
             leafy.push((b, id));
         }
         self.leaves_into(&leafy, &mut sk.leaves);
-
         if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
-            for f in self.fronds() {
-                sk.leaves.push(Leaf {
-                    light: self
-                        .light
-                        .light_at(f.position + f.orientation * Vec3::Z * f.length * 0.5),
-                    position: f.position,
-                    orientation: f.orientation,
-                    length: f.length,
-                    width: f.width,
-                    shape: LeafShape::Palm,
-                    stem: StemId(0),
-                });
-            }
+            self.fronds_into(&mut sk.leaves);
         }
     }
 
