@@ -32,7 +32,7 @@ impl Grower {
             .map(|s| self.light.light_at(s.start + s.direction * s.length * 0.5))
             .collect();
         // Young, thin, lit shoots first; where they cannot hold the measured leaf area, older
-        // and thicker wood carries leaves too (spurs), step by step.
+        // and thicker shoots carry leaves too, step by step.
         let levels = [
             (LEAF_SHOOT_YEARS, LEAF_MAX_RADIUS, LEAF_MIN_LIGHT),
             (4.0, 0.03, 0.08),
