@@ -9,6 +9,7 @@ use crate::tree::RenderTree;
 use glam::Vec3;
 use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_at_mat4;
+use sylva::lod::Choice;
 
 /// Side of the square shadow map, texels.
 pub(crate) const SHADOW_SIZE: u32 = 2048;
@@ -95,15 +96,15 @@ pub(crate) enum Part<'a> {
         tree: &'a RenderTree,
         leaves: bool,
     },
-    /// One rank-major list's triangles (indices into the bark, or for list 3 the leaves).
-    LodTriangles {
+    /// One run of a tree stored for range: its segments drawn as tubes or its leaves as
+    /// cards; the draw's range counts records.
+    /// With `flat`, the run's segments are drawn as lines along their axes and its leaves as
+    /// points.
+    Run {
         tree: &'a RenderTree,
         list: usize,
-    },
-    /// One list's line (stems) or point (leaves) vertices.
-    LodFlat {
-        tree: &'a RenderTree,
-        list: usize,
+        run: usize,
+        flat: bool,
     },
     Ground,
     Person,
@@ -123,14 +124,31 @@ pub(crate) struct Draw<'a> {
     pub material: usize,
 }
 
+impl<'a> Part<'a> {
+    /// The run a [`Part::Run`] draws.
+    pub fn run(&self) -> Option<(&'a sylva::lod::LodTree, &'a sylva::lod::Run)> {
+        match *self {
+            Part::Run {
+                tree, list, run, ..
+            } => {
+                let lod = tree.data.lod.as_ref()?;
+                Some((lod, lod.lists.get(list)?.runs.get(run)?))
+            }
+            _ => None,
+        }
+    }
+}
+
 impl Draw<'_> {
     /// Primitives this draw makes.
     fn primitives(&self) -> usize {
         let n = self.range.len() * self.instances.len();
-        match self.primitive {
-            Primitive::Triangles => n / 3,
-            Primitive::Lines => n / 2,
-            Primitive::Points => n,
+        match (self.part, self.primitive) {
+            (Part::Run { flat: true, .. }, _) => n,
+            (Part::Run { .. }, _) => n * self.part.run().map_or(0, |(_, r)| r.triangles_per_item()),
+            (_, Primitive::Triangles) => n / 3,
+            (_, Primitive::Lines) => n / 2,
+            (_, Primitive::Points) => n,
         }
     }
 }
@@ -174,6 +192,105 @@ fn material(colour: [f32; 3], kind: f32) -> Material {
     }
 }
 
+/// Whole meshes: one instanced draw per mesh for every visible copy.
+fn whole_meshes<'a>(
+    scene: &Scene<'a>,
+    stand: usize,
+    tree: &'a RenderTree,
+    copies: std::ops::Range<u32>,
+    draws: &mut Vec<Draw<'a>>,
+) {
+    let (bark, leaves) = (2 * stand, 2 * stand + 1);
+    let mut whole = |leaves_part: bool, material| {
+        let data = if leaves_part {
+            &tree.data.leaves
+        } else {
+            &tree.data.bark
+        };
+        let all = 0..data.indices.len() as u32;
+        draws.push(Draw {
+            primitive: Primitive::Triangles,
+            part: Part::Mesh {
+                tree,
+                leaves: leaves_part,
+            },
+            range: all.clone(),
+            shadow: all,
+            instances: copies.clone(),
+            material,
+        });
+    };
+    whole(false, bark);
+    if scene.show_leaves {
+        whole(true, leaves);
+    }
+}
+
+/// The draws of one copy of a tree stored for range: per list and run, the meshed records and
+/// the lines or points after them.
+fn stored_draws<'a>(
+    scene: &Scene<'a>,
+    stand: usize,
+    tree: &'a RenderTree,
+    choice: &Choice,
+    p: &Placement,
+    instances: &mut Vec<InstanceData>,
+    draws: &mut Vec<Draw<'a>>,
+) {
+    let Some(lod) = tree.data.lod.as_ref() else {
+        return;
+    };
+    for (list, items) in lod.lists.iter().enumerate() {
+        let is_leaves = list == 3;
+        if is_leaves && !scene.show_leaves {
+            continue;
+        }
+        let (x_mesh, x_drawn) = choice.x[list];
+        // One instance entry per list: its lines or points stand for its items that are
+        // neither meshed nor drawn, and its meshed leaves grow as the choice says.
+        let index = instances.len() as u32;
+        let (mut unmeshed, mut flat) = (0, 0);
+        let material = 2 * stand + usize::from(is_leaves);
+        for (k, run) in items.runs.iter().enumerate() {
+            let pick = run.draw(items.mass, x_mesh, x_drawn);
+            unmeshed += run.len() - pick.meshed.len();
+            flat += pick.flat.len();
+            let part = |flat| Part::Run {
+                tree,
+                list,
+                run: k,
+                flat,
+            };
+            draws.push(Draw {
+                primitive: Primitive::Triangles,
+                part: part(false),
+                shadow: pick.meshed.clone(),
+                range: pick.meshed,
+                instances: index..index + 1,
+                material,
+            });
+            draws.push(Draw {
+                primitive: if is_leaves {
+                    Primitive::Points
+                } else {
+                    Primitive::Lines
+                },
+                part: part(true),
+                // The shadow map draws what the picture draws: a leaf that is not drawn is
+                // stood for by a meshed one grown to keep the crown's leaf area.
+                shadow: pick.flat.clone(),
+                range: pick.flat,
+                instances: index..index + 1,
+                material,
+            });
+        }
+        instances.push(InstanceData {
+            stands_for: [unmeshed as f32 / flat.max(1) as f32, choice.leaf_grow],
+            ..p.into()
+        });
+    }
+}
+
 /// Plans `scene` seen by `camera` (at `azimuth` degrees) in a picture `height` pixels tall.
 pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height: u32) -> Frame<'a> {
     let (lo, hi) = scene.bounds(azimuth);
@@ -213,10 +330,12 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
     let mut instances = vec![InstanceData::from(&Placement::ORIGIN)];
     let mut stats = FrameStats::default();
     let mut draws: Vec<Draw> = Vec::new();
+    // Trees stored for range: every visible copy's choice first, then the frame's budget
+    // shared among them, then their draws.
+    let mut chosen: Vec<(usize, &Placement, Choice)> = Vec::new();
+    let mut wishes: Vec<(usize, f32)> = Vec::new();
     for (s, stand) in scene.stands.iter().enumerate() {
-        let (bark, leaves) = (2 * s, 2 * s + 1);
         let tree = stand.tree;
-        let lod = tree.data.lod.as_ref();
         stats.trees += stand.placements.len();
         let first = instances.len() as u32;
         for p in stand.placements.iter() {
@@ -225,104 +344,40 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
                 continue;
             }
             stats.trees_drawn += 1;
-            let Some(lod) = lod.filter(|_| scene.use_lod) else {
+            let Some(lod) = tree.data.lod.as_ref() else {
                 instances.push(p.into());
                 continue;
             };
             // Each copy's range, and the picture it lands in, choose what of each list is
             // drawn (Weber & Penn section 5); a copy scaled up looks as the original nearer.
+            // Without range degradation everything is meshed.
             let range = camera.eye.distance(c) / p.scale.max(1e-3);
-            for (list, choice) in lod.choice.iter().enumerate() {
-                let is_leaves = list == 3;
-                if is_leaves && !scene.show_leaves {
-                    continue;
-                }
-                let pick = choice.select(is_leaves, range, &viewer);
-                // One instance entry per list: its lines or points stand for its items that
-                // are neither meshed nor drawn.
-                let index = instances.len() as u32;
-                let per_item = if is_leaves { 1 } else { 2 };
-                let flat = (choice.items * per_item) as f32 - pick.points.start as f32;
-                instances.push(InstanceData {
-                    stands_for: [flat / pick.points.len().max(1) as f32, 0.0],
-                    ..p.into()
-                });
-                let material = if is_leaves { leaves } else { bark };
-                draws.push(Draw {
-                    primitive: Primitive::Triangles,
-                    part: Part::LodTriangles { tree, list },
-                    shadow: pick.triangles.clone(),
-                    range: pick.triangles,
-                    instances: index..index + 1,
-                    material,
-                });
-                draws.push(Draw {
-                    primitive: if is_leaves {
-                        Primitive::Points
-                    } else {
-                        Primitive::Lines
-                    },
-                    part: Part::LodFlat { tree, list },
-                    // Shadows of every leaf not meshed: points are cheap, and a crown shading
-                    // itself with only the drawn few would look too bright.
-                    shadow: if is_leaves {
-                        pick.points.start..choice.items as u32
-                    } else {
-                        pick.points.clone()
-                    },
-                    range: pick.points,
-                    instances: index..index + 1,
-                    material,
-                });
-            }
+            let choice = if scene.use_lod {
+                lod.paper_choice(range, &viewer)
+            } else {
+                lod.full_choice()
+            };
+            let pixels = 2.0 * r / p.scale.max(1e-3) * viewer.pixels_per_metre(range);
+            let wish = lod.primitives(&choice).min(sylva::lod::tree_cap(pixels));
+            wishes.push((wish, pixels * pixels));
+            chosen.push((s, p, choice));
         }
-        let copies = first..instances.len() as u32;
-        match (lod, scene.use_lod) {
-            (Some(_), true) => {}
-            (Some(lod), false) => {
-                // Every list whole: one instanced draw per list for every visible copy.
-                for (list, choice) in lod.choice.iter().enumerate() {
-                    if list == 3 && !scene.show_leaves {
-                        continue;
-                    }
-                    let all = 0..choice.index_prefix.last().copied().unwrap_or(0);
-                    draws.push(Draw {
-                        primitive: Primitive::Triangles,
-                        part: Part::LodTriangles { tree, list },
-                        range: all.clone(),
-                        shadow: all,
-                        instances: copies.clone(),
-                        material: if list == 3 { leaves } else { bark },
-                    });
-                }
-            }
-            (None, _) => {
-                // Whole meshes: one instanced draw per mesh for every visible copy.
-                let mut whole = |leaves_part: bool, material| {
-                    let data = if leaves_part {
-                        &tree.data.leaves
-                    } else {
-                        &tree.data.bark
-                    };
-                    let all = 0..data.indices.len() as u32;
-                    draws.push(Draw {
-                        primitive: Primitive::Triangles,
-                        part: Part::Mesh {
-                            tree,
-                            leaves: leaves_part,
-                        },
-                        range: all.clone(),
-                        shadow: all,
-                        instances: copies.clone(),
-                        material,
-                    });
-                };
-                whole(false, bark);
-                if scene.show_leaves {
-                    whole(true, leaves);
-                }
-            }
+        if tree.data.lod.is_none() {
+            whole_meshes(scene, s, tree, first..instances.len() as u32, &mut draws);
         }
+    }
+    let allowances = match (scene.use_lod, scene.primitive_budget) {
+        (true, Some(budget)) => sylva::lod::share_out(&wishes, budget),
+        (true, None) => wishes.iter().map(|w| w.0).collect(),
+        (false, _) => vec![usize::MAX; wishes.len()],
+    };
+    for ((s, p, choice), allowance) in chosen.into_iter().zip(allowances) {
+        let stand = &scene.stands[s];
+        let Some(lod) = stand.tree.data.lod.as_ref() else {
+            continue;
+        };
+        let choice = lod.within(choice, allowance);
+        stored_draws(scene, s, stand.tree, &choice, p, &mut instances, &mut draws);
     }
     draws.retain(|d| !(d.instances.is_empty() || d.range.is_empty() && d.shadow.is_empty()));
     for d in &draws {

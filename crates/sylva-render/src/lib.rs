@@ -317,8 +317,8 @@ impl Renderer {
         }
     }
 
-    fn store(&self, mesh: &TreeMesh, data: TreeData, triangles: usize) -> RenderTree {
-        let mut tree = tree::prepare(mesh, data, triangles);
+    fn store(&self, data: TreeData, triangles: usize) -> RenderTree {
+        let mut tree = tree::prepare(data, triangles);
         if let Some(gpu) = self.gpu() {
             match gpu.upload(&tree.data) {
                 Ok(buffers) => tree.gpu = Some(buffers),
@@ -330,13 +330,19 @@ impl Renderer {
 
     /// Uploads a tree mesh (Z up, metres, as the mesher makes it).
     pub fn upload(&self, mesh: &TreeMesh) -> RenderTree {
-        self.store(mesh, TreeData::from_mesh(mesh), mesh.triangle_count())
+        self.store(TreeData::from_mesh(mesh), mesh.triangle_count())
     }
 
     /// Uploads a tree stored for range degradation: drawn whole up close, and as fewer
     /// meshes, lines and points as it recedes (when the scene's `use_lod` is on).
+    /// The tree is kept as it is stored (under a megabyte for a Black Tupelo): the GPU
+    /// rebuilds its triangles every frame.
     pub fn upload_lod(&self, lod: &sylva::lod::LodTree) -> RenderTree {
-        self.store(&lod.mesh, TreeData::from_lod(lod), lod.triangle_count())
+        let data = TreeData {
+            lod: Some(lod.clone()),
+            ..Default::default()
+        };
+        self.store(data, lod.triangle_count())
     }
 
     /// Draws `scene` into `resolve` (a single-sample view of this renderer's target format and

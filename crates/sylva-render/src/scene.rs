@@ -126,6 +126,11 @@ pub struct Scene<'a> {
     pub use_lod: bool,
     /// The paper's quality factor for range degradation: 2 keeps detail twice as far.
     pub lod_quality: f32,
+    /// With range degradation, the most primitives the frame's trees draw together, shared
+    /// among them by the pixels each covers (`sylva::lod::share_out`); each tree also draws at
+    /// most `sylva::lod::PER_SQUARE_PIXEL` per pixel of its box. `None` (the default for
+    /// now): no frame budget; far trees need impostors before a tight one looks right.
+    pub primitive_budget: Option<usize>,
     /// Clear to transparent instead of the sky (for baking impostors): the picture's alpha is
     /// then the trees' coverage.
     pub transparent: bool,
@@ -156,6 +161,7 @@ impl<'a> Scene<'a> {
             sun: Vec3::new(-0.45, -0.6, 0.66).normalize(),
             use_lod: true,
             lod_quality: 1.0,
+            primitive_budget: None,
             transparent: false,
         }
     }

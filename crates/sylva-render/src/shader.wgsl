@@ -57,16 +57,20 @@ struct VsOut {
     @location(3) shade: f32,
 };
 
-@vertex
-fn vs_main(v: VsIn, i: Instance) -> VsOut {
+fn surface_vertex(position: vec3<f32>, normal: vec3<f32>, shade: f32, i: Instance) -> VsOut {
     var out: VsOut;
-    let world = placed(i, v.position);
+    let world = placed(i, position);
     out.clip = g.view_proj * vec4<f32>(world, 1.0);
     out.world = world;
-    out.normal = turned(i, v.normal);
+    out.normal = turned(i, normal);
     out.light_clip = g.light_view_proj * vec4<f32>(world, 1.0);
-    out.shade = v.shade;
+    out.shade = shade;
     return out;
+}
+
+@vertex
+fn vs_main(v: VsIn, i: Instance) -> VsOut {
+    return surface_vertex(v.position, v.normal, v.shade, i);
 }
 
 @vertex
@@ -167,24 +171,6 @@ fn flat_vertex(position: vec3<f32>, size: f32, direction: vec4<f32>, i: Instance
     return out;
 }
 
-@vertex
-fn vs_flat(
-    @location(0) position: vec3<f32>,
-    @location(1) size: f32,
-    @location(2) direction: vec4<f32>,
-    i: Instance,
-) -> FlatOut {
-    return flat_vertex(position, size, direction, i);
-}
-
-@vertex
-fn vs_shadow_flat(
-    @location(0) position: vec3<f32>,
-    i: Instance,
-) -> @builtin(position) vec4<f32> {
-    return g.light_view_proj * vec4<f32>(placed(i, position), 1.0);
-}
-
 struct FlatColour {
     @location(0) colour: vec4<f32>,
     @builtin(sample_mask) mask: u32,
@@ -268,14 +254,7 @@ struct FlatSampleOut {
     @location(4) @interpolate(flat) seed_world: vec3<f32>,
 };
 
-@vertex
-fn vs_flat_per_sample(
-    @location(0) position: vec3<f32>,
-    @location(1) size: f32,
-    @location(2) direction: vec4<f32>,
-    i: Instance,
-) -> FlatSampleOut {
-    let f = flat_vertex(position, size, direction, i);
+fn per_sample(f: FlatOut) -> FlatSampleOut {
     var out: FlatSampleOut;
     out.clip = f.clip;
     out.light_clip = f.light_clip;
@@ -304,4 +283,245 @@ fn fs_flat_per_sample(in: FlatSampleOut) -> @location(0) vec4<f32> {
         discard;
     }
     return vec4<f32>(shade.lit, 1.0);
+}
+
+// Trees stored for range (sylva::lod::packed): each stem segment is two packed rings and each
+// leaf a packed card, read as instances; the vertex shader rebuilds the triangles, lines and
+// points the CPU's sylva::lod::expand makes, and the two must agree.
+
+// The copy a draw places and the scales of its tree's records.
+struct Copy {
+    place: vec4<f32>,
+    // x, y: cos and sin of the turn; z: how many stems or leaves each line or point stands
+    // for; w: how much meshed leaves grow about their centres
+    turn: vec4<f32>,
+    // xyz: the records' box, lowest corner; w: the thickest radius
+    lo: vec4<f32>,
+    // xyz: the box's size; w: the longest leaf
+    size: vec4<f32>,
+    // stems: ring vertices, lobes, lobe depth; leaves: x the outline's area at unit size,
+    // w the widest leaf
+    run: vec4<f32>,
+};
+
+@group(2) @binding(0) var<uniform> copy: Copy;
+
+struct SegmentIn {
+    @location(8) a: vec4<u32>,
+    @location(9) a_frame: u32,
+    @location(10) b: vec4<u32>,
+    @location(11) b_frame: u32,
+};
+
+struct CardIn {
+    @location(8) at: vec4<u32>,
+    @location(9) frame: u32,
+};
+
+fn copy_instance() -> Instance {
+    var i: Instance;
+    i.place = copy.place;
+    i.turn = copy.turn.xy;
+    i.stands_for = vec2<f32>(copy.turn.z, 0.0);
+    return i;
+}
+
+// A unit quaternion from its three smallest components (10 bits each, 0..=1022 over
+// -1/sqrt(2)..1/sqrt(2)) and the index of the largest (2 bits).
+fn unpack_frame(bits: u32) -> vec4<f32> {
+    let k = bits >> 30u;
+    let raw = vec3<f32>(f32((bits >> 20u) & 1023u), f32((bits >> 10u) & 1023u), f32(bits & 1023u));
+    let small = (raw / 1022.0 * 2.0 - 1.0) * 0.70710678;
+    let largest = sqrt(max(1.0 - dot(small, small), 0.0));
+    var q = vec4<f32>(small, largest);
+    if (k == 0u) {
+        q = vec4<f32>(largest, small.x, small.y, small.z);
+    } else if (k == 1u) {
+        q = vec4<f32>(small.x, largest, small.y, small.z);
+    } else if (k == 2u) {
+        q = vec4<f32>(small.x, small.y, largest, small.z);
+    }
+    return normalize(q);
+}
+
+fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
+    let t = 2.0 * cross(q.xyz, v);
+    return v + q.w * t + cross(q.xyz, t);
+}
+
+fn unpack_position(at: vec3<u32>) -> vec3<f32> {
+    return copy.lo.xyz + vec3<f32>(at) / 65535.0 * copy.size.xyz;
+}
+
+struct Surface {
+    position: vec3<f32>,
+    normal: vec3<f32>,
+};
+
+// Corners of a quad between the near (y = 0) and far (y = 1) ring: side i (x = 0) or i + 1.
+const CORNERS = array<vec2<u32>, 6>(
+    vec2<u32>(0u, 0u), vec2<u32>(1u, 0u), vec2<u32>(1u, 1u),
+    vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(0u, 1u),
+);
+
+// Vertex k (0 .. 6 sides) of a segment's tube: sylva::lod::expand::Tube::vertex.
+fn tube_vertex(s: SegmentIn, k: u32) -> Surface {
+    let corner = CORNERS[k % 6u];
+    let i = k / 6u + corner.x;
+    let centre_a = unpack_position(s.a.xyz);
+    let centre_b = unpack_position(s.b.xyz);
+    let radius_a = f32(s.a.w) / 65535.0 * copy.lo.w;
+    let radius_b = f32(s.b.w) / 65535.0 * copy.lo.w;
+    let length = distance(centre_a, centre_b);
+    var slope = 0.0;
+    if (length > 1e-9) {
+        slope = (radius_b - radius_a) / length;
+    }
+    var q = unpack_frame(s.a_frame);
+    var centre = centre_a;
+    var r0 = radius_a;
+    if (corner.y == 1u) {
+        q = unpack_frame(s.b_frame);
+        centre = centre_b;
+        r0 = radius_b;
+    }
+    let x = rotate(q, vec3<f32>(1.0, 0.0, 0.0));
+    let y = rotate(q, vec3<f32>(0.0, 1.0, 0.0));
+    let z = rotate(q, vec3<f32>(0.0, 0.0, 1.0));
+    let t = 6.2831853 * f32(i) / copy.run.x;
+    let radial = x * cos(t) + y * sin(t);
+    var r = r0;
+    var in_plane = radial;
+    let lobes = copy.run.y;
+    if (lobes > 0.0) {
+        r = r0 * (1.0 + copy.run.z * sin(lobes * t));
+        let dr = r0 * copy.run.z * lobes * cos(lobes * t);
+        let tangent = y * cos(t) - x * sin(t);
+        let n = radial * r - tangent * dr;
+        if (dot(n, n) > 0.0) {
+            in_plane = normalize(n);
+        }
+    }
+    var out: Surface;
+    out.position = centre + radial * r;
+    out.normal = in_plane - z * slope;
+    return out;
+}
+
+struct Card {
+    base: vec3<f32>,
+    frame: vec4<f32>,
+    length: f32,
+    width: f32,
+    shade: f32,
+};
+
+// sylva::lod::packed::Quantiser::unpack_leaf.
+fn unpack_card(c: CardIn) -> Card {
+    var out: Card;
+    out.base = unpack_position(c.at.xyz);
+    out.frame = unpack_frame(c.frame);
+    out.length = f32(c.at.w & 63u) / 63.0 * copy.size.w;
+    out.width = f32((c.at.w >> 6u) & 63u) / 63.0 * copy.run.w;
+    out.shade = 0.3 + 0.7 * f32(c.at.w >> 12u) / 10.0;
+    return out;
+}
+
+fn card_vertex(c: Card, position: vec3<f32>, normal: vec3<f32>) -> Surface {
+    var out: Surface;
+    let centre = vec3<f32>(0.0, 0.0, 0.5 * c.length);
+    let at = position * vec3<f32>(c.width, c.width, c.length);
+    out.position = c.base + rotate(c.frame, centre + (at - centre) * copy.turn.w);
+    out.normal = rotate(c.frame, normal);
+    return out;
+}
+
+fn surface_out(s: Surface, shade: f32) -> VsOut {
+    return surface_vertex(s.position, s.normal, shade, copy_instance());
+}
+
+@vertex
+fn vs_tube(@builtin(vertex_index) k: u32, s: SegmentIn) -> VsOut {
+    return surface_out(tube_vertex(s, k), 1.0);
+}
+
+@vertex
+fn vs_card(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, c: CardIn) -> VsOut {
+    let card = unpack_card(c);
+    return surface_out(card_vertex(card, position, normal), card.shade);
+}
+
+// A far stem's line: vertex 0 at the near ring's centre, 1 at the far one's.
+fn axis_vertex(k: u32, s: SegmentIn) -> FlatOut {
+    let a = unpack_position(s.a.xyz);
+    let b = unpack_position(s.b.xyz);
+    var at = a;
+    var radius = f32(s.a.w);
+    if (k == 1u) {
+        at = b;
+        radius = f32(s.b.w);
+    }
+    var direction = vec3<f32>(0.0, 0.0, 1.0);
+    if (distance(a, b) > 0.0) {
+        direction = normalize(b - a);
+    }
+    let diameter = 2.0 * radius / 65535.0 * copy.lo.w;
+    return flat_vertex(at, diameter, vec4<f32>(direction, 0.0), copy_instance());
+}
+
+// A far leaf's point, at the middle of its blade, standing for the blade's area.
+fn dot_vertex(c: CardIn) -> FlatOut {
+    let card = unpack_card(c);
+    let centre = card.base + rotate(card.frame, vec3<f32>(0.0, 0.0, card.length * 0.5));
+    let area = card.length * card.width * copy.run.x;
+    let normal = rotate(card.frame, vec3<f32>(0.0, 1.0, 0.0));
+    return flat_vertex(centre, area, vec4<f32>(normal, 0.0), copy_instance());
+}
+
+@vertex
+fn vs_axis(@builtin(vertex_index) k: u32, s: SegmentIn) -> FlatOut {
+    return axis_vertex(k, s);
+}
+
+@vertex
+fn vs_dot(c: CardIn) -> FlatOut {
+    return dot_vertex(c);
+}
+
+@vertex
+fn vs_axis_per_sample(@builtin(vertex_index) k: u32, s: SegmentIn) -> FlatSampleOut {
+    return per_sample(axis_vertex(k, s));
+}
+
+@vertex
+fn vs_dot_per_sample(c: CardIn) -> FlatSampleOut {
+    return per_sample(dot_vertex(c));
+}
+
+fn shadow_clip(p: vec3<f32>) -> vec4<f32> {
+    return g.light_view_proj * vec4<f32>(placed(copy_instance(), p), 1.0);
+}
+
+@vertex
+fn vs_shadow_tube(@builtin(vertex_index) k: u32, s: SegmentIn) -> @builtin(position) vec4<f32> {
+    return shadow_clip(tube_vertex(s, k).position);
+}
+
+@vertex
+fn vs_shadow_card(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    c: CardIn,
+) -> @builtin(position) vec4<f32> {
+    return shadow_clip(card_vertex(unpack_card(c), position, normal).position);
+}
+
+@vertex
+fn vs_shadow_axis(@builtin(vertex_index) k: u32, s: SegmentIn) -> @builtin(position) vec4<f32> {
+    return g.light_view_proj * vec4<f32>(axis_vertex(k, s).world, 1.0);
+}
+
+@vertex
+fn vs_shadow_dot(c: CardIn) -> @builtin(position) vec4<f32> {
+    return g.light_view_proj * vec4<f32>(dot_vertex(c).world, 1.0);
 }

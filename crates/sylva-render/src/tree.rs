@@ -23,22 +23,13 @@ pub(crate) struct MeshData {
     pub indices: Vec<u32>,
 }
 
-/// The rank-major lists of a [`sylva::lod::LodTree`]: per list (trunk, branches, twigs,
-/// leaves), triangle indices into the bark or leaf vertices, and line/point vertices.
-#[derive(Debug)]
-pub(crate) struct LodData {
-    pub indices: [Vec<u32>; 4],
-    pub points: [Vec<FlatVertex>; 4],
-    /// The lists without their big buffers: enough to choose draw ranges.
-    pub choice: [sylva::lod::LodList; 4],
-}
-
-/// Everything a backend needs to draw a tree.
+/// Everything a backend needs to draw a tree: a mesh, or a tree stored for range (its packed
+/// segments and leaf cards, which the GPU rebuilds each frame and the CPU unpacks as it draws).
 #[derive(Debug, Default)]
 pub(crate) struct TreeData {
     pub bark: MeshData,
     pub leaves: MeshData,
-    pub lod: Option<LodData>,
+    pub lod: Option<sylva::lod::LodTree>,
 }
 
 /// A tree uploaded to a [`crate::Renderer`]: bark and leaves, with their bounds.
@@ -73,13 +64,18 @@ fn mesh_data(mesh: &Mesh) -> MeshData {
     }
 }
 
-fn bounds(mesh: &TreeMesh) -> (Vec3, Vec3) {
-    let (lo, hi) = [&mesh.bark, &mesh.leaves]
+fn bounds(data: &TreeData) -> (Vec3, Vec3) {
+    let (lo, hi) = [&data.bark, &data.leaves]
         .iter()
-        .filter_map(|m| m.bounds())
+        .flat_map(|m| &m.vertices)
         .fold(
             (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(lo, hi), (a, b)| (lo.min(Vec3::from(a)), hi.max(Vec3::from(b))),
+            |(lo, hi), v| {
+                (
+                    lo.min(Vec3::from(v.position)),
+                    hi.max(Vec3::from(v.position)),
+                )
+            },
         );
     if lo.x <= hi.x {
         (lo, hi)
@@ -96,48 +92,14 @@ impl TreeData {
             lod: None,
         }
     }
-
-    pub fn from_lod(lod: &sylva::lod::LodTree) -> Self {
-        let snorm = |v: f32| (v.clamp(-1.0, 1.0) * 127.0).round() as i8;
-        Self {
-            lod: Some(LodData {
-                indices: std::array::from_fn(|i| lod.lists[i].indices.clone()),
-                points: std::array::from_fn(|i| {
-                    let l = &lod.lists[i];
-                    l.points
-                        .iter()
-                        .zip(&l.sizes)
-                        .zip(&l.normals)
-                        .map(|((p, &size), n)| FlatVertex {
-                            position: *p,
-                            size,
-                            normal: [snorm(n[0]), snorm(n[1]), snorm(n[2]), 0],
-                        })
-                        .collect()
-                }),
-                choice: std::array::from_fn(|i| {
-                    let l = &lod.lists[i];
-                    sylva::lod::LodList {
-                        mass: l.mass,
-                        items: l.items,
-                        indices: Vec::new(),
-                        index_prefix: l.index_prefix.clone(),
-                        points: Vec::new(),
-                        sizes: Vec::new(),
-                        normals: Vec::new(),
-                        diameter: l.diameter,
-                        length: l.length,
-                    }
-                }),
-            }),
-            ..Self::from_mesh(&lod.mesh)
-        }
-    }
 }
 
 /// The tree's data with its bounds, before any GPU upload.
-pub(crate) fn prepare(mesh: &TreeMesh, data: TreeData, triangles: usize) -> RenderTree {
-    let (lo, hi) = bounds(mesh);
+pub(crate) fn prepare(data: TreeData, triangles: usize) -> RenderTree {
+    let (lo, hi) = match &data.lod {
+        Some(lod) => lod.quantiser.bounds(),
+        None => bounds(&data),
+    };
     RenderTree {
         data,
         gpu: None,
@@ -164,12 +126,12 @@ pub(crate) struct GpuMesh {
     pub parts: Vec<GpuPart>,
 }
 
-/// Per list of a range-degraded tree: triangle indices into the bark or leaf vertices, and
-/// line or point vertices.
+/// A tree stored for range: its packed segments and leaf cards, read by the shader as
+/// instances.
 #[derive(Debug)]
 pub(crate) struct GpuLod {
-    pub indices: [wgpu::Buffer; 4],
-    pub points: [wgpu::Buffer; 4],
+    pub segments: wgpu::Buffer,
+    pub leaves: wgpu::Buffer,
 }
 
 /// A tree's GPU buffers.

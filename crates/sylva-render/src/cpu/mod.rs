@@ -11,11 +11,13 @@ mod shade;
 
 use crate::frame::{Draw, Frame, InstanceData, Part, Primitive, SHADOW_SIZE};
 use crate::props::Vertex;
-use crate::tree::FlatVertex;
+use crate::tree::{FlatVertex, MeshData};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use raster::{Grid, SAMPLE_POSITIONS, Setup};
 use rayon::prelude::*;
 use shade::{Fragment, Light, ShadowMap};
+use std::ops::Range;
+use sylva::lod::expand::{Card, Tube};
 
 const SAMPLES: usize = 4;
 /// A sample no primitive covers.
@@ -25,6 +27,7 @@ const EMPTY: u64 = u64::MAX;
 const FLAT: u64 = 1 << 63;
 
 /// The vertices (and indices) one draw reads.
+#[derive(Clone, Copy)]
 enum Geometry<'a> {
     Mesh {
         vertices: &'a [Vertex],
@@ -33,36 +36,148 @@ enum Geometry<'a> {
     Flat(&'a [FlatVertex]),
 }
 
-fn geometry<'a>(frame: &'a Frame<'a>, d: &Draw<'a>) -> Geometry<'a> {
-    let mesh = |m: &'a crate::tree::MeshData| Geometry::Mesh {
+/// A stored tree's draw unpacked on the CPU, as the GPU's vertex shader unpacks it: its
+/// records' triangles, or their lines or points, in the tree's own frame, with the draw's
+/// ranges in the geometry's own units (indices, or line and point vertices).
+#[derive(Default)]
+struct Expanded {
+    mesh: MeshData,
+    flat: Vec<FlatVertex>,
+    range: Range<u32>,
+    shadow: Range<u32>,
+}
+
+fn snorm(v: Vec3) -> [i8; 4] {
+    let s = |v: f32| (v.clamp(-1.0, 1.0) * 127.0).round() as i8;
+    [s(v.x), s(v.y), s(v.z), 0]
+}
+
+/// Unpacks the records a stored tree's draw reads (both its colour and its shadow range).
+fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
+    let grow = frame.instances[d.instances.start as usize].stands_for[1];
+    let (lod, run) = d.part.run()?;
+    let Part::Run { list, flat, .. } = d.part else {
+        return None;
+    };
+    let spans: Vec<&Range<u32>> = [&d.range, &d.shadow]
+        .into_iter()
+        .filter(|r| !r.is_empty())
+        .collect();
+    let mut out = Expanded::default();
+    let (Some(lo), Some(hi)) = (
+        spans.iter().map(|r| r.start).min(),
+        spans.iter().map(|r| r.end).max(),
+    ) else {
+        return Some(out);
+    };
+    let q = &lod.quantiser;
+    let area = sylva::mesh::leaf_template(run.shape).area();
+    // Where each record's geometry starts: indices for meshes, vertices for lines and points.
+    let mut starts = Vec::with_capacity((hi - lo) as usize + 1);
+    let mut mesh = sylva::mesh::Mesh::default();
+    for k in lo as usize..hi as usize {
+        starts.push(if flat {
+            out.flat.len()
+        } else {
+            mesh.indices.len()
+        } as u32);
+        match (list == 3, flat) {
+            (false, false) => Tube::of(q, &lod.segments[k]).mesh_into(run, &mut mesh),
+            (true, false) => Card::of(q, &lod.leaves[k]).mesh_into(run, grow, true, &mut mesh),
+            (false, true) => {
+                let (ends, diameters, direction) = Tube::of(q, &lod.segments[k]).line();
+                for (p, size) in ends.into_iter().zip(diameters) {
+                    out.flat.push(FlatVertex {
+                        position: p.to_array(),
+                        size,
+                        normal: snorm(direction),
+                    });
+                }
+            }
+            (true, true) => {
+                let card = Card::of(q, &lod.leaves[k]);
+                out.flat.push(FlatVertex {
+                    position: card.centre().to_array(),
+                    size: card.length * card.width * area,
+                    normal: snorm(card.normal()),
+                });
+            }
+        }
+    }
+    starts.push(if flat {
+        out.flat.len()
+    } else {
+        mesh.indices.len()
+    } as u32);
+    let map = |r: &Range<u32>| {
+        if r.is_empty() {
+            0..0
+        } else {
+            starts[(r.start - lo) as usize]..starts[(r.end - lo) as usize]
+        }
+    };
+    out.range = map(&d.range);
+    out.shadow = map(&d.shadow);
+    out.mesh = MeshData {
+        vertices: mesh
+            .positions
+            .iter()
+            .zip(&mesh.normals)
+            .enumerate()
+            .map(|(i, (p, n))| Vertex {
+                position: *p,
+                normal: *n,
+                shade: mesh.shades.get(i).copied().unwrap_or(1.0),
+            })
+            .collect(),
+        indices: mesh.indices,
+    };
+    Some(out)
+}
+
+/// What one draw reads and draws: its geometry, and its colour and shadow ranges in it.
+struct DrawView<'a> {
+    geometry: Geometry<'a>,
+    range: Range<u32>,
+    shadow: Range<u32>,
+}
+
+fn view<'a>(frame: &'a Frame<'a>, d: &Draw<'a>, expanded: &'a Option<Expanded>) -> DrawView<'a> {
+    let mesh = |m: &'a MeshData| Geometry::Mesh {
         vertices: &m.vertices,
         indices: &m.indices,
     };
-    match d.part {
-        Part::Mesh { tree, leaves } => mesh(if leaves {
+    let geometry = match (d.part, expanded) {
+        (_, Some(e)) => {
+            return DrawView {
+                geometry: if e.flat.is_empty() {
+                    mesh(&e.mesh)
+                } else {
+                    Geometry::Flat(&e.flat)
+                },
+                range: e.range.clone(),
+                shadow: e.shadow.clone(),
+            };
+        }
+        (Part::Mesh { tree, leaves }, _) => mesh(if leaves {
             &tree.data.leaves
         } else {
             &tree.data.bark
         }),
-        Part::LodTriangles { tree, list } => Geometry::Mesh {
-            vertices: if list == 3 {
-                &tree.data.leaves.vertices
-            } else {
-                &tree.data.bark.vertices
-            },
-            indices: tree.data.lod.as_ref().map_or(&[], |l| &l.indices[list]),
-        },
-        Part::LodFlat { tree, list } => {
-            Geometry::Flat(tree.data.lod.as_ref().map_or(&[], |l| &l.points[list]))
-        }
-        Part::Ground => Geometry::Mesh {
+        (Part::Run { .. }, None) => Geometry::Flat(&[]),
+        (Part::Ground, _) => Geometry::Mesh {
             vertices: &frame.ground.vertices,
             indices: &frame.ground.indices,
         },
-        Part::Person => Geometry::Mesh {
+        (Part::Person, _) => Geometry::Mesh {
             vertices: &frame.person.vertices,
             indices: &frame.person.indices,
         },
+    };
+    DrawView {
+        geometry,
+        range: d.range.clone(),
+        shadow: d.shadow.clone(),
     }
 }
 
@@ -105,7 +220,7 @@ impl ClipCache {
     }
 }
 
-fn shadow_map(frame: &Frame, light: Mat4) -> ShadowMap {
+fn shadow_map(frame: &Frame, views: &[DrawView], light: Mat4) -> ShadowMap {
     let size = SHADOW_SIZE;
     let grid = Grid {
         width: size,
@@ -114,8 +229,11 @@ fn shadow_map(frame: &Frame, light: Mat4) -> ShadowMap {
     };
     let mut depth = vec![1.0f32; (size * size) as usize];
     let mut cache = ClipCache::new();
-    for d in frame.draws.iter().filter(|d| !d.shadow.is_empty()) {
-        let geometry = geometry(frame, d);
+    for (d, view) in frame.draws.iter().zip(views) {
+        if view.shadow.is_empty() {
+            continue;
+        }
+        let geometry = view.geometry;
         for copy in d.instances.clone() {
             let instance = &frame.instances[copy as usize];
             let mut write = |i: usize, z: f32| {
@@ -126,7 +244,7 @@ fn shadow_map(frame: &Frame, light: Mat4) -> ShadowMap {
             match geometry {
                 Geometry::Mesh { vertices, indices } => {
                     cache.reset(vertices.len());
-                    let range = clamp_range(&d.shadow, indices.len());
+                    let range = clamp_range(&view.shadow, indices.len());
                     for t in indices[range].chunks_exact(3) {
                         let c = [t[0], t[1], t[2]].map(|i| {
                             cache.get(i as usize, || {
@@ -145,7 +263,7 @@ fn shadow_map(frame: &Frame, light: Mat4) -> ShadowMap {
                     }
                 }
                 Geometry::Flat(points) => {
-                    let range = clamp_range(&d.shadow, points.len());
+                    let range = clamp_range(&view.shadow, points.len());
                     let clip =
                         |v: &FlatVertex| light * instance.place(Vec3::from(v.position)).extend(1.0);
                     let size = size as usize;
@@ -205,7 +323,17 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
     let g = &frame.globals;
     let view_proj = Mat4::from_cols_array_2d(&g.view_proj);
     let light_view_proj = Mat4::from_cols_array_2d(&g.light_view_proj);
-    let shadow = shadow_map(frame, light_view_proj);
+    // Stored trees' draws unpacked once, in parallel: the passes below and the shading read
+    // them as they read meshes.
+    let expanded: Vec<Option<Expanded>> =
+        frame.draws.par_iter().map(|d| expand(frame, d)).collect();
+    let views: Vec<DrawView> = frame
+        .draws
+        .iter()
+        .zip(&expanded)
+        .map(|(d, e)| view(frame, d, e))
+        .collect();
+    let shadow = shadow_map(frame, &views, light_view_proj);
     let light = Light {
         globals: g,
         light_view_proj,
@@ -224,11 +352,11 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
     let mut flat_colours: Vec<Vec3> = Vec::new();
     let mut batches: Vec<(usize, u32)> = Vec::new();
     let mut cache = ClipCache::new();
-    for (draw_index, d) in frame.draws.iter().enumerate() {
-        if d.range.is_empty() {
+    for (draw_index, (d, view)) in frame.draws.iter().zip(&views).enumerate() {
+        if view.range.is_empty() {
             continue;
         }
-        let geometry = geometry(frame, d);
+        let geometry = view.geometry;
         let material = &frame.materials[d.material];
         for copy in d.instances.clone() {
             let instance = &frame.instances[copy as usize];
@@ -237,7 +365,7 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
             match geometry {
                 Geometry::Mesh { vertices, indices } => {
                     cache.reset(vertices.len());
-                    let range = clamp_range(&d.range, indices.len());
+                    let range = clamp_range(&view.range, indices.len());
                     let first = range.start / 3;
                     for (k, t) in indices[range].chunks_exact(3).enumerate() {
                         let c = [t[0], t[1], t[2]].map(|i| {
@@ -252,7 +380,7 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
                     }
                 }
                 Geometry::Flat(points) => {
-                    let range = clamp_range(&d.range, points.len());
+                    let range = clamp_range(&view.range, points.len());
                     let flat = FlatDraw {
                         light: &light,
                         material,
@@ -276,6 +404,7 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
     }
     let shader = Shader {
         frame,
+        views: &views,
         light: &light,
         view_proj,
         grid,
@@ -376,6 +505,7 @@ impl FlatDraw<'_> {
 /// Shades the visibility buffer.
 struct Shader<'a> {
     frame: &'a Frame<'a>,
+    views: &'a [DrawView<'a>],
     light: &'a Light<'a>,
     view_proj: Mat4,
     grid: Grid,
@@ -408,7 +538,7 @@ impl Shader<'_> {
         let (draw, copy) = self.batches[(key >> 32) as usize];
         let d = &self.frame.draws[draw];
         let instance: &InstanceData = &self.frame.instances[copy as usize];
-        let Geometry::Mesh { vertices, indices } = geometry(self.frame, d) else {
+        let Geometry::Mesh { vertices, indices } = self.views[draw].geometry else {
             return Vec3::ZERO;
         };
         let t = (key & 0xffff_ffff) as usize * 3;

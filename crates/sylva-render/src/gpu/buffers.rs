@@ -97,8 +97,8 @@ fn upload_mesh(device: &wgpu::Device, label: &str, mesh: &MeshData, max_bytes: u
     GpuMesh { parts }
 }
 
-/// Uploads `data`. A tree stored for range degradation must fit whole in one buffer per mesh,
-/// since its lists index the whole mesh: `None` when it does not.
+/// Uploads `data`: a mesh cut to fit `max_bytes` per buffer, or a tree stored for range as
+/// its records (`None` when they are over the limit: a draw reads them from one buffer).
 pub(crate) fn upload(
     device: &wgpu::Device,
     data: &TreeData,
@@ -109,36 +109,16 @@ pub(crate) fn upload(
     let lod = match &data.lod {
         None => None,
         Some(lod) => {
-            let too_big = |bytes: usize| bytes as u64 > max_bytes;
-            // Its lists index each mesh whole: one part each (none when the vertices alone
-            // are over the limit).
-            if bark.parts.len() != 1
-                || leaves.parts.len() != 1
-                || lod.indices.iter().any(|i| too_big(i.len() * 4))
-                || lod
-                    .points
-                    .iter()
-                    .any(|p| too_big(std::mem::size_of_val(p.as_slice())))
-            {
+            let (segments, cards): (&[u8], &[u8]) = (
+                bytemuck::cast_slice(&lod.segments),
+                bytemuck::cast_slice(&lod.leaves),
+            );
+            if segments.len().max(cards.len()) as u64 > max_bytes {
                 return None;
             }
             Some(GpuLod {
-                indices: std::array::from_fn(|i| {
-                    buffer(
-                        device,
-                        "lod indices",
-                        bytemuck::cast_slice(&lod.indices[i]),
-                        wgpu::BufferUsages::INDEX,
-                    )
-                }),
-                points: std::array::from_fn(|i| {
-                    buffer(
-                        device,
-                        "lod points",
-                        bytemuck::cast_slice(&lod.points[i]),
-                        wgpu::BufferUsages::VERTEX,
-                    )
-                }),
+                segments: buffer(device, "segments", segments, wgpu::BufferUsages::VERTEX),
+                leaves: buffer(device, "leaf cards", cards, wgpu::BufferUsages::VERTEX),
             })
         }
     };

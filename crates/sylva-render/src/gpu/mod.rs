@@ -12,7 +12,7 @@ use pipelines::{DEPTH, Pipelines, SAMPLES};
 use record::{Props, Source, record};
 
 use crate::RenderError;
-use crate::frame::{Frame, Primitive};
+use crate::frame::Frame;
 use crate::props::PropMesh;
 use crate::tree::{TreeBuffers, TreeData};
 use std::sync::{Arc, Mutex};
@@ -217,6 +217,25 @@ impl GpuRenderer {
             bytemuck::cast_slice(&frame.instances),
             wgpu::BufferUsages::VERTEX,
         );
+        let (copy_bytes, copy_offsets) = record::copies(frame);
+        let copies = buffer(
+            &self.device,
+            "copies",
+            &copy_bytes,
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let copy_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("copies"),
+            layout: &p.copy_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &copies,
+                    offset: 0,
+                    size: std::num::NonZeroU64::new(std::mem::size_of::<record::CopyData>() as u64),
+                }),
+            }],
+        });
         // Resolve every draw's buffers first, so that a tree without GPU buffers is an error
         // before anything is recorded.
         let sources: Vec<Vec<Source>> = frame
@@ -243,13 +262,10 @@ impl GpuRenderer {
             pass.set_bind_group(0, &p.shadow_group, &[]);
             // Far trees' lines and points cast shadows too, or a forest's shade would thin out
             // with the camera's range.
-            for (d, s) in frame.draws.iter().zip(&sources) {
-                pass.set_pipeline(match d.primitive {
-                    Primitive::Triangles => &p.shadow_triangles,
-                    Primitive::Lines => &p.shadow_lines,
-                    Primitive::Points => &p.shadow_points,
-                });
-                record(&mut pass, d, s, &instances, d.shadow.clone());
+            for ((d, s), &offset) in frame.draws.iter().zip(&sources).zip(&copy_offsets) {
+                pass.set_pipeline(record::pipeline(p, d, true));
+                let buffers = (&instances, &copy_group, offset);
+                record(&mut pass, d, s, buffers, &p.templates, d.shadow.clone());
             }
         }
         let [r, g, b, a] = frame.clear.map(f64::from);
@@ -277,14 +293,11 @@ impl GpuRenderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &p.globals_group, &[]);
-        for (d, s) in frame.draws.iter().zip(&sources) {
-            pass.set_pipeline(match d.primitive {
-                Primitive::Triangles => &p.triangles,
-                Primitive::Lines => &p.lines,
-                Primitive::Points => &p.points,
-            });
+        for ((d, s), &offset) in frame.draws.iter().zip(&sources).zip(&copy_offsets) {
+            pass.set_pipeline(record::pipeline(p, d, false));
             pass.set_bind_group(1, &materials[d.material], &[]);
-            record(&mut pass, d, s, &instances, d.range.clone());
+            let buffers = (&instances, &copy_group, offset);
+            record(&mut pass, d, s, buffers, &p.templates, d.range.clone());
         }
         Ok(())
     }

@@ -2,7 +2,6 @@
 
 use crate::frame::{Globals, InstanceData, SHADOW_SIZE};
 use crate::props::Vertex;
-use crate::tree::FlatVertex;
 
 /// Samples per pixel of every colour pass.
 pub(crate) const SAMPLES: u32 = 4;
@@ -63,14 +62,89 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
     }
 }
 
+/// A stored tree's segments, read one per instance: two rings of (x, y, z, radius) as 16-bit
+/// fractions and a packed frame (`sylva::lod::packed::Segment`).
+const SEGMENT_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 24,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &wgpu::vertex_attr_array![8 => Uint16x4, 9 => Uint32, 10 => Uint16x4, 11 => Uint32],
+};
+
+/// Its leaf cards, one per instance (`sylva::lod::packed::Leaf`).
+const CARD_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &wgpu::vertex_attr_array![8 => Uint16x4, 9 => Uint32],
+};
+
+/// A leaf outline's vertices: position and normal at unit size.
+const TEMPLATE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 24,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+};
+
+/// Bytes between two draws' entries in the copy buffer (WebGPU's largest uniform offset
+/// alignment).
+pub(crate) const COPY_STRIDE: u64 = 256;
+
+/// The pipelines of one kind of primitive: the colour pass and the shadow pass.
+pub(crate) struct Pair {
+    pub colour: wgpu::RenderPipeline,
+    pub shadow: wgpu::RenderPipeline,
+}
+
+/// Every leaf outline's template on the device, and where each lies in its buffers.
+pub(crate) struct Templates {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    /// Per shape of `sylva::LeafShape::ALL`: first index, index count, base vertex.
+    pub ranges: Vec<(u32, u32, i32)>,
+}
+
+impl Templates {
+    fn new(device: &wgpu::Device) -> Self {
+        let (mut vertices, mut indices, mut ranges) = (Vec::<f32>::new(), Vec::new(), Vec::new());
+        for &shape in &sylva::LeafShape::ALL {
+            let t = sylva::mesh::leaf_template(shape);
+            ranges.push((
+                indices.len() as u32,
+                t.indices.len() as u32,
+                (vertices.len() / 6) as i32,
+            ));
+            for (p, n) in t.positions.iter().zip(&t.normals) {
+                vertices.extend_from_slice(&[p.x, p.y, p.z, n.x, n.y, n.z]);
+            }
+            indices.extend_from_slice(&t.indices);
+        }
+        let make = |label, bytes: &[u8], usage| super::buffers::buffer(device, label, bytes, usage);
+        Self {
+            vertices: make(
+                "leaf outlines",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: make(
+                "leaf outlines",
+                bytemuck::cast_slice(&indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            ranges,
+        }
+    }
+}
+
 /// Pipelines, bind groups and the shadow map of one device.
 pub(crate) struct Pipelines {
+    pub templates: Templates,
     pub triangles: wgpu::RenderPipeline,
-    pub lines: wgpu::RenderPipeline,
-    pub points: wgpu::RenderPipeline,
     pub shadow_triangles: wgpu::RenderPipeline,
-    pub shadow_lines: wgpu::RenderPipeline,
-    pub shadow_points: wgpu::RenderPipeline,
+    /// Stored trees: segments as tubes and as lines, leaves as cards and as points.
+    pub tubes: Pair,
+    pub axes: Pair,
+    pub cards: Pair,
+    pub dots: Pair,
+    pub copy_layout: wgpu::BindGroupLayout,
     pub globals: wgpu::Buffer,
     pub globals_group: wgpu::BindGroup,
     pub shadow_group: wgpu::BindGroup,
@@ -115,6 +189,20 @@ impl Pipelines {
             label: Some("material"),
             entries: &[uniform_entry(0, wgpu::ShaderStages::FRAGMENT)],
         });
+        // Stored trees: the copy and its records' scales, one entry per draw.
+        let copy_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("copy"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
         // The shadow pass writes the shadow map, so its bind group must not also bind it.
         let shadow_globals_layout =
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -131,25 +219,39 @@ impl Pipelines {
             bind_group_layouts: &[Some(&globals_layout), Some(&material_layout)],
             immediate_size: 0,
         });
+        let stored_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("stored tree"),
+            bind_group_layouts: &[
+                Some(&globals_layout),
+                Some(&material_layout),
+                Some(&copy_layout),
+            ],
+            immediate_size: 0,
+        });
+        let stored_shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("stored tree shadow"),
+            bind_group_layouts: &[Some(&shadow_globals_layout), None, Some(&copy_layout)],
+            immediate_size: 0,
+        });
         let vertex_layout = wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32],
         };
-        let flat_layout = wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<FlatVertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32, 2 => Snorm8x4],
-        };
-        let colour = |label, vs, fs, layout_of: &wgpu::VertexBufferLayout, topology| {
+        let colour = |label,
+                      vs,
+                      fs,
+                      pipeline_layout: &wgpu::PipelineLayout,
+                      buffers: &[Option<wgpu::VertexBufferLayout>],
+                      topology| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
-                layout: Some(&layout),
+                layout: Some(pipeline_layout),
                 vertex: wgpu::VertexState {
                     module: &shader,
                     entry_point: Some(vs),
                     compilation_options: Default::default(),
-                    buffers: &[Some(layout_of.clone()), Some(INSTANCE_LAYOUT)],
+                    buffers,
                 },
                 primitive: wgpu::PrimitiveState {
                     topology,
@@ -168,44 +270,39 @@ impl Pipelines {
                 cache: None,
             })
         };
+        let mesh = [Some(vertex_layout.clone()), Some(INSTANCE_LAYOUT)];
         let triangles = colour(
             "tree",
             "vs_main",
             "fs_main",
-            &vertex_layout,
+            &layout,
+            &mesh,
             wgpu::PrimitiveTopology::TriangleList,
         );
         // A line or point covers as many of a pixel's samples as the stems or leaves it
         // stands for would.
-        let (vs_flat, fs_flat) = if sample_mask {
-            ("vs_flat", "fs_flat")
+        let (axis, dot, fs_flat) = if sample_mask {
+            ("vs_axis", "vs_dot", "fs_flat")
         } else {
-            ("vs_flat_per_sample", "fs_flat_per_sample")
+            (
+                "vs_axis_per_sample",
+                "vs_dot_per_sample",
+                "fs_flat_per_sample",
+            )
         };
-        let lines = colour(
-            "lines",
-            vs_flat,
-            fs_flat,
-            &flat_layout,
-            wgpu::PrimitiveTopology::LineList,
-        );
-        let points = colour(
-            "points",
-            vs_flat,
-            fs_flat,
-            &flat_layout,
-            wgpu::PrimitiveTopology::PointList,
-        );
         // Shadows of meshes, and of the lines and points that stand in for far stems and leaves.
-        let shadow = |entry, layout_of: &wgpu::VertexBufferLayout, topology| {
+        let shadow = |entry,
+                      pipeline_layout: &wgpu::PipelineLayout,
+                      buffers: &[Option<wgpu::VertexBufferLayout>],
+                      topology| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("shadow"),
-                layout: Some(&shadow_layout),
+                layout: Some(pipeline_layout),
                 vertex: wgpu::VertexState {
                     module: &shader,
                     entry_point: Some(entry),
                     compilation_options: Default::default(),
-                    buffers: &[Some(layout_of.clone()), Some(INSTANCE_LAYOUT)],
+                    buffers,
                 },
                 primitive: wgpu::PrimitiveState {
                     topology,
@@ -232,17 +329,50 @@ impl Pipelines {
         };
         let shadow_triangles = shadow(
             "vs_shadow",
-            &vertex_layout,
+            &shadow_layout,
+            &mesh,
             wgpu::PrimitiveTopology::TriangleList,
         );
-        let shadow_lines = shadow(
-            "vs_shadow_flat",
-            &flat_layout,
+        let pair =
+            |label, vs, fs, shadow_vs, buffers: &[Option<wgpu::VertexBufferLayout>], topology| {
+                Pair {
+                    colour: colour(label, vs, fs, &stored_layout, buffers, topology),
+                    shadow: shadow(shadow_vs, &stored_shadow_layout, buffers, topology),
+                }
+            };
+        let segments = [Some(SEGMENT_LAYOUT)];
+        let cards = [Some(TEMPLATE_LAYOUT), Some(CARD_LAYOUT)];
+        let dots = [Some(CARD_LAYOUT)];
+        let tubes = pair(
+            "tubes",
+            "vs_tube",
+            "fs_main",
+            "vs_shadow_tube",
+            &segments,
+            wgpu::PrimitiveTopology::TriangleList,
+        );
+        let axes = pair(
+            "axes",
+            axis,
+            fs_flat,
+            "vs_shadow_axis",
+            &segments,
             wgpu::PrimitiveTopology::LineList,
         );
-        let shadow_points = shadow(
-            "vs_shadow_flat",
-            &flat_layout,
+        let cards = pair(
+            "cards",
+            "vs_card",
+            "fs_main",
+            "vs_shadow_card",
+            &cards,
+            wgpu::PrimitiveTopology::TriangleList,
+        );
+        let dots = pair(
+            "dots",
+            dot,
+            fs_flat,
+            "vs_shadow_dot",
+            &dots,
             wgpu::PrimitiveTopology::PointList,
         );
         let shadow_texture = device.create_texture(&wgpu::TextureDescriptor {
@@ -300,12 +430,14 @@ impl Pipelines {
             }],
         });
         Self {
+            templates: Templates::new(device),
             triangles,
-            lines,
-            points,
             shadow_triangles,
-            shadow_lines,
-            shadow_points,
+            tubes,
+            axes,
+            cards,
+            dots,
+            copy_layout,
             globals,
             globals_group,
             shadow_group,

@@ -1,7 +1,8 @@
 //! Recording a frame's draws: which buffers each reads, and the calls that draw them.
 
+use super::pipelines::{COPY_STRIDE, Pipelines};
 use crate::RenderError;
-use crate::frame::{Draw, Part};
+use crate::frame::{Draw, Frame, Part, Primitive};
 
 /// The frame's own buffers (the props).
 pub(super) struct Props {
@@ -9,12 +10,80 @@ pub(super) struct Props {
     pub person: crate::tree::GpuPart,
 }
 
-/// Buffers one draw reads: vertices, and indices for triangles.
-pub(super) struct Source<'a> {
-    vertices: &'a wgpu::Buffer,
-    indices: Option<&'a wgpu::Buffer>,
-    /// The part's own triangle count when a mesh is cut into parts (each drawn whole).
-    whole: Option<u32>,
+/// Buffers one draw reads.
+pub(super) enum Source<'a> {
+    /// Indexed triangles, placed by the instance buffer.
+    Mesh {
+        vertices: &'a wgpu::Buffer,
+        indices: &'a wgpu::Buffer,
+        /// The part's own index count when a mesh is cut into parts (each drawn whole).
+        whole: Option<u32>,
+    },
+    /// A stored tree's records, one per instance, placed by the draw's copy entry.
+    Stored {
+        records: &'a wgpu::Buffer,
+        /// Bytes per record.
+        stride: u64,
+        /// Vertices each record draws (tubes, lines, points) or, for leaf cards, `None`: the
+        /// outline's template, indexed.
+        vertices: Option<u32>,
+        /// Index of the leaf outline in [`super::pipelines::Templates`].
+        shape: usize,
+    },
+}
+
+/// What a stored tree's draw reads from the shader's copy entry: where the copy stands and the
+/// scales of its records (the layout of `Copy` in the shader).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(super) struct CopyData {
+    place: [f32; 4],
+    turn: [f32; 4],
+    lo: [f32; 4],
+    size: [f32; 4],
+    run: [f32; 4],
+}
+
+/// The copy entries of a frame's stored-tree draws, `COPY_STRIDE` bytes apart, and each draw's
+/// offset (0 for draws that read none).
+pub(super) fn copies(frame: &Frame) -> (Vec<u8>, Vec<u32>) {
+    let mut bytes = Vec::new();
+    let offsets = frame
+        .draws
+        .iter()
+        .map(|d| {
+            let Some((lod, run)) = d.part.run() else {
+                return 0;
+            };
+            let i = &frame.instances[d.instances.start as usize];
+            let q = &lod.quantiser;
+            let shape_area = sylva::mesh::leaf_template(run.shape).area();
+            let data = CopyData {
+                place: i.place,
+                turn: [i.turn[0], i.turn[1], i.stands_for[0], i.stands_for[1]],
+                lo: q.lo.extend(q.radius).to_array(),
+                size: q.size.extend(q.leaf_length).to_array(),
+                run: if run.sides > 0 {
+                    [
+                        run.sides as f32,
+                        run.lobes as f32,
+                        run.lobe_depth,
+                        q.leaf_width,
+                    ]
+                } else {
+                    [shape_area, 0.0, 0.0, q.leaf_width]
+                },
+            };
+            let offset = bytes.len() as u32;
+            bytes.extend_from_slice(bytemuck::bytes_of(&data));
+            bytes.resize(offset as usize + COPY_STRIDE as usize, 0);
+            offset
+        })
+        .collect();
+    if bytes.is_empty() {
+        bytes.resize(COPY_STRIDE as usize, 0);
+    }
+    (bytes, offsets)
 }
 
 impl Props {
@@ -23,9 +92,9 @@ impl Props {
             what: "drawing a frame",
             message: "a tree was not uploaded to this device".into(),
         };
-        let part = |p: &'a crate::tree::GpuPart, whole| Source {
+        let part = |p: &'a crate::tree::GpuPart, whole| Source::Mesh {
             vertices: &p.vertices,
-            indices: Some(&p.indices),
+            indices: &p.indices,
             whole,
         };
         Ok(match d.part {
@@ -39,50 +108,113 @@ impl Props {
                     many => many.iter().map(|p| part(p, Some(p.count))).collect(),
                 }
             }
-            Part::LodTriangles { tree, list } => {
+            Part::Run {
+                tree, list, flat, ..
+            } => {
                 let gpu = tree.gpu.as_ref().ok_or_else(missing)?;
                 let lod = gpu.lod.as_ref().ok_or_else(missing)?;
-                let mesh = if list == 3 { &gpu.leaves } else { &gpu.bark };
-                vec![Source {
-                    vertices: &mesh.parts.first().ok_or_else(missing)?.vertices,
-                    indices: Some(&lod.indices[list]),
-                    whole: None,
-                }]
-            }
-            Part::LodFlat { tree, list } => {
-                let gpu = tree.gpu.as_ref().ok_or_else(missing)?;
-                let lod = gpu.lod.as_ref().ok_or_else(missing)?;
-                vec![Source {
-                    vertices: &lod.points[list],
-                    indices: None,
-                    whole: None,
+                let (_, run) = d.part.run().ok_or_else(missing)?;
+                let shape = sylva::LeafShape::ALL
+                    .iter()
+                    .position(|&s| s == run.shape)
+                    .unwrap_or(0);
+                vec![match (list == 3, flat) {
+                    (false, false) => Source::Stored {
+                        records: &lod.segments,
+                        stride: 24,
+                        vertices: Some(6 * run.sides),
+                        shape,
+                    },
+                    (false, true) => Source::Stored {
+                        records: &lod.segments,
+                        stride: 24,
+                        vertices: Some(2),
+                        shape,
+                    },
+                    (true, false) => Source::Stored {
+                        records: &lod.leaves,
+                        stride: 12,
+                        vertices: None,
+                        shape,
+                    },
+                    (true, true) => Source::Stored {
+                        records: &lod.leaves,
+                        stride: 12,
+                        vertices: Some(1),
+                        shape,
+                    },
                 }]
             }
         })
     }
 }
 
+/// The pipeline of a draw in the colour pass (`shadow`: the shadow pass).
+pub(super) fn pipeline<'p>(p: &'p Pipelines, d: &Draw, shadow: bool) -> &'p wgpu::RenderPipeline {
+    let pair = match (d.part, d.primitive) {
+        (Part::Run { list: 3, .. }, Primitive::Triangles) => &p.cards,
+        (Part::Run { list: 3, .. }, _) => &p.dots,
+        (Part::Run { .. }, Primitive::Triangles) => &p.tubes,
+        (Part::Run { .. }, _) => &p.axes,
+        _ if shadow => return &p.shadow_triangles,
+        _ => return &p.triangles,
+    };
+    if shadow { &pair.shadow } else { &pair.colour }
+}
+
+/// Records one draw of `range` (its records, for a stored tree).
 pub(super) fn record(
     pass: &mut wgpu::RenderPass<'_>,
     d: &Draw,
     sources: &[Source],
-    instances: &wgpu::Buffer,
+    draw_buffers: (&wgpu::Buffer, &wgpu::BindGroup, u32),
+    templates: &super::pipelines::Templates,
     range: std::ops::Range<u32>,
 ) {
     if range.is_empty() || d.instances.is_empty() {
         return;
     }
+    let (instances, copy_group, copy_offset) = draw_buffers;
     for s in sources {
-        // A mesh cut into parts is only ever drawn whole.
-        let range = s.whole.map_or(range.clone(), |n| 0..n);
-        pass.set_vertex_buffer(0, s.vertices.slice(..));
-        pass.set_vertex_buffer(1, instances.slice(..));
-        match s.indices {
-            Some(indices) => {
+        match *s {
+            Source::Mesh {
+                vertices,
+                indices,
+                whole,
+            } => {
+                // A mesh cut into parts is only ever drawn whole.
+                let range = whole.map_or(range.clone(), |n| 0..n);
+                pass.set_vertex_buffer(0, vertices.slice(..));
+                pass.set_vertex_buffer(1, instances.slice(..));
                 pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(range, 0, d.instances.clone());
             }
-            None => pass.draw(range, d.instances.clone()),
+            Source::Stored {
+                records,
+                stride,
+                vertices,
+                shape,
+            } => {
+                pass.set_bind_group(2, copy_group, &[copy_offset]);
+                let items = records.slice(range.start as u64 * stride..range.end as u64 * stride);
+                let count = range.end - range.start;
+                match vertices {
+                    Some(n) => {
+                        pass.set_vertex_buffer(0, items);
+                        pass.draw(0..n, 0..count);
+                    }
+                    None => {
+                        let (first, indices, base) = templates.ranges[shape];
+                        pass.set_vertex_buffer(0, templates.vertices.slice(..));
+                        pass.set_vertex_buffer(1, items);
+                        pass.set_index_buffer(
+                            templates.indices.slice(..),
+                            wgpu::IndexFormat::Uint32,
+                        );
+                        pass.draw_indexed(first..first + indices, base, 0..count);
+                    }
+                }
+            }
         }
     }
 }

@@ -1,5 +1,6 @@
 use super::order::paper_loop;
 use super::*;
+use crate::mesh::MeshOptions;
 use crate::{GenerateOptions, generate, species::builtin};
 
 const PAPER: Viewer = Viewer {
@@ -19,7 +20,7 @@ fn lod(id: &str, quality: f64) -> LodTree {
         },
     )
     .unwrap();
-    LodTree::build_keeping_indices(
+    LodTree::build(
         &sk,
         &MeshOptions {
             quality,
@@ -39,37 +40,30 @@ fn calibrated_range_matches_the_paper() {
     assert!((tele.calibrated_range(2000.0) - 1000.0).abs() < 1e-3);
 }
 
+fn meshed_and_flat(t: &LodTree, range: f32) -> Vec<Vec<RunDraw>> {
+    t.lists
+        .iter()
+        .enumerate()
+        .map(|(i, l)| l.select(i == 3, range, &PAPER).map(|(_, d)| d).collect())
+        .collect()
+}
+
 #[test]
 fn near_trees_draw_everything_as_meshes() {
     let t = lod("quaking_aspen", 1.0);
-    let full = t.mesh.bark.indices.len() + t.mesh.leaves.indices.len();
-    let draws = t.select(5.0, &PAPER);
-    let drawn: u32 = draws.iter().map(|d| d.triangles.end).sum();
-    assert_eq!(drawn as usize, full, "all triangles at 5 m");
-    assert!(draws.iter().all(|d| d.points.is_empty()));
-    // Lists hold exactly the mesh's triangles, reordered.
-    for (i, list) in t.lists.iter().enumerate() {
-        let source = if i == 3 {
-            &t.mesh.leaves.indices
-        } else {
-            &t.mesh.bark.indices
-        };
-        assert_eq!(
-            *list.index_prefix.last().unwrap() as usize,
-            list.indices.len()
-        );
-        let mut a = list.indices.clone();
-        a.sort_unstable();
-        assert!(a.iter().all(|&v| (v as usize)
-            < if i == 3 {
-                t.mesh.leaves.vertex_count()
-            } else {
-                t.mesh.bark.vertex_count()
-            }));
-        let _ = source;
+    for (list, draws) in t.lists.iter().zip(meshed_and_flat(&t, 5.0)) {
+        for (run, d) in list.runs.iter().zip(draws) {
+            assert_eq!(d.meshed, run.items.clone(), "all items meshed at 5 m");
+            assert!(d.flat.is_empty());
+        }
     }
-    let total: usize = t.lists[..3].iter().map(|l| l.indices.len()).sum();
-    assert_eq!(total, t.mesh.bark.indices.len());
+    // Every segment and leaf is in exactly one run.
+    let segments: usize = t.lists[..3].iter().map(|l| l.items).sum();
+    assert_eq!(segments, t.segments.len());
+    assert_eq!(t.lists[3].items, t.leaves.len());
+    for list in &t.lists {
+        assert_eq!(list.runs.iter().map(Run::len).sum::<usize>(), list.items);
+    }
 }
 
 #[test]
@@ -77,24 +71,20 @@ fn each_level_of_detail_is_the_papers_set_of_items() {
     let t = lod("black_tupelo", 0.5);
     for range in [20.0, 80.0, 300.0, 1000.0, 3000.0] {
         for (i, list) in t.lists.iter().enumerate() {
-            let leaves = i == 3;
-            let (x_mesh, _) = list.levels_of_detail(leaves, range, &PAPER);
-            let d = list.select(leaves, range, &PAPER);
-            // The meshed items (a prefix of the rank-major list) are the paper's loop's items.
-            let meshed = list
-                .index_prefix
-                .iter()
-                .position(|&p| p == d.triangles.end)
-                .unwrap();
-            let mut from_prefix: Vec<usize> = order::rank_major(list.items, list.mass)[..meshed]
-                .iter()
-                .map(|&v| v as usize)
-                .collect();
-            from_prefix.sort_unstable();
-            let mut loop_items = paper_loop(list.items, list.mass, x_mesh);
-            loop_items.sort_unstable();
-            assert_eq!(from_prefix.len(), loop_items.len(), "list {i} at {range} m");
-            assert_eq!(from_prefix, loop_items, "list {i} at {range} m");
+            let (x_mesh, _) = list.levels_of_detail(i == 3, range, &PAPER);
+            for (run, d) in list.select(i == 3, range, &PAPER) {
+                // The meshed records (a prefix of the rank-major run) are the paper's loop's
+                // items of the run.
+                let meshed = d.meshed.len();
+                let mut from_prefix: Vec<usize> = order::rank_major(run.len(), list.mass)[..meshed]
+                    .iter()
+                    .map(|&v| v as usize)
+                    .collect();
+                from_prefix.sort_unstable();
+                let mut loop_items = paper_loop(run.len(), list.mass, x_mesh);
+                loop_items.sort_unstable();
+                assert_eq!(from_prefix, loop_items, "list {i} at {range} m");
+            }
         }
     }
 }
@@ -102,31 +92,29 @@ fn each_level_of_detail_is_the_papers_set_of_items() {
 #[test]
 fn receding_changes_counts_one_item_per_mass_at_most() {
     let t = lod("quaking_aspen", 1.0);
-    let mut previous: Option<[ListDraw; 4]> = None;
+    let mut previous: Option<Vec<Vec<RunDraw>>> = None;
     let mut range = 10.0f32;
     while range < 3000.0 {
-        let now = t.select(range, &PAPER);
+        let now = meshed_and_flat(&t, range);
         if let Some(prev) = &previous {
-            for (i, (a, b)) in prev.iter().zip(&now).enumerate() {
-                let list = &t.lists[i];
-                let masses = list.items.div_ceil(list.mass) as i64;
-                let items = |d: &ListDraw| {
-                    list.index_prefix
-                        .iter()
-                        .position(|&p| p == d.triangles.end)
-                        .unwrap() as i64
-                };
-                assert!(items(b) <= items(a), "meshes grow as the camera recedes");
-                assert!(
-                    items(a) - items(b) <= masses,
-                    "list {i}: mesh count jumped at {range} m"
-                );
-                let per = if i == 3 { 1 } else { 2 };
-                let drawn = |d: &ListDraw| (d.points.end / per) as i64;
-                assert!(
-                    drawn(a) - drawn(b) <= masses && drawn(b) <= drawn(a),
-                    "list {i}: drawn count jumped at {range} m"
-                );
+            for (i, list) in t.lists.iter().enumerate() {
+                for (k, run) in list.runs.iter().enumerate() {
+                    let (a, b) = (&prev[i][k], &now[i][k]);
+                    let masses = run.len().div_ceil(list.mass);
+                    assert!(
+                        b.meshed.len() <= a.meshed.len(),
+                        "meshes grow as it recedes"
+                    );
+                    assert!(
+                        a.meshed.len() - b.meshed.len() <= masses,
+                        "list {i}: mesh count jumped at {range} m"
+                    );
+                    let drawn = |d: &RunDraw| d.flat.end as usize;
+                    assert!(
+                        drawn(b) <= drawn(a) && drawn(a) - drawn(b) <= masses,
+                        "list {i}: drawn count jumped at {range} m"
+                    );
+                }
             }
         }
         previous = Some(now);
@@ -138,7 +126,7 @@ fn receding_changes_counts_one_item_per_mass_at_most() {
 fn a_100k_facet_tree_at_2_km_is_about_30_lines_and_1000_points() {
     // The quaking aspen at quality 0.6 is about 100,000 facets.
     let t = lod("quaking_aspen", 0.6);
-    let facets = t.mesh.triangle_count();
+    let facets = t.triangle_count();
     assert!((70_000..=140_000).contains(&facets), "{facets} facets");
     let c = t.counts(2000.0, &PAPER);
     assert!((15..=60).contains(&c.lines), "{c:?}");
@@ -162,56 +150,86 @@ fn counts_fall_with_range() {
     }
 }
 
+fn area(m: &crate::mesh::Mesh) -> f64 {
+    m.indices
+        .chunks(3)
+        .map(|c| {
+            let [a, b, d] = [c[0], c[1], c[2]].map(|i| glam::Vec3::from(m.positions[i as usize]));
+            (b - a).cross(d - a).length() as f64 / 2.0
+        })
+        .sum()
+}
+
 #[test]
-fn stored_trees_drop_the_duplicate_order_and_rebuild_whole_meshes() {
-    let kept = lod("quaking_aspen", 0.5);
+fn a_black_tupelo_is_stored_in_under_a_megabyte_and_rebuilds_its_mesh() {
+    let p = builtin("black_tupelo").unwrap();
+    let sk = generate(&p, &GenerateOptions::default()).unwrap();
+    let options = MeshOptions::for_species(&p, 1.0);
+    let t = LodTree::build(&sk, &options);
+    assert!(t.heap_bytes() <= 1_000_000, "{} bytes", t.heap_bytes());
+    let mesh = crate::mesh::mesh_tree(&sk, &options);
+    let full = t.full_mesh();
+    // Same leaves: as many triangles, the same area (the tupelo's leaves are all one size, so
+    // their 6-bit sizes are exact), and the same box to a millimetre.
+    assert_eq!(full.leaves.triangle_count(), mesh.leaves.triangle_count());
+    let (a, b) = (area(&full.leaves), area(&mesh.leaves));
+    assert!((a / b - 1.0).abs() < 1e-3, "leaf area {a} vs {b}");
+    let (lo, hi) = full.leaves.bounds().unwrap();
+    let (mlo, mhi) = mesh.leaves.bounds().unwrap();
+    for k in 0..3 {
+        assert!((lo[k] - mlo[k]).abs() < 1e-3 && (hi[k] - mhi[k]).abs() < 1e-3);
+    }
+    // Same bark, less the flat caps on open stem ends (the mesher's only triangles that have
+    // no segment): area within 1%, and no triangle more than the mesher's segments hold.
+    let (a, b) = (area(&full.bark), area(&mesh.bark));
+    assert!((a / b - 1.0).abs() < 0.01, "bark area {a} vs {b}");
+    assert!(full.bark.triangle_count() <= mesh.bark.triangle_count());
+    assert!(full.bark.triangle_count() * 100 >= mesh.bark.triangle_count() * 95);
+    // Every drawn item is counted: the stored triangles are the quads of every segment.
+    let quads: usize = t.lists[..3]
+        .iter()
+        .flat_map(|l| &l.runs)
+        .map(|r| r.len() * 2 * r.sides as usize)
+        .sum::<usize>()
+        + full.leaves.triangle_count();
+    assert_eq!(t.triangle_count(), quads);
+}
+
+#[test]
+fn records_hold_the_skeleton_to_their_steps() {
     let p = builtin("quaking_aspen").unwrap();
-    let sk = generate(
-        &p,
-        &GenerateOptions {
-            seed: 1,
-            quality: 0.5,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let stored = LodTree::build(
-        &sk,
-        &MeshOptions {
-            quality: 0.5,
-            ..Default::default()
-        },
-    );
-    assert!(stored.mesh.bark.indices.is_empty() && stored.mesh.leaves.indices.is_empty());
-    assert_eq!(stored.lists, kept.lists);
-    assert!(stored.heap_bytes() < kept.heap_bytes());
-    let full = stored.full_mesh();
-    assert_eq!(full.triangle_count(), kept.mesh.triangle_count());
-    assert_eq!(stored.triangle_count(), kept.mesh.triangle_count());
-    // Same triangles as the mesh, as sets of corner positions.
-    let corners = |m: &crate::mesh::Mesh| {
-        let mut t: Vec<[u32; 9]> = m
-            .indices
-            .chunks(3)
-            .map(|c| {
-                let mut k = [0u32; 9];
-                for (j, &i) in c.iter().enumerate() {
-                    for a in 0..3 {
-                        k[j * 3 + a] = m.positions[i as usize][a].to_bits();
-                    }
-                }
-                k
-            })
-            .collect();
-        t.sort_unstable();
-        t
-    };
-    assert_eq!(corners(&full.bark), corners(&kept.mesh.bark));
-    assert_eq!(corners(&full.leaves), corners(&kept.mesh.leaves));
-    // A reduced level keeps only the vertices its triangles use.
-    let half = stored.mesh_at([16.0, 16.0, 8.0, 2.0]);
+    let mut sk = generate(&p, &GenerateOptions::default()).unwrap();
+    // Leaves of several sizes and lights, as a grown crown has.
+    for (i, l) in sk.leaves.iter_mut().enumerate() {
+        l.length *= 0.5 + (i % 7) as f32 / 12.0;
+        l.light = (i % 10) as f32 / 9.0;
+    }
+    let t = LodTree::build(&sk, &MeshOptions::default());
+    let q = &t.quantiser;
+    let step = q.size.max_element() / 65535.0;
+    let run = &t.lists[3].runs[0];
+    assert_eq!(run.len(), sk.leaves.len(), "one outline, one run");
+    let longest = sk.leaves.iter().map(|l| l.length).fold(0.0, f32::max);
+    for (p, &i) in order::rank_major(run.len(), order::LEAF_MASS)
+        .iter()
+        .enumerate()
+    {
+        let (leaf, card) = (&sk.leaves[i as usize], expand::Card::of(q, &t.leaves[p]));
+        assert!(leaf.position.distance(card.base) <= step, "leaf {i}");
+        let turn = leaf.orientation.angle_between(card.frame).to_degrees();
+        assert!(turn < 0.3, "leaf {i}: frame off by {turn} degrees");
+        assert!((leaf.length - card.length).abs() <= longest / 126.0 + 1e-6);
+        assert_eq!(card.shade, crate::mesh::luminance(leaf.light));
+    }
+}
+
+#[test]
+fn reduced_levels_keep_fewer_items() {
+    let t = lod("quaking_aspen", 0.5);
+    let full = t.full_mesh();
+    let half = t.mesh_at([16.0, 16.0, 8.0, 2.0]);
     assert!(half.leaves.triangle_count() * 2 <= full.leaves.triangle_count() + 8);
-    assert!(half.leaves.vertex_count() < full.leaves.vertex_count());
+    assert!(half.bark.triangle_count() < full.bark.triangle_count());
     assert!(
         half.leaves
             .indices
@@ -223,16 +241,6 @@ fn stored_trees_drop_the_duplicate_order_and_rebuild_whole_meshes() {
 #[test]
 fn engine_levels_keep_the_leaf_area_with_fewer_leaves() {
     let t = lod("black_tupelo", 0.5);
-    let area = |m: &crate::mesh::Mesh| {
-        m.indices
-            .chunks(3)
-            .map(|c| {
-                let [a, b, d] =
-                    [c[0], c[1], c[2]].map(|i| glam::Vec3::from(m.positions[i as usize]));
-                (b - a).cross(d - a).length() as f64 / 2.0
-            })
-            .sum::<f64>()
-    };
     let chain = t.engine_chain();
     assert_eq!(chain.len(), 3);
     let full = area(&chain[0].0.leaves);
@@ -252,5 +260,5 @@ fn engine_levels_keep_the_leaf_area_with_fewer_leaves() {
             assert!(*coverage < prev_cov);
         }
     }
-    assert_eq!(chain[0].0.triangle_count(), t.mesh.triangle_count());
+    assert_eq!(chain[0].0.triangle_count(), t.full_mesh().triangle_count());
 }

@@ -6,6 +6,7 @@ mod leaves;
 mod stems;
 
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
+pub(crate) use stems::ring_frame;
 pub use stems::{SegmentTriangles, mesh_stems_by_segment, ring_vertices};
 
 use crate::skeleton::Skeleton;
@@ -57,7 +58,7 @@ impl Mesh {
         self.indices.reserve_exact(indices);
     }
 
-    fn push(&mut self, position: glam::Vec3, normal: glam::Vec3, uv: [f32; 2]) -> u32 {
+    pub(crate) fn push(&mut self, position: glam::Vec3, normal: glam::Vec3, uv: [f32; 2]) -> u32 {
         let i = self.positions.len() as u32;
         self.positions.push(position.to_array());
         self.normals.push(normal.to_array());
@@ -123,21 +124,6 @@ impl MeshOptions {
             None => stems::ring_vertices(stem.level as usize, self.quality, stem.lobes),
         }
     }
-}
-
-/// Meshes only the leaves of a skeleton (appending to `mesh`).
-pub(crate) fn mesh_leaves_into(skeleton: &Skeleton, mesh: &mut Mesh) {
-    let (v, i) = leaves::count(skeleton);
-    mesh.reserve(v, i);
-    leaves::mesh_leaves(skeleton, mesh);
-}
-
-/// The leaves' vertices only (appending to `mesh`), for callers that write the triangles in
-/// their own order.
-pub(crate) fn mesh_leaf_vertices_into(skeleton: &Skeleton, mesh: &mut Mesh) {
-    let (v, _) = leaves::count(skeleton);
-    mesh.reserve(v, 0);
-    leaves::leaf_vertices(skeleton, mesh);
 }
 
 /// Meshes every stem and leaf of a skeleton.

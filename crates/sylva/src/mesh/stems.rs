@@ -113,7 +113,7 @@ pub fn mesh_stems_by_segment(
 }
 
 /// Ring frame at section `j`: the bisector of the segments meeting there, so joints don't pinch.
-fn ring_frame(sections: &[CrossSection], j: usize) -> Quat {
+pub(crate) fn ring_frame(sections: &[CrossSection], j: usize) -> Quat {
     if j == 0 || j + 1 == sections.len() {
         sections[j].orientation
     } else {
