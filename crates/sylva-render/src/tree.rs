@@ -46,7 +46,8 @@ pub struct RenderTree {
     pub triangles: usize,
 }
 
-fn mesh_data(mesh: &Mesh) -> MeshData {
+/// A mesh in the renderer's vertex layout.
+pub(crate) fn mesh_data(mesh: &Mesh) -> MeshData {
     let vertices = mesh
         .positions
         .iter()

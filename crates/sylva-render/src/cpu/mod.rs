@@ -118,20 +118,7 @@ fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
     };
     out.range = map(&d.range);
     out.shadow = map(&d.shadow);
-    out.mesh = MeshData {
-        vertices: mesh
-            .positions
-            .iter()
-            .zip(&mesh.normals)
-            .enumerate()
-            .map(|(i, (p, n))| Vertex {
-                position: *p,
-                normal: *n,
-                shade: mesh.shades.get(i).copied().unwrap_or(1.0),
-            })
-            .collect(),
-        indices: mesh.indices,
-    };
+    out.mesh = crate::tree::mesh_data(&mesh);
     Some(out)
 }
 
