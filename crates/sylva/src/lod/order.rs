@@ -9,14 +9,33 @@ pub const STEM_MASS: usize = 16;
 /// The leaf list groups 4 leaves per mass.
 pub const LEAF_MASS: usize = 4;
 
+/// The masses `0..masses` in bit-reversed order (0, n/2, n/4, 3n/4, ...): any first few of
+/// them are spread over the whole list rather than bunched at its start.
+pub fn spread(masses: usize) -> Vec<usize> {
+    let bits = masses.next_power_of_two().trailing_zeros();
+    (0..masses.next_power_of_two())
+        .map(|i| {
+            if bits == 0 {
+                0
+            } else {
+                i.reverse_bits() >> (usize::BITS - bits)
+            }
+        })
+        .filter(|&m| m < masses)
+        .collect()
+}
+
 /// Positions of `total` items in rank-major order: `order[p]` is the creation index of the item
-/// stored at position `p`.
+/// stored at position `p`. Within a rank the masses come in [`spread`] order, so that a level
+/// of detail below 1 (fewer items than masses, as a budget may ask for) draws items from the
+/// whole tree, not the masses made first (the lowest branches).
 pub fn rank_major(total: usize, mass: usize) -> Vec<u32> {
     let mass = mass.max(1);
     let masses = total.div_ceil(mass);
+    let order_of_masses = spread(masses);
     let mut order = Vec::with_capacity(total);
     for rank in 0..mass {
-        for m in 0..masses {
+        for &m in &order_of_masses {
             let item = m * mass + rank;
             if item < total {
                 order.push(item as u32);
@@ -76,7 +95,10 @@ mod tests {
             o.sort_unstable();
             assert_eq!(o, (0..total as u32).collect::<Vec<_>>());
         }
-        assert_eq!(rank_major(10, 4), vec![0, 4, 8, 1, 5, 9, 2, 6, 3, 7]);
+        // Masses 0, 1, 2 in spread order 0, 2, 1.
+        assert_eq!(rank_major(10, 4), vec![0, 8, 4, 1, 9, 5, 2, 6, 3, 7]);
+        assert_eq!(spread(8), vec![0, 4, 2, 6, 1, 5, 3, 7]);
+        assert_eq!(spread(1), vec![0]);
     }
 
     #[test]
@@ -89,9 +111,15 @@ mod tests {
                     let n = prefix_len(total, mass, x);
                     let mut prefix: Vec<usize> = order[..n].iter().map(|&i| i as usize).collect();
                     prefix.sort_unstable();
-                    let mut paper = paper_loop(total, mass, x);
-                    paper.sort_unstable();
-                    assert_eq!(prefix, paper, "T {total}, M {mass}, x {x}");
+                    // The paper's loop takes the first masses of a partial rank; the spread
+                    // order takes others, so compare how many items of each rank are drawn.
+                    let ranks = |items: &[usize]| {
+                        let mut n = vec![0; mass];
+                        items.iter().for_each(|&i| n[i % mass] += 1);
+                        n
+                    };
+                    let paper = paper_loop(total, mass, x);
+                    assert_eq!(ranks(&prefix), ranks(&paper), "T {total}, M {mass}, x {x}");
                 }
             }
         }
