@@ -210,7 +210,8 @@ impl LodList {
 }
 
 impl LodTree {
-    /// Builds the rank-major lists of a tree; see [`build`].
+    /// Stores `skeleton` for range: its segments and leaves packed, in the four lists, each a
+    /// few runs of like items stored rank-major; rings as `options` meshes them.
     pub fn build(skeleton: &crate::Skeleton, options: &crate::mesh::MeshOptions) -> Self {
         build::build(skeleton, options)
     }
