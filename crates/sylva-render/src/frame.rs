@@ -96,10 +96,9 @@ pub(crate) enum Part<'a> {
         tree: &'a RenderTree,
         leaves: bool,
     },
-    /// One run of a tree stored for range: its segments drawn as tubes or its leaves as
-    /// cards; the draw's range counts records.
-    /// With `flat`, the run's segments are drawn as lines along their axes and its leaves as
-    /// points.
+    /// One run of a tree stored for range: its segments drawn as tubes and its leaves as
+    /// cards or, with `flat`, as lines along their axes and as points. The draw's range counts
+    /// records.
     Run {
         tree: &'a RenderTree,
         list: usize,

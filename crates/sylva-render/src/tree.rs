@@ -6,16 +6,6 @@ use crate::props::Vertex;
 use glam::Vec3;
 use sylva::mesh::{Mesh, TreeMesh};
 
-/// A line or point vertex: position, the size of what it stands for (stem diameter or blade
-/// area) and a unit direction for lighting (stem axis or blade normal).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-pub(crate) struct FlatVertex {
-    pub position: [f32; 3],
-    pub size: f32,
-    pub normal: [i8; 4],
-}
-
 /// Triangles of one material.
 #[derive(Debug, Default)]
 pub(crate) struct MeshData {

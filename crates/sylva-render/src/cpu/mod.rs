@@ -11,7 +11,7 @@ mod shade;
 
 use crate::frame::{Draw, Frame, InstanceData, Part, Primitive, SHADOW_SIZE};
 use crate::props::Vertex;
-use crate::tree::{FlatVertex, MeshData};
+use crate::tree::MeshData;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use raster::{Grid, SAMPLE_POSITIONS, Setup};
 use rayon::prelude::*;
@@ -25,6 +25,15 @@ const EMPTY: u64 = u64::MAX;
 /// Keys with this bit hold the index of a colour shaded while rasterising (lines, points);
 /// others hold a batch (draw and copy) and a triangle.
 const FLAT: u64 = 1 << 63;
+
+/// A line or point vertex: position, the size of what it stands for (stem diameter or blade
+/// area) and a unit direction for lighting (stem axis or blade normal).
+#[derive(Clone, Copy, Debug)]
+struct FlatVertex {
+    position: [f32; 3],
+    size: f32,
+    normal: [i8; 4],
+}
 
 /// The vertices (and indices) one draw reads.
 #[derive(Clone, Copy)]

@@ -65,14 +65,14 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
 /// A stored tree's segments, read one per instance: two rings of (x, y, z, radius) as 16-bit
 /// fractions and a packed frame (`sylva::lod::packed::Segment`).
 const SEGMENT_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: 24,
+    array_stride: std::mem::size_of::<sylva::lod::packed::Segment>() as u64,
     step_mode: wgpu::VertexStepMode::Instance,
     attributes: &wgpu::vertex_attr_array![8 => Uint16x4, 9 => Uint32, 10 => Uint16x4, 11 => Uint32],
 };
 
 /// Its leaf cards, one per instance (`sylva::lod::packed::Leaf`).
 const CARD_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: 12,
+    array_stride: std::mem::size_of::<sylva::lod::packed::Leaf>() as u64,
     step_mode: wgpu::VertexStepMode::Instance,
     attributes: &wgpu::vertex_attr_array![8 => Uint16x4, 9 => Uint32],
 };

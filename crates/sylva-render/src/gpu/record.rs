@@ -3,6 +3,7 @@
 use super::pipelines::{COPY_STRIDE, Pipelines};
 use crate::RenderError;
 use crate::frame::{Draw, Frame, Part, Primitive};
+use sylva::lod::packed::{Leaf, Segment};
 
 /// The frame's own buffers (the props).
 pub(super) struct Props {
@@ -57,7 +58,6 @@ pub(super) fn copies(frame: &Frame) -> (Vec<u8>, Vec<u32>) {
             };
             let i = &frame.instances[d.instances.start as usize];
             let q = &lod.quantiser;
-            let shape_area = sylva::mesh::leaf_template(run.shape).area();
             let data = CopyData {
                 place: i.place,
                 turn: [i.turn[0], i.turn[1], i.stands_for[0], i.stands_for[1]],
@@ -71,7 +71,8 @@ pub(super) fn copies(frame: &Frame) -> (Vec<u8>, Vec<u32>) {
                         q.leaf_width,
                     ]
                 } else {
-                    [shape_area, 0.0, 0.0, q.leaf_width]
+                    let area = sylva::mesh::leaf_template(run.shape).area();
+                    [area, 0.0, 0.0, q.leaf_width]
                 },
             };
             let offset = bytes.len() as u32;
@@ -118,31 +119,25 @@ impl Props {
                     .iter()
                     .position(|&s| s == run.shape)
                     .unwrap_or(0);
-                vec![match (list == 3, flat) {
-                    (false, false) => Source::Stored {
-                        records: &lod.segments,
-                        stride: 24,
-                        vertices: Some(6 * run.sides),
-                        shape,
-                    },
-                    (false, true) => Source::Stored {
-                        records: &lod.segments,
-                        stride: 24,
-                        vertices: Some(2),
-                        shape,
-                    },
-                    (true, false) => Source::Stored {
-                        records: &lod.leaves,
-                        stride: 12,
-                        vertices: None,
-                        shape,
-                    },
-                    (true, true) => Source::Stored {
-                        records: &lod.leaves,
-                        stride: 12,
-                        vertices: Some(1),
-                        shape,
-                    },
+                let leaves = list == 3;
+                let (records, stride) = if leaves {
+                    (&lod.leaves, std::mem::size_of::<Leaf>())
+                } else {
+                    (&lod.segments, std::mem::size_of::<Segment>())
+                };
+                // Tubes: two triangles per side; lines: two ends; points: one; leaf cards:
+                // their outline's template.
+                let vertices = match (leaves, flat) {
+                    (false, false) => Some(6 * run.sides),
+                    (false, true) => Some(2),
+                    (true, false) => None,
+                    (true, true) => Some(1),
+                };
+                vec![Source::Stored {
+                    records,
+                    stride: stride as u64,
+                    vertices,
+                    shape,
                 }]
             }
         })

@@ -24,19 +24,6 @@ use order::prefix_len;
 use packed::{Leaf, Quantiser, Segment};
 use std::ops::Range;
 
-/// Which of the paper's four lists.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ListKind {
-    /// Stems of level 0 (trunks and their clones).
-    Trunk,
-    /// Stems of level 1.
-    Branches,
-    /// Stems of level 2 and deeper.
-    Twigs,
-    /// Leaves.
-    Leaves,
-}
-
 /// Items of one list that are drawn alike (stem segments with the same ring, or leaves of the
 /// same outline), stored rank-major among themselves.
 #[derive(Clone, Debug, PartialEq)]

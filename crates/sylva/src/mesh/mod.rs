@@ -7,7 +7,7 @@ mod stems;
 
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
 pub(crate) use stems::ring_frame;
-pub use stems::{SegmentTriangles, mesh_stems_by_segment, ring_vertices};
+pub use stems::ring_vertices;
 
 use crate::skeleton::Skeleton;
 

@@ -61,33 +61,9 @@ fn tip_is_point(sections: &[CrossSection]) -> bool {
 }
 
 pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) {
-    mesh_stems_by_segment(skeleton, options, mesh, &mut Vec::new());
-}
-
-/// One stem segment's triangles in the bark mesh: the item of the paper's range degradation.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SegmentTriangles {
-    /// The stem.
-    pub stem: u32,
-    /// Index of the segment's first cross-section within the stem.
-    pub section: u32,
-    /// Range of the segment's indices in the bark mesh's index buffer (the last segment
-    /// includes the stem's tip or cap).
-    pub indices: std::ops::Range<u32>,
-}
-
-/// Meshes the stems like [`crate::mesh::mesh_tree`] and reports where each segment's triangles
-/// are, in creation order.
-pub fn mesh_stems_by_segment(
-    skeleton: &Skeleton,
-    options: &MeshOptions,
-    mesh: &mut Mesh,
-    segments: &mut Vec<SegmentTriangles>,
-) {
     let mut unit = Vec::new();
     let mut unit_n = 0;
-    let mut starts = Vec::new();
-    for (id, stem) in skeleton.stems.iter().enumerate() {
+    for stem in &skeleton.stems {
         let sections = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
         if sections.len() < 2 {
             continue;
@@ -97,18 +73,7 @@ pub fn mesh_stems_by_segment(
             circle(n, &mut unit);
             unit_n = n;
         }
-        starts.clear();
-        mesh_stem(stem, sections, &unit, mesh, &mut starts);
-        segments.extend(
-            starts
-                .windows(2)
-                .enumerate()
-                .map(|(j, w)| SegmentTriangles {
-                    stem: id as u32,
-                    section: j as u32,
-                    indices: w[0]..w[1],
-                }),
-        );
+        mesh_stem(stem, sections, &unit, mesh);
     }
 }
 
@@ -124,15 +89,8 @@ pub(crate) fn ring_frame(sections: &[CrossSection], j: usize) -> Quat {
     }
 }
 
-/// Meshes one stem; `starts` receives the first index of every segment's triangles, then the
-/// end of the stem's indices.
-fn mesh_stem(
-    stem: &Stem,
-    sections: &[CrossSection],
-    unit: &[(f32, f32)],
-    mesh: &mut Mesh,
-    starts: &mut Vec<u32>,
-) {
+/// Meshes one stem.
+fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: &mut Mesh) {
     let n = unit.len() - 1;
     let m = sections.len();
     let base_radius = max_radius(sections);
@@ -176,13 +134,8 @@ fn mesh_stem(
         }
     }
     let stride = (n + 1) as u32;
-    let first_index = mesh.indices.len() as u32;
     // Quad strips between rings; with a pointed tip the last segment is the apex fan.
     let strips = rings.saturating_sub(1) as u32;
-    starts.extend((0..strips).map(|j| first_index + j * n as u32 * 6));
-    if tip_is_point {
-        starts.push(first_index + strips * n as u32 * 6);
-    }
     for j in 0..strips {
         let a = first_ring + j * stride;
         let b = a + stride;
@@ -222,7 +175,6 @@ fn mesh_stem(
                 .extend_from_slice(&[centre, rim + i, rim + i + 1]);
         }
     }
-    starts.push(mesh.indices.len() as u32);
 }
 
 #[cfg(test)]
