@@ -272,3 +272,22 @@ fn engine_levels_keep_the_leaf_area_with_fewer_leaves() {
     }
     assert_eq!(chain[0].0.triangle_count(), t.full_mesh().triangle_count());
 }
+
+#[test]
+fn an_empty_or_leafless_tree_is_stored_and_drawn_as_nothing() {
+    let empty = LodTree::build(&crate::Skeleton::default(), &MeshOptions::default());
+    assert_eq!(empty.triangle_count(), 0);
+    assert_eq!(empty.counts(10.0, &PAPER), LodCounts::default());
+    assert_eq!(empty.full_mesh().triangle_count(), 0);
+    let (lo, hi) = empty.quantiser.bounds();
+    assert!(lo.is_finite() && hi.is_finite());
+    // A leafless tree: stems only, and a budget cut leaves no leaf to grow.
+    let p = builtin("quaking_aspen").unwrap();
+    let mut sk = generate(&p, &GenerateOptions::default()).unwrap();
+    sk.leaves.clear();
+    let t = LodTree::build(&sk, &MeshOptions::default());
+    assert!(t.leaves.is_empty() && t.lists[3].runs.is_empty());
+    let c = t.within(t.full_choice(), 1000);
+    assert!(t.primitives(&c) <= 1000);
+    assert_eq!(c.leaf_grow, 1.0);
+}
