@@ -98,12 +98,13 @@ pub(crate) enum Part<'a> {
     },
     /// One run of a tree stored for range: its segments drawn as tubes and its leaves as
     /// cards or, with `flat`, as lines along their axes and as points. The draw's range counts
-    /// records.
+    /// records. Leaf cards are drawn with the outline `card`.
     Run {
         tree: &'a RenderTree,
         list: usize,
         run: usize,
         flat: bool,
+        card: sylva::LeafShape,
     },
     Ground,
     Person,
@@ -144,6 +145,7 @@ impl Draw<'_> {
         let n = self.range.len() * self.instances.len();
         match (self.part, self.primitive) {
             (Part::Run { flat: true, .. }, _) => n,
+            (Part::Run { list: 3, card, .. }, _) => n * sylva::mesh::leaf_triangles(card),
             (Part::Run { .. }, _) => n * self.part.run().map_or(0, |(_, r)| r.triangles_per_item()),
             (_, Primitive::Triangles) => n / 3,
             (_, Primitive::Lines) => n / 2,
@@ -225,17 +227,29 @@ fn whole_meshes<'a>(
     }
 }
 
-/// The draws of one copy of a tree stored for range: per list and run, the meshed records and
-/// the lines or points after them.
+/// Which passes a set of draws is for.
+#[derive(Clone, Copy, PartialEq)]
+struct Passes {
+    colour: bool,
+    shadow: bool,
+}
+
+/// Shadows are soft (the filter spans several texels of a map that covers the whole scene), so
+/// a tree's shadow draws this share of what its picture does.
+const SHADOW_SHARE: usize = 4;
+
+/// The draws of one copy of a tree stored for range in `passes`: per list and run, the meshed
+/// records and the lines or points after them.
 fn stored_draws<'a>(
     scene: &Scene<'a>,
-    stand: usize,
-    tree: &'a RenderTree,
+    (stand, tree): (usize, &'a RenderTree),
     choice: &Choice,
     p: &Placement,
+    passes: Passes,
     instances: &mut Vec<InstanceData>,
     draws: &mut Vec<Draw<'a>>,
 ) {
+    let only = |pass: bool, r: std::ops::Range<u32>| if pass { r } else { r.start..r.start };
     let Some(lod) = tree.data.lod.as_ref() else {
         return;
     };
@@ -246,7 +260,7 @@ fn stored_draws<'a>(
         }
         let (x_mesh, x_drawn) = choice.x[list];
         // One instance entry per list: its lines or points stand for its items that are
-        // neither meshed nor drawn, and its meshed leaves grow as the choice says.
+        // neither meshed nor drawn, and its meshed leaves' area grows as the choice says.
         let index = instances.len() as u32;
         let (mut unmeshed, mut flat) = (0, 0);
         let material = 2 * stand + usize::from(is_leaves);
@@ -259,12 +273,13 @@ fn stored_draws<'a>(
                 list,
                 run: k,
                 flat,
+                card: choice.card(run).0,
             };
             draws.push(Draw {
                 primitive: Primitive::Triangles,
                 part: part(false),
-                shadow: pick.meshed.clone(),
-                range: pick.meshed,
+                shadow: only(passes.shadow, pick.meshed.clone()),
+                range: only(passes.colour, pick.meshed),
                 instances: index..index + 1,
                 material,
             });
@@ -275,10 +290,10 @@ fn stored_draws<'a>(
                     Primitive::Lines
                 },
                 part: part(true),
-                // The shadow map draws what the picture draws: a leaf that is not drawn is
-                // stood for by a meshed one grown to keep the crown's leaf area.
-                shadow: pick.flat.clone(),
-                range: pick.flat,
+                // A leaf that is not drawn is stood for by a meshed one grown to keep the
+                // crown's leaf area, in the shadow map as in the picture.
+                shadow: only(passes.shadow, pick.flat.clone()),
+                range: only(passes.colour, pick.flat),
                 instances: index..index + 1,
                 material,
             });
@@ -331,7 +346,7 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
     let mut draws: Vec<Draw> = Vec::new();
     // Trees stored for range: every visible copy's choice first, then the frame's budget
     // shared among them, then their draws.
-    let mut chosen: Vec<(usize, &Placement, Choice)> = Vec::new();
+    let mut chosen: Vec<(f32, usize, &Placement, Choice)> = Vec::new();
     let mut wishes: Vec<(usize, f32)> = Vec::new();
     for (s, stand) in scene.stands.iter().enumerate() {
         let tree = stand.tree;
@@ -358,8 +373,8 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
             };
             let pixels = 2.0 * r / p.scale.max(1e-3) * viewer.pixels_per_metre(range);
             let wish = lod.primitives(&choice).min(sylva::lod::tree_cap(pixels));
-            wishes.push((wish, pixels * pixels));
-            chosen.push((s, p, choice));
+            wishes.push((wish, pixels));
+            chosen.push((range, s, p, choice));
         }
         if tree.data.lod.is_none() {
             whole_meshes(scene, s, tree, first..instances.len() as u32, &mut draws);
@@ -370,13 +385,33 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
         (true, None) => wishes.iter().map(|w| w.0).collect(),
         (false, _) => vec![usize::MAX; wishes.len()],
     };
-    for ((s, p, choice), allowance) in chosen.into_iter().zip(allowances) {
+    // Nearest first, so that the depth test turns away what they hide before it is shaded.
+    let mut order: Vec<(f32, usize)> = chosen.iter().map(|c| c.0).zip(0..).collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (_, k) in order {
+        let (_, s, p, choice) = chosen[k];
+        let allowance = allowances[k];
         let stand = &scene.stands[s];
         let Some(lod) = stand.tree.data.lod.as_ref() else {
             continue;
         };
-        let choice = lod.within(choice, allowance);
-        stored_draws(scene, s, stand.tree, &choice, p, &mut instances, &mut draws);
+        let colour = lod.within(choice, allowance);
+        let shadow = if scene.use_lod {
+            lod.within(choice, allowance / SHADOW_SHARE)
+        } else {
+            colour
+        };
+        let tree = (s, stand.tree);
+        let mut draw = |choice: &Choice, colour, shadow| {
+            let passes = Passes { colour, shadow };
+            stored_draws(scene, tree, choice, p, passes, &mut instances, &mut draws);
+        };
+        if shadow == colour {
+            draw(&colour, true, true);
+        } else {
+            draw(&colour, true, false);
+            draw(&shadow, false, true);
+        }
     }
     draws.retain(|d| !(d.instances.is_empty() || d.range.is_empty() && d.shadow.is_empty()));
     for d in &draws {

@@ -151,6 +151,22 @@ impl Picture {
         Ok(bytes)
     }
 
+    /// Mean absolute difference of two pictures of one size, over every pixel's R, G and B,
+    /// in steps of 255: how far apart range degradation leaves a picture. `None` when their
+    /// sizes differ.
+    pub fn mean_difference(&self, other: &Picture) -> Option<f64> {
+        if (self.width, self.height) != (other.width, other.height) || self.rgba.is_empty() {
+            return None;
+        }
+        let sum: u64 = self
+            .rgba
+            .chunks_exact(4)
+            .zip(other.rgba.chunks_exact(4))
+            .map(|(a, b)| (0..3).map(|i| a[i].abs_diff(b[i]) as u64).sum::<u64>())
+            .sum();
+        Some(sum as f64 / (self.rgba.len() / 4 * 3) as f64)
+    }
+
     /// The RGB of one pixel.
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
         let i = ((y * self.width + x) * 4) as usize;

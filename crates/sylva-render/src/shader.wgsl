@@ -153,21 +153,21 @@ fn fs_main(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f
 // leaves would: a 1-pixel line for a 0.3-pixel twig lights about one sample in four.
 struct FlatOut {
     @builtin(position) clip: vec4<f32>,
-    @location(0) light_clip: vec4<f32>,
+    // rgb: the lit colour; a: the share of a pixel covered. Worked out per vertex: a far stem
+    // or leaf spans a pixel or a few, and lighting each of its fragments (a dozen shadow-map
+    // taps) would cost more than everything else a far tree draws.
+    @location(0) lit: vec4<f32>,
     @location(1) world: vec3<f32>,
-    @location(2) direction: vec3<f32>,
-    // x: metres of size, y: items stood for, z: the copy's scale
-    @location(3) size: vec3<f32>,
 };
 
 fn flat_vertex(position: vec3<f32>, size: f32, direction: vec4<f32>, i: Instance) -> FlatOut {
     var out: FlatOut;
     let world = placed(i, position);
     out.clip = g.view_proj * vec4<f32>(world, 1.0);
-    out.light_clip = g.light_view_proj * vec4<f32>(world, 1.0);
+    let light_clip = g.light_view_proj * vec4<f32>(world, 1.0);
+    let shade = flat_shade(world, turned(i, direction.xyz), vec3<f32>(size, i.stands_for.x, i.place.w), light_clip);
+    out.lit = vec4<f32>(shade.lit, shade.cover);
     out.world = world;
-    out.direction = turned(i, direction.xyz);
-    out.size = vec3<f32>(size, i.stands_for.x, i.place.w);
     return out;
 }
 
@@ -189,29 +189,30 @@ struct FlatShade {
     cover: f32,
 };
 
-fn flat_shade(in: FlatOut) -> FlatShade {
+// `size`: x metres of size, y items stood for, z the copy's scale.
+fn flat_shade(world: vec3<f32>, direction: vec3<f32>, size: vec3<f32>, light_clip: vec4<f32>) -> FlatShade {
     let l = g.sun_dir.xyz;
-    let sun = g.sun_color.rgb * sunlit(in.light_clip);
+    let sun = g.sun_color.rgb * sunlit(light_clip);
     let base = m.color.rgb;
-    let to_eye = g.eye.xyz - in.world;
-    let pixels_per_metre = g.eye.w * in.size.z / max(length(to_eye), 1e-3);
+    let to_eye = g.eye.xyz - world;
+    let pixels_per_metre = g.eye.w * size.z / max(length(to_eye), 1e-3);
     var out: FlatShade;
     if (m.kind.x > 0.5) {
         // A leaf: two-sided, facing the eye.
-        var n = normalize(in.direction);
+        var n = normalize(direction);
         if (dot(n, to_eye) < 0.0) {
             n = -n;
         }
         let ndl = dot(n, l);
         let hemi = mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.5 + 0.5 * n.z);
         out.lit = base * (hemi + sun * max(ndl, 0.0) + sun * max(-ndl, 0.0) * 0.45);
-        out.cover = in.size.x * pixels_per_metre * pixels_per_metre * in.size.y;
+        out.cover = size.x * pixels_per_metre * pixels_per_metre * size.y;
     } else {
         // A stem: a cylinder about its axis, half of it towards the sun.
-        let t = normalize(in.direction);
+        let t = normalize(direction);
         let across = sqrt(max(1.0 - dot(t, l) * dot(t, l), 0.0));
         out.lit = base * (mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.6) + sun * across * 0.5);
-        out.cover = in.size.x * pixels_per_metre * in.size.y;
+        out.cover = size.x * pixels_per_metre * size.y;
     }
     return out;
 }
@@ -234,10 +235,9 @@ fn world_seed(world: vec3<f32>) -> u32 {
 
 @fragment
 fn fs_flat(in: FlatOut) -> FlatColour {
-    let shade = flat_shade(in);
     var out: FlatColour;
-    out.colour = vec4<f32>(shade.lit, 1.0);
-    out.mask = coverage_mask(shade.cover, world_seed(in.world));
+    out.colour = vec4<f32>(in.lit.rgb, 1.0);
+    out.mask = coverage_mask(in.lit.a, world_seed(in.world));
     return out;
 }
 
@@ -247,42 +247,31 @@ fn fs_flat(in: FlatOut) -> FlatColour {
 // draws the same mask.
 struct FlatSampleOut {
     @builtin(position) clip: vec4<f32>,
-    @location(0) light_clip: vec4<f32>,
+    @location(0) lit: vec4<f32>,
     @location(1) @interpolate(perspective, sample) world: vec3<f32>,
-    @location(2) direction: vec3<f32>,
-    @location(3) size: vec3<f32>,
-    @location(4) @interpolate(flat) seed_world: vec3<f32>,
+    @location(2) @interpolate(flat) seed_world: vec3<f32>,
 };
 
 fn per_sample(f: FlatOut) -> FlatSampleOut {
     var out: FlatSampleOut;
     out.clip = f.clip;
-    out.light_clip = f.light_clip;
+    out.lit = f.lit;
     out.world = f.world;
-    out.direction = f.direction;
-    out.size = f.size;
     out.seed_world = f.world;
     return out;
 }
 
 @fragment
 fn fs_flat_per_sample(in: FlatSampleOut) -> @location(0) vec4<f32> {
-    var f: FlatOut;
-    f.clip = in.clip;
-    f.light_clip = in.light_clip;
-    f.world = in.world;
-    f.direction = in.direction;
-    f.size = in.size;
-    let shade = flat_shade(f);
     let pixel = vec2<u32>(floor(in.clip.xy));
     let seed = world_seed(in.seed_world) ^ hash(pixel.x ^ hash(pixel.y));
     // The standard 4-sample pattern has one sample in each quarter of the pixel.
     let offset = fract(in.clip.xy);
     let sample = u32(offset.x * 2.0) + 2u * u32(offset.y * 2.0);
-    if ((coverage_mask(shade.cover, seed) & (1u << sample)) == 0u) {
+    if ((coverage_mask(in.lit.a, seed) & (1u << sample)) == 0u) {
         discard;
     }
-    return vec4<f32>(shade.lit, 1.0);
+    return vec4<f32>(in.lit.rgb, 1.0);
 }
 
 // Trees stored for range (sylva::lod::packed): each stem segment is two packed rings and each
@@ -358,16 +347,11 @@ struct Surface {
     normal: vec3<f32>,
 };
 
-// Corners of a quad between the near (y = 0) and far (y = 1) ring: side i (x = 0) or i + 1.
-const CORNERS = array<vec2<u32>, 6>(
-    vec2<u32>(0u, 0u), vec2<u32>(1u, 0u), vec2<u32>(1u, 1u),
-    vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(0u, 1u),
-);
-
-// Vertex k (0 .. 6 sides) of a segment's tube: sylva::lod::expand::Tube::vertex.
+// Vertex k of a segment's tube, k = 2 i + end for vertex i (0..=sides) of the near (end 0) or
+// far (end 1) ring, as the shared index buffer numbers them: sylva::lod::expand::Tube::vertex.
 fn tube_vertex(s: SegmentIn, k: u32) -> Surface {
-    let corner = CORNERS[k % 6u];
-    let i = k / 6u + corner.x;
+    let i = k / 2u;
+    let corner = vec2<u32>(0u, k % 2u);
     let centre_a = unpack_position(s.a.xyz);
     let centre_b = unpack_position(s.b.xyz);
     let radius_a = f32(s.a.w) / 65535.0 * copy.lo.w;
@@ -451,31 +435,52 @@ fn vs_card(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, c: 
     return surface_out(card_vertex(card, position, normal), card.shade);
 }
 
+// A far stem or leaf in the tree's frame: where it is, its size, and its direction.
+struct FlatItem {
+    at: vec3<f32>,
+    size: f32,
+    direction: vec3<f32>,
+};
+
 // A far stem's line: vertex 0 at the near ring's centre, 1 at the far one's.
-fn axis_vertex(k: u32, s: SegmentIn) -> FlatOut {
+fn axis_item(k: u32, s: SegmentIn) -> FlatItem {
     let a = unpack_position(s.a.xyz);
     let b = unpack_position(s.b.xyz);
-    var at = a;
+    var out: FlatItem;
+    out.at = a;
     var radius = f32(s.a.w);
     if (k == 1u) {
-        at = b;
+        out.at = b;
         radius = f32(s.b.w);
     }
-    var direction = vec3<f32>(0.0, 0.0, 1.0);
+    out.direction = vec3<f32>(0.0, 0.0, 1.0);
     if (distance(a, b) > 0.0) {
-        direction = normalize(b - a);
+        out.direction = normalize(b - a);
     }
-    let diameter = 2.0 * radius / 65535.0 * copy.lo.w;
-    return flat_vertex(at, diameter, vec4<f32>(direction, 0.0), copy_instance());
+    out.size = 2.0 * radius / 65535.0 * copy.lo.w;
+    return out;
 }
 
 // A far leaf's point, at the middle of its blade, standing for the blade's area.
-fn dot_vertex(c: CardIn) -> FlatOut {
+fn dot_item(c: CardIn) -> FlatItem {
     let card = unpack_card(c);
-    let centre = card.base + rotate(card.frame, vec3<f32>(0.0, 0.0, card.length * 0.5));
-    let area = card.length * card.width * copy.run.x;
-    let normal = rotate(card.frame, vec3<f32>(0.0, 1.0, 0.0));
-    return flat_vertex(centre, area, vec4<f32>(normal, 0.0), copy_instance());
+    var out: FlatItem;
+    out.at = card.base + rotate(card.frame, vec3<f32>(0.0, 0.0, card.length * 0.5));
+    out.size = card.length * card.width * copy.run.x;
+    out.direction = rotate(card.frame, vec3<f32>(0.0, 1.0, 0.0));
+    return out;
+}
+
+fn item_vertex(f: FlatItem) -> FlatOut {
+    return flat_vertex(f.at, f.size, vec4<f32>(f.direction, 0.0), copy_instance());
+}
+
+fn axis_vertex(k: u32, s: SegmentIn) -> FlatOut {
+    return item_vertex(axis_item(k, s));
+}
+
+fn dot_vertex(c: CardIn) -> FlatOut {
+    return item_vertex(dot_item(c));
 }
 
 @vertex
@@ -518,10 +523,10 @@ fn vs_shadow_card(
 
 @vertex
 fn vs_shadow_axis(@builtin(vertex_index) k: u32, s: SegmentIn) -> @builtin(position) vec4<f32> {
-    return g.light_view_proj * vec4<f32>(axis_vertex(k, s).world, 1.0);
+    return shadow_clip(axis_item(k, s).at);
 }
 
 @vertex
 fn vs_shadow_dot(c: CardIn) -> @builtin(position) vec4<f32> {
-    return g.light_view_proj * vec4<f32>(dot_vertex(c).world, 1.0);
+    return shadow_clip(dot_item(c).at);
 }

@@ -334,3 +334,60 @@ fn every_backend_draws_the_same_picture() {
         assert!(mean < 2.0 && far < 0.01, "{mean} {far}");
     }
 }
+
+#[test]
+fn a_stand_held_to_a_frame_budget_keeps_its_crowns() {
+    // Sixteen copies of a stored aspen on a 4 x 4 grid, seen from 60 m: with a budget of a
+    // tenth of what the paper's rules draw, the frame holds to it, and the crowns cover about
+    // as much of the picture and tint it about as much as without a budget.
+    let p = builtin("quaking_aspen").unwrap();
+    let sk = generate(&p, &GenerateOptions::default()).unwrap();
+    let lod = sylva::lod::LodTree::build(&sk, &MeshOptions::for_species(&p, 0.5));
+    let placements: Vec<sylva_render::Placement> = (0..16)
+        .map(|i| sylva_render::Placement {
+            position: Vec3::new(
+                (i % 4) as f32 * 8.0 - 12.0,
+                (i / 4) as f32 * 8.0 - 12.0,
+                0.0,
+            ),
+            turn: i as f32,
+            scale: 1.0,
+        })
+        .collect();
+    for r in &renderers() {
+        eprintln!("{}", r.adapter_name());
+        let gpu = r.upload_lod(&lod);
+        let mut scene = Scene::forest(vec![sylva_render::Stand {
+            tree: &gpu,
+            bark: p.bark_color,
+            leaves: p.leaf_color,
+            placements: std::borrow::Cow::Borrowed(&placements),
+        }]);
+        scene.show_ground = false;
+        let view = View::look_at(Vec3::new(0.0, -60.0, 25.0), Vec3::new(0.0, 0.0, 8.0), 40.0);
+        let (w, h) = (480, 320);
+        scene.primitive_budget = None;
+        let free = r.render(&scene, &view, w, h).unwrap();
+        let budget = free.stats.primitives() / 10;
+        scene.primitive_budget = Some(budget);
+        let held = r.render(&scene, &view, w, h).unwrap();
+        assert!(
+            held.stats.primitives() <= budget,
+            "{} primitives for a budget of {budget}",
+            held.stats.primitives()
+        );
+        let (_, n_free) = silhouette(&free);
+        let (_, n_held) = silhouette(&held);
+        assert!(
+            (n_held as f32 / n_free as f32 - 1.0).abs() < 0.2,
+            "{n_held} crown pixels with the budget, {n_free} without"
+        );
+        let d = held.mean_difference(&free).unwrap();
+        assert!(d < 12.0, "mean difference {d} of 255");
+        eprintln!(
+            "{} -> {} primitives, {n_free} -> {n_held} crown pixels, mean difference {d:.2}",
+            free.stats.primitives(),
+            held.stats.primitives()
+        );
+    }
+}

@@ -217,6 +217,17 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = LodMode::On, help_heading = "Forest")]
     pub lod: LodMode,
 
+    /// Forests with range degradation: the most primitives a frame's trees draw together,
+    /// shared by the pixels each covers; 0 for no frame budget (each tree still draws at most
+    /// 2 per pixel of its box).
+    #[arg(
+        long,
+        value_name = "PRIMITIVES",
+        default_value_t = 2_000_000,
+        help_heading = "Forest"
+    )]
+    pub lod_budget: usize,
+
     /// Vertical field of view, degrees.
     #[arg(
         long,

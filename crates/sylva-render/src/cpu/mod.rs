@@ -65,9 +65,13 @@ fn snorm(v: Vec3) -> [i8; 4] {
 fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
     let grow = frame.instances[d.instances.start as usize].stands_for[1];
     let (lod, run) = d.part.run()?;
-    let Part::Run { list, flat, .. } = d.part else {
+    let Part::Run {
+        list, flat, card, ..
+    } = d.part
+    else {
         return None;
     };
+    let scale = sylva::lod::card_scale(run.shape, card, grow);
     let spans: Vec<&Range<u32>> = [&d.range, &d.shadow]
         .into_iter()
         .filter(|r| !r.is_empty())
@@ -92,7 +96,7 @@ fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
         } as u32);
         match (list == 3, flat) {
             (false, false) => Tube::of(q, &lod.segments[k]).mesh_into(run, &mut mesh),
-            (true, false) => Card::of(q, &lod.leaves[k]).mesh_into(run, grow, true, &mut mesh),
+            (true, false) => Card::of(q, &lod.leaves[k]).mesh_into(card, scale, true, &mut mesh),
             (false, true) => {
                 let (ends, diameters, direction) = Tube::of(q, &lod.segments[k]).line();
                 for (p, size) in ends.into_iter().zip(diameters) {

@@ -94,12 +94,20 @@ pub(crate) struct Pair {
     pub shadow: wgpu::RenderPipeline,
 }
 
-/// Every leaf outline's template on the device, and where each lies in its buffers.
+/// Most vertices around a stored stem's ring (`sylva::mesh::MeshOptions::ring_vertices`).
+const MAX_SIDES: u32 = 256;
+
+/// Every leaf outline's template on the device, where each lies in its buffers, and the
+/// triangles of a tube's sides.
 pub(crate) struct Templates {
     pub vertices: wgpu::Buffer,
     pub indices: wgpu::Buffer,
     /// Per shape of `sylva::LeafShape::ALL`: first index, index count, base vertex.
     pub ranges: Vec<(u32, u32, i32)>,
+    /// A tube's quads, side after side: vertex `2 i + end` is vertex i of the near (0) or
+    /// far (1) ring, so the first `6 sides` indices draw any tube, and each vertex is shaded
+    /// once rather than for every triangle that uses it.
+    pub tube: wgpu::Buffer,
 }
 
 impl Templates {
@@ -118,7 +126,18 @@ impl Templates {
             indices.extend_from_slice(&t.indices);
         }
         let make = |label, bytes: &[u8], usage| super::buffers::buffer(device, label, bytes, usage);
+        let tube: Vec<u32> = (0..MAX_SIDES)
+            .flat_map(|i| {
+                let (a, b) = (2 * i, 2 * i + 1);
+                [a, a + 2, b + 2, a, b + 2, b]
+            })
+            .collect();
         Self {
+            tube: make(
+                "tube sides",
+                bytemuck::cast_slice(&tube),
+                wgpu::BufferUsages::INDEX,
+            ),
             vertices: make(
                 "leaf outlines",
                 bytemuck::cast_slice(&vertices),
@@ -167,9 +186,10 @@ impl Pipelines {
             label: Some("globals"),
             entries: &[
                 uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
+                // Far stems and leaves are lit per vertex, shadows included.
                 wgpu::BindGroupLayoutEntry {
                     binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                     ty: wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Depth,
                         view_dimension: wgpu::TextureViewDimension::D2,
@@ -179,7 +199,7 @@ impl Pipelines {
                 },
                 wgpu::BindGroupLayoutEntry {
                     binding: 2,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
                     count: None,
                 },
@@ -187,7 +207,7 @@ impl Pipelines {
         });
         let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("material"),
-            entries: &[uniform_entry(0, wgpu::ShaderStages::FRAGMENT)],
+            entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
         });
         // Stored trees: the copy and its records' scales, one entry per draw.
         let copy_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

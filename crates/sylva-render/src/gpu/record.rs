@@ -25,12 +25,22 @@ pub(super) enum Source<'a> {
         records: &'a wgpu::Buffer,
         /// Bytes per record.
         stride: u64,
-        /// Vertices each record draws (tubes, lines, points) or, for leaf cards, `None`: the
-        /// outline's template, indexed.
-        vertices: Option<u32>,
+        /// What each record draws.
+        each: Each,
         /// Index of the leaf outline in [`super::pipelines::Templates`].
         shape: usize,
     },
+}
+
+/// What one record of a stored tree draws.
+#[derive(Clone, Copy)]
+pub(super) enum Each {
+    /// A tube of this many sides, through the shared index buffer of tube sides.
+    Tube(u32),
+    /// A leaf card: its outline's template.
+    Card,
+    /// This many vertices: a line's 2, a point's 1.
+    Vertices(u32),
 }
 
 /// What a stored tree's draw reads from the shader's copy entry: where the copy stands and the
@@ -58,9 +68,18 @@ pub(super) fn copies(frame: &Frame) -> (Vec<u8>, Vec<u32>) {
             };
             let i = &frame.instances[d.instances.start as usize];
             let q = &lod.quantiser;
+            let card = match d.part {
+                Part::Run { card, .. } => card,
+                _ => run.shape,
+            };
             let data = CopyData {
                 place: i.place,
-                turn: [i.turn[0], i.turn[1], i.stands_for[0], i.stands_for[1]],
+                turn: [
+                    i.turn[0],
+                    i.turn[1],
+                    i.stands_for[0],
+                    sylva::lod::card_scale(run.shape, card, i.stands_for[1]),
+                ],
                 lo: q.lo.extend(q.radius).to_array(),
                 size: q.size.extend(q.leaf_length).to_array(),
                 run: if run.sides > 0 {
@@ -110,14 +129,18 @@ impl Props {
                 }
             }
             Part::Run {
-                tree, list, flat, ..
+                tree,
+                list,
+                flat,
+                card,
+                ..
             } => {
                 let gpu = tree.gpu.as_ref().ok_or_else(missing)?;
                 let lod = gpu.lod.as_ref().ok_or_else(missing)?;
                 let (_, run) = d.part.run().ok_or_else(missing)?;
                 let shape = sylva::LeafShape::ALL
                     .iter()
-                    .position(|&s| s == run.shape)
+                    .position(|&s| s == card)
                     .unwrap_or(0);
                 let leaves = list == 3;
                 let (records, stride) = if leaves {
@@ -125,18 +148,16 @@ impl Props {
                 } else {
                     (&lod.segments, std::mem::size_of::<Segment>())
                 };
-                // Tubes: two triangles per side; lines: two ends; points: one; leaf cards:
-                // their outline's template.
-                let vertices = match (leaves, flat) {
-                    (false, false) => Some(6 * run.sides),
-                    (false, true) => Some(2),
-                    (true, false) => None,
-                    (true, true) => Some(1),
+                let each = match (leaves, flat) {
+                    (false, false) => Each::Tube(run.sides),
+                    (false, true) => Each::Vertices(2),
+                    (true, false) => Each::Card,
+                    (true, true) => Each::Vertices(1),
                 };
                 vec![Source::Stored {
                     records,
                     stride: stride as u64,
-                    vertices,
+                    each,
                     shape,
                 }]
             }
@@ -187,18 +208,23 @@ pub(super) fn record(
             Source::Stored {
                 records,
                 stride,
-                vertices,
+                each,
                 shape,
             } => {
                 pass.set_bind_group(2, copy_group, &[copy_offset]);
                 let items = records.slice(range.start as u64 * stride..range.end as u64 * stride);
                 let count = range.end - range.start;
-                match vertices {
-                    Some(n) => {
+                match each {
+                    Each::Vertices(n) => {
                         pass.set_vertex_buffer(0, items);
                         pass.draw(0..n, 0..count);
                     }
-                    None => {
+                    Each::Tube(sides) => {
+                        pass.set_vertex_buffer(0, items);
+                        pass.set_index_buffer(templates.tube.slice(..), wgpu::IndexFormat::Uint32);
+                        pass.draw_indexed(0..6 * sides, 0, 0..count);
+                    }
+                    Each::Card => {
                         let (first, indices, base) = templates.ranges[shape];
                         pass.set_vertex_buffer(0, templates.vertices.slice(..));
                         pass.set_vertex_buffer(1, items);

@@ -6,6 +6,7 @@ use super::order::prefix_len;
 use super::packed::{Leaf, Quantiser, Segment, class_shade};
 use super::{LodTree, Run};
 use crate::mesh::{Mesh, TreeMesh, leaf_template};
+use crate::skeleton::LeafShape;
 use glam::{Quat, Vec3};
 use std::f32::consts::TAU;
 
@@ -134,11 +135,11 @@ impl Card {
         }
     }
 
-    /// The blade's vertices (its run's template placed by the card) and triangles appended to
-    /// `mesh`, each vertex with the card's shade when `shaded`; leaves grow by `grow` about
-    /// their centres.
-    pub fn mesh_into(&self, run: &Run, grow: f32, shaded: bool, mesh: &mut Mesh) {
-        let t = leaf_template(run.shape);
+    /// The blade's vertices (`outline`'s template placed by the card) and triangles appended
+    /// to `mesh`, each vertex with the card's shade when `shaded`; the blade's length and width
+    /// grow by `grow` about its centre.
+    pub fn mesh_into(&self, outline: LeafShape, grow: f32, shaded: bool, mesh: &mut Mesh) {
+        let t = leaf_template(outline);
         let scale = Vec3::new(self.width, self.width, self.length);
         let centre = self.centre();
         let first = mesh.positions.len() as u32;
@@ -209,7 +210,7 @@ impl LodTree {
             .any(|&(r, n)| leaves(r, n).iter().any(|l| l.xyzs[3] >> 12 < 10));
         for (run, n) in kept {
             for l in leaves(run, n) {
-                Card::of(q, l).mesh_into(run, grow, shaded, &mut out.leaves);
+                Card::of(q, l).mesh_into(run.shape, grow, shaded, &mut out.leaves);
             }
         }
         out

@@ -17,7 +17,7 @@ pub mod impostor;
 pub mod order;
 pub mod packed;
 
-pub use budget::{Choice, PER_SQUARE_PIXEL, share_out, tree_cap};
+pub use budget::{Choice, PER_SQUARE_PIXEL, THINNED_OUTLINE, card_scale, share_out, tree_cap};
 
 use crate::skeleton::LeafShape;
 use order::prefix_len;
