@@ -38,7 +38,7 @@ pub use forest::ForestOnGpu;
 pub use frame::SKY_SRGB;
 pub use lod_chain::{LodChain, bake_impostor, lod_chain};
 pub use props::{PERSON_HEIGHT, PropMesh, Vertex, ground, person};
-pub use scene::{FrameStats, Placement, Scene, Stand, View};
+pub use scene::{DEFAULT_PRIMITIVE_BUDGET, FrameStats, Placement, Scene, Stand, View};
 pub use tree::RenderTree;
 
 use gpu::{Api, GpuRenderer};
