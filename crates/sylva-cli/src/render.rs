@@ -30,14 +30,27 @@ fn contact_sheet(pictures: &[Picture]) -> Picture {
     tile(pictures, columns, 0, 255)
 }
 
+/// The wind the flags ask for at `time`.
+fn wind_at(args: &RenderArgs, time: f64) -> Result<Wind> {
+    for (flag, v) in [("--wind", args.wind), ("--gust", args.gust)] {
+        if !(v.is_finite() && v.abs() <= 1000.0) {
+            bail!("{flag} {v}: expected a number from -1000 to 1000 (2 to 10 is a breeze)");
+        }
+    }
+    if !(time.is_finite() && time.abs() <= 1e9) {
+        bail!("--time {time}: expected seconds, a finite number");
+    }
+    Ok(Wind {
+        speed: args.wind,
+        gust: args.gust,
+        time,
+    })
+}
+
 /// The tree a species makes at a moment of the wind.
 fn species_mesh(params: &sylva::TreeParams, args: &RenderArgs, time: f64) -> Result<TreeMesh> {
     let options = GenerateOptions {
-        wind: Wind {
-            speed: args.wind,
-            gust: args.gust,
-            time,
-        },
+        wind: wind_at(args, time)?,
         ..args.tree.options()
     };
     let skeleton =
@@ -190,11 +203,10 @@ fn render_forest(
     base: View,
     (width, height): (u32, u32),
 ) -> Result<()> {
-    if args.frames.is_some() || args.turntable.is_some() || args.wind != 0.0 {
-        bail!(
-            "forests are rendered one picture at a time: leave out --frames, --turntable and --wind"
-        );
+    if args.frames.is_some() || args.turntable.is_some() {
+        bail!("forests are rendered one picture at a time: leave out --frames and --turntable");
     }
+    let wind = wind_at(args, args.time)?;
     let path = Path::new(&args.input);
     let spec = ForestSpec::from_file(path)?;
     let forest = grow_for_range(&spec).with_context(|| path.display().to_string())?;
@@ -203,6 +215,8 @@ fn render_forest(
     scene.show_leaves = !args.tree.no_leaves;
     scene.show_ground = !args.bare;
     scene.primitive_budget = (args.lod_budget > 0).then_some(args.lod_budget);
+    // Each copy sways on the GPU, by its own phases, the same at every range.
+    scene.wind = wind;
     let view = forest_view(args, &scene, base)?;
     let mut frame = |use_lod: bool| -> Result<(Picture, f64)> {
         scene.use_lod = use_lod;

@@ -55,6 +55,9 @@ pub(crate) struct InstanceData {
     /// Lines and points: how many items each drawn one stands for (items not meshed / items
     /// drawn flat), so that together they cover what the whole list would.
     pub stands_for: [f32; 2],
+    /// Trees stored for range: the copy's sway (`sylva::lod::sway::Sway`: turn about x and y,
+    /// trunk length).
+    pub sway: [f32; 4],
 }
 
 impl From<&Placement> for InstanceData {
@@ -64,6 +67,7 @@ impl From<&Placement> for InstanceData {
             place: [p.position.x, p.position.y, p.position.z, p.scale],
             turn: [c, s],
             stands_for: [1.0, 0.0],
+            sway: [0.0; 4],
         }
     }
 }
@@ -227,6 +231,17 @@ fn whole_meshes<'a>(
     }
 }
 
+/// A copy's own sway phases, radians, from where it stands: neighbours do not sway in step.
+fn phases(p: &Placement) -> [f32; 2] {
+    let mut h = 0x9e37_79b9_7f4a_7c15u64;
+    for v in [p.position.x, p.position.y, p.position.z] {
+        h = (h ^ v.to_bits() as u64).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        h ^= h >> 31;
+    }
+    let unit = |bits: u64| (bits & 0xffff) as f32 / 65536.0 * std::f32::consts::TAU;
+    [unit(h), unit(h >> 16)]
+}
+
 /// Which passes a set of draws is for.
 #[derive(Clone, Copy, PartialEq)]
 struct Passes {
@@ -253,6 +268,7 @@ fn stored_draws<'a>(
     let Some(lod) = tree.data.lod.as_ref() else {
         return;
     };
+    let sway = lod.sway(&scene.wind, phases(p));
     for (list, items) in lod.lists.iter().enumerate() {
         let is_leaves = list == 3;
         if is_leaves && !scene.show_leaves {
@@ -300,6 +316,7 @@ fn stored_draws<'a>(
         }
         instances.push(InstanceData {
             stands_for: [unmeshed as f32 / flat.max(1) as f32, choice.leaf_grow],
+            sway: [sway.turn[0], sway.turn[1], sway.length, 0.0],
             ..p.into()
         });
     }

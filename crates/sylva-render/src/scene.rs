@@ -133,6 +133,9 @@ pub struct Scene<'a> {
     /// Clear to transparent instead of the sky (for baking impostors): the picture's alpha is
     /// then the trees' coverage.
     pub transparent: bool,
+    /// Wind at one moment for trees stored for range: each copy sways by
+    /// `sylva::lod::sway`, on the GPU, with phases of its own. Calm by default.
+    pub wind: sylva::Wind,
 }
 
 /// The frame budget of a scene: 2 million primitives, what a software rasteriser draws in
@@ -166,6 +169,7 @@ impl<'a> Scene<'a> {
             lod_quality: 1.0,
             primitive_budget: Some(DEFAULT_PRIMITIVE_BUDGET),
             transparent: false,
+            wind: sylva::Wind::default(),
         }
     }
 

@@ -291,6 +291,8 @@ struct Copy {
     // stems: ring vertices, lobes, lobe depth; leaves: x the outline's area at unit size,
     // w the widest leaf
     run: vec4<f32>,
+    // the copy's sway: the trunk's turn about x and y (radians), the trunk's length
+    sway: vec4<f32>,
 };
 
 @group(2) @binding(0) var<uniform> copy: Copy;
@@ -347,6 +349,23 @@ struct Surface {
     normal: vec3<f32>,
 };
 
+// Where wind moves a point of the tree: sylva::lod::sway::Sway::displacement.
+fn swayed(p: vec3<f32>) -> vec3<f32> {
+    let length = copy.sway.z;
+    if (length <= 0.0) {
+        return p;
+    }
+    let s = max(p.z / length, 0.0);
+    var along = s - 0.5;
+    if (s <= 1.0) {
+        along = s * s / 2.0;
+    }
+    let dx = length * copy.sway.y * along;
+    let dy = -length * copy.sway.x * along;
+    let dz = -(dx * dx + dy * dy) / (2.0 * max(p.z, 0.5));
+    return p + vec3<f32>(dx, dy, dz);
+}
+
 // Vertex k of a segment's tube, k = 2 i + end for vertex i (0..=sides) of the near (end 0) or
 // far (end 1) ring, as the shared index buffer numbers them: sylva::lod::expand::Tube::vertex.
 fn tube_vertex(s: SegmentIn, k: u32) -> Surface {
@@ -387,7 +406,7 @@ fn tube_vertex(s: SegmentIn, k: u32) -> Surface {
         }
     }
     var out: Surface;
-    out.position = centre + radial * r;
+    out.position = swayed(centre + radial * r);
     out.normal = in_plane - z * slope;
     return out;
 }
@@ -415,7 +434,7 @@ fn card_vertex(c: Card, position: vec3<f32>, normal: vec3<f32>) -> Surface {
     var out: Surface;
     let centre = vec3<f32>(0.0, 0.0, 0.5 * c.length);
     let at = position * vec3<f32>(c.width, c.width, c.length);
-    out.position = c.base + rotate(c.frame, centre + (at - centre) * copy.turn.w);
+    out.position = swayed(c.base + rotate(c.frame, centre + (at - centre) * copy.turn.w));
     out.normal = rotate(c.frame, normal);
     return out;
 }
@@ -458,6 +477,7 @@ fn axis_item(k: u32, s: SegmentIn) -> FlatItem {
         out.direction = normalize(b - a);
     }
     out.size = 2.0 * radius / 65535.0 * copy.lo.w;
+    out.at = swayed(out.at);
     return out;
 }
 
@@ -465,7 +485,7 @@ fn axis_item(k: u32, s: SegmentIn) -> FlatItem {
 fn dot_item(c: CardIn) -> FlatItem {
     let card = unpack_card(c);
     var out: FlatItem;
-    out.at = card.base + rotate(card.frame, vec3<f32>(0.0, 0.0, card.length * 0.5));
+    out.at = swayed(card.base + rotate(card.frame, vec3<f32>(0.0, 0.0, card.length * 0.5)));
     out.size = card.length * card.width * copy.run.x;
     out.direction = rotate(card.frame, vec3<f32>(0.0, 1.0, 0.0));
     return out;

@@ -391,3 +391,53 @@ fn a_stand_held_to_a_frame_budget_keeps_its_crowns() {
         );
     }
 }
+
+#[test]
+fn wind_sways_a_stored_tree_alike_at_every_range() {
+    // One stored tupelo seen from the front: in the wind its silhouette's centre moves, by
+    // the same amount whether it is drawn whole or held to a few thousand primitives (the
+    // sway is a function of where a point is, whatever draws it).
+    let p = builtin("black_tupelo").unwrap();
+    let sk = generate(&p, &GenerateOptions::default()).unwrap();
+    let lod = sylva::lod::LodTree::build(&sk, &MeshOptions::for_species(&p, 0.5));
+    let centre_x = |pic: &Picture| {
+        let (mut sum, mut n) = (0.0f64, 0.0f64);
+        for y in 0..pic.height {
+            for x in 0..pic.width {
+                if !is_sky(pic.pixel(x, y)) {
+                    sum += x as f64;
+                    n += 1.0;
+                }
+            }
+        }
+        sum / n.max(1.0)
+    };
+    for r in &renderers() {
+        eprintln!("{}", r.adapter_name());
+        let gpu = r.upload_lod(&lod);
+        let mut scene = bare(&gpu, &p);
+        let view = View::named(ViewKind::Front);
+        let (w, h) = (240, 320);
+        let mut shift = Vec::new();
+        for (use_lod, budget) in [(false, None), (true, Some(5_000))] {
+            scene.use_lod = use_lod;
+            scene.primitive_budget = budget;
+            scene.wind = sylva::Wind::default();
+            let calm = r.render(&scene, &view, w, h).unwrap();
+            scene.wind = sylva::Wind {
+                speed: 6.0,
+                gust: 3.0,
+                time: 1.0,
+            };
+            let windy = r.render(&scene, &view, w, h).unwrap();
+            assert!(windy.mean_difference(&calm).unwrap() > 1.0);
+            shift.push(centre_x(&windy) - centre_x(&calm));
+        }
+        eprintln!("silhouette centre moved {shift:?} px (whole, held to 5,000 primitives)");
+        assert!(shift[0].abs() > 2.0, "{shift:?}");
+        assert!(
+            (shift[0] - shift[1]).abs() < 0.25 * shift[0].abs() + 1.0,
+            "{shift:?}"
+        );
+    }
+}

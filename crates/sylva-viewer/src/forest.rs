@@ -37,6 +37,9 @@ struct ForestViewer {
     use_lod: bool,
     lod_quality: f32,
     show_leaves: bool,
+    /// Wind speed (the paper's units); the trees sway on the GPU while it blows.
+    wind: f64,
+    started: std::time::Instant,
     stats: FrameStats,
     frame_ms: f64,
     texture: Option<ViewTexture>,
@@ -67,6 +70,8 @@ impl ForestViewer {
             use_lod: true,
             lod_quality: 1.0,
             show_leaves: true,
+            wind: 0.0,
+            started: std::time::Instant::now(),
             stats: FrameStats::default(),
             frame_ms: 0.0,
             texture: None,
@@ -146,6 +151,11 @@ impl ForestViewer {
         scene.use_lod = self.use_lod;
         scene.lod_quality = self.lod_quality;
         scene.show_leaves = self.show_leaves;
+        scene.wind = sylva::Wind {
+            speed: self.wind,
+            gust: self.wind / 2.0,
+            time: self.started.elapsed().as_secs_f64(),
+        };
         (self.stats, self.frame_ms) = render_timed(
             &self.renderer,
             &self.render_state,
@@ -210,8 +220,13 @@ impl eframe::App for ForestViewer {
                 changed |= ui
                     .add(egui::Slider::new(&mut self.fov, 15.0..=90.0).text("lens (degrees)"))
                     .changed();
-                if changed {
+                changed |= ui
+                    .add(egui::Slider::new(&mut self.wind, 0.0..=20.0).text("wind"))
+                    .changed();
+                // While the wind blows, every frame is a new moment of the sway.
+                if changed || self.wind > 0.0 {
                     self.needs_render = true;
+                    ui.ctx().request_repaint();
                 }
             });
             ui.label(format!(

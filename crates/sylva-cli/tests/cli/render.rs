@@ -70,6 +70,22 @@ fn render_species_glb_turntable_and_wind_frames() {
         .map(|i| std::fs::read(p(&format!("sway-{i:04}.png"))).unwrap())
         .collect();
     assert_ne!(frames[0], frames[2], "the tree moves between frames");
+    // Wind that is not a number is refused by name, and nothing is written.
+    for (flag, value) in [("--wind", "nan"), ("--gust", "1e9"), ("--time", "inf")] {
+        let run = sylva(&[
+            "render",
+            "hazel",
+            flag,
+            value,
+            "--size",
+            "64x64",
+            "-o",
+            &s(&p("bad-wind.png")),
+        ]);
+        assert_eq!(run.status.code(), Some(1), "{flag} {value}");
+        assert!(text(&run.stderr).contains(flag), "{}", text(&run.stderr));
+        assert!(!p("bad-wind.png").exists());
+    }
     // Levels as a design aid: the trunk alone.
     let run = sylva(&[
         "render",

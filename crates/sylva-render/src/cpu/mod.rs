@@ -63,7 +63,14 @@ fn snorm(v: Vec3) -> [i8; 4] {
 
 /// Unpacks the records a stored tree's draw reads (both its colour and its shadow range).
 fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
-    let grow = frame.instances[d.instances.start as usize].stands_for[1];
+    let instance = &frame.instances[d.instances.start as usize];
+    let grow = instance.stands_for[1];
+    let [tx, ty, length, _] = instance.sway;
+    let sway = sylva::lod::sway::Sway {
+        turn: [tx, ty],
+        length,
+    };
+    let swayed = |p: glam::Vec3| p + sway.displacement(p);
     let (lod, run) = d.part.run()?;
     let Part::Run {
         list, flat, card, ..
@@ -101,7 +108,7 @@ fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
                 let (ends, diameters, direction) = Tube::of(q, &lod.segments[k]).line();
                 for (p, size) in ends.into_iter().zip(diameters) {
                     out.flat.push(FlatVertex {
-                        position: p.to_array(),
+                        position: swayed(p).to_array(),
                         size,
                         normal: snorm(direction),
                     });
@@ -110,7 +117,7 @@ fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
             (true, true) => {
                 let card = Card::of(q, &lod.leaves[k]);
                 out.flat.push(FlatVertex {
-                    position: card.centre().to_array(),
+                    position: swayed(card.centre()).to_array(),
                     size: card.length * card.width * area,
                     normal: snorm(card.normal()),
                 });
@@ -131,6 +138,11 @@ fn expand(frame: &Frame, d: &Draw) -> Option<Expanded> {
     };
     out.range = map(&d.range);
     out.shadow = map(&d.shadow);
+    if sway.length > 0.0 {
+        for p in &mut mesh.positions {
+            *p = swayed(glam::Vec3::from(*p)).to_array();
+        }
+    }
     out.mesh = crate::tree::mesh_data(&mesh);
     Some(out)
 }

@@ -53,6 +53,7 @@ pub(super) struct CopyData {
     lo: [f32; 4],
     size: [f32; 4],
     run: [f32; 4],
+    sway: [f32; 4],
 }
 
 /// The copy entries of a frame's stored-tree draws, `COPY_STRIDE` bytes apart, and each draw's
@@ -93,6 +94,7 @@ pub(super) fn copies(frame: &Frame) -> (Vec<u8>, Vec<u32>) {
                     let area = sylva::mesh::leaf_template(run.shape).area();
                     [area, 0.0, 0.0, q.leaf_width]
                 },
+                sway: i.sway,
             };
             let offset = bytes.len() as u32;
             bytes.extend_from_slice(bytemuck::bytes_of(&data));

@@ -16,6 +16,7 @@ pub mod expand;
 pub mod impostor;
 pub mod order;
 pub mod packed;
+pub mod sway;
 
 pub use budget::{Choice, PER_SQUARE_PIXEL, THINNED_OUTLINE, card_scale, share_out, tree_cap};
 
