@@ -78,8 +78,12 @@ fn vs_shadow(v: VsIn, i: Instance) -> @builtin(position) vec4<f32> {
     return g.light_view_proj * vec4<f32>(placed(i, v.position), 1.0);
 }
 
-// Taps of the shadow filter: a golden-angle spiral filling the unit disc evenly.
-const TAPS = array<vec2<f32>, 12>(
+// Taps of the shadow filter. The first 12: a golden-angle spiral filling the unit disc evenly,
+// for surfaces whose shadows are seen whole (the ground, bark). The last 4: a square turned
+// from the axes, for leaves: a leaf is a few pixels at most, lies among hundreds of others
+// that break up its shadow anyway, and its fragments are most of a forest's, so it takes a
+// third of the taps (each tap is itself a bilinear 2 x 2 comparison).
+const TAPS = array<vec2<f32>, 16>(
     vec2<f32>(0.2041, 0.0000),
     vec2<f32>(-0.2607, 0.2388),
     vec2<f32>(0.0399, -0.4547),
@@ -92,23 +96,52 @@ const TAPS = array<vec2<f32>, 12>(
     vec2<f32>(-0.8224, 0.3395),
     vec2<f32>(0.3965, -0.8472),
     vec2<f32>(0.2930, 0.9341),
+    vec2<f32>(0.6374, 0.2640),
+    vec2<f32>(-0.2640, 0.6374),
+    vec2<f32>(-0.6374, -0.2640),
+    vec2<f32>(0.2640, -0.6374),
 );
+// Where a point lies in the shadow map: xy its texture coordinates, z its depth less the
+// bias, w 1 where the map covers it.
+fn shadow_point(light_clip: vec4<f32>) -> vec4<f32> {
+    let p = light_clip.xyz / light_clip.w;
+    let uv = vec2<f32>(p.x * 0.5 + 0.5, 0.5 - p.y * 0.5);
+    let inside = uv.x >= 0.0 && uv.x <= 1.0 && uv.y >= 0.0 && uv.y <= 1.0 && p.z <= 1.0;
+    return vec4<f32>(uv, p.z - g.shadow.y, select(0.0, 1.0, inside));
+}
+
+fn shadow_tap(s: vec4<f32>, i: u32) -> f32 {
+    let offset = TAPS[i] * (3.0 * g.shadow.x);
+    return textureSampleCompareLevel(shadow_map, shadow_sampler, s.xy + offset, s.z);
+}
 
 // Fraction of sunlight reaching a point: percentage-closer filtering over a disc three
 // texels wide each way, so shadows on the ground have soft edges, as under a real sun (half
-// a degree wide) and a crown's many small gaps.
+// a degree wide) and a crown's many small gaps. (The loops have constant bounds: llvmpipe
+// runs a loop with bounds it cannot see per lane, at twice the cost.)
 fn sunlit(light_clip: vec4<f32>) -> f32 {
-    let p = light_clip.xyz / light_clip.w;
-    let uv = vec2<f32>(p.x * 0.5 + 0.5, 0.5 - p.y * 0.5);
-    if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || p.z > 1.0) {
+    let s = shadow_point(light_clip);
+    if (s.w == 0.0) {
         return 1.0;
     }
     var sum = 0.0;
-    for (var i = 0; i < 12; i++) {
-        let offset = TAPS[i] * (3.0 * g.shadow.x);
-        sum += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + offset, p.z - g.shadow.y);
+    for (var i = 0u; i < 12u; i++) {
+        sum += shadow_tap(s, i);
     }
     return sum / 12.0;
+}
+
+// `sunlit` for a leaf, through the last 4 taps.
+fn sunlit_leaf(light_clip: vec4<f32>) -> f32 {
+    let s = shadow_point(light_clip);
+    if (s.w == 0.0) {
+        return 1.0;
+    }
+    var sum = 0.0;
+    for (var i = 12u; i < 16u; i++) {
+        sum += shadow_tap(s, i);
+    }
+    return sum / 4.0;
 }
 
 // Anti-aliased grid lines every metre, stronger every 5 m.
@@ -122,28 +155,35 @@ fn grid(world: vec2<f32>) -> f32 {
     return max(line1 * 0.35, line5 * 0.6);
 }
 
+// Bark, the ground and the person.
 @fragment
-fn fs_main(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    let kind = m.kind.x;
-    var n = normalize(in.normal);
+fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
+    let n = normalize(in.normal);
     var base = m.color.rgb * in.shade;
-    if (kind > 1.5) {
+    if (m.kind.x > 1.5) {
         // Fade the grid out with distance so it never shimmers into noise.
         base = mix(base, base * 0.55, grid(in.world.xy));
     }
-    if (kind > 0.5 && kind < 1.5 && !front) {
-        n = -n;
-    }
-    let l = g.sun_dir.xyz;
-    let ndl = dot(n, l);
     let sun = g.sun_color.rgb * sunlit(in.light_clip);
     // Sky from above, light bounced off the ground from below.
     let hemi = mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.5 + 0.5 * n.z);
-    var lit = base * (hemi + sun * max(ndl, 0.0));
-    if (kind > 0.5 && kind < 1.5) {
-        // Light through the leaf when the sun is behind it.
-        lit += base * sun * max(-ndl, 0.0) * 0.45;
+    return vec4<f32>(base * (hemi + sun * max(dot(n, g.sun_dir.xyz), 0.0)), 1.0);
+}
+
+// Leaves: two-sided, and lit through when the sun is behind them. A pipeline of their own,
+// rather than a branch in `fs_main`: llvmpipe runs both sides of a branch it cannot prove
+// uniform.
+@fragment
+fn fs_leaf(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    var n = normalize(in.normal);
+    if (!front) {
+        n = -n;
     }
+    let base = m.color.rgb * in.shade;
+    let ndl = dot(n, g.sun_dir.xyz);
+    let sun = g.sun_color.rgb * sunlit_leaf(in.light_clip);
+    let hemi = mix(g.ground_bounce.rgb, g.sky_color.rgb, 0.5 + 0.5 * n.z);
+    let lit = base * (hemi + sun * max(ndl, 0.0) + sun * max(-ndl, 0.0) * 0.45);
     return vec4<f32>(lit, 1.0);
 }
 

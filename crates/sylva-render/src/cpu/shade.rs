@@ -5,7 +5,8 @@
 use crate::frame::{Globals, KIND_GROUND, Material};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-/// Taps of the shadow filter: a golden-angle spiral filling the unit disc evenly.
+/// Taps of the shadow filter, as the shader's `TAPS`: a golden-angle spiral filling the unit
+/// disc evenly, for the ground and bark.
 const TAPS: [Vec2; 12] = [
     Vec2::new(0.2041, 0.0000),
     Vec2::new(-0.2607, 0.2388),
@@ -19,6 +20,15 @@ const TAPS: [Vec2; 12] = [
     Vec2::new(-0.8224, 0.3395),
     Vec2::new(0.3965, -0.8472),
     Vec2::new(0.2930, 0.9341),
+];
+
+/// The shader's `LEAF_TAPS`: a turned square, for leaves, whose fragments are most of a
+/// forest's and whose shadows are broken up by the leaves around them anyway.
+const LEAF_TAPS: [Vec2; 4] = [
+    Vec2::new(0.6374, 0.2640),
+    Vec2::new(-0.2640, 0.6374),
+    Vec2::new(-0.6374, -0.2640),
+    Vec2::new(0.2640, -0.6374),
 ];
 
 /// The shadow map: depth from the sun, `size` x `size` texels.
@@ -46,18 +56,18 @@ impl ShadowMap {
     }
 
     /// Fraction of sunlight reaching a point at `light_clip`, filtered over a disc three texels
-    /// wide each way.
-    pub fn sunlit(&self, g: &Globals, light_clip: Vec4) -> f32 {
+    /// wide each way through `taps`.
+    pub fn sunlit(&self, g: &Globals, light_clip: Vec4, taps: &[Vec2]) -> f32 {
         let p = light_clip.truncate() / light_clip.w;
         let uv = Vec2::new(p.x * 0.5 + 0.5, 0.5 - p.y * 0.5);
         if uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || p.z > 1.0 {
             return 1.0;
         }
-        let sum: f32 = TAPS
+        let sum: f32 = taps
             .iter()
             .map(|t| self.compare(uv + *t * (3.0 * g.shadow[0]), p.z - g.shadow[1]))
             .sum();
-        sum / 12.0
+        sum / taps.len() as f32
     }
 }
 
@@ -102,9 +112,9 @@ impl Light<'_> {
         v3(self.globals.sun_color)
     }
 
-    fn sunlit(&self, world: Vec3) -> f32 {
+    fn sunlit(&self, world: Vec3, taps: &[Vec2]) -> f32 {
         self.shadow
-            .sunlit(self.globals, self.light_view_proj * world.extend(1.0))
+            .sunlit(self.globals, self.light_view_proj * world.extend(1.0), taps)
     }
 
     /// `fs_main`: a triangle's linear colour.
@@ -126,7 +136,7 @@ impl Light<'_> {
         }
         let l = v3(g.sun_dir);
         let ndl = n.dot(l);
-        let sun = self.sun() * self.sunlit(f.world);
+        let sun = self.sun() * self.sunlit(f.world, if leaf { &LEAF_TAPS } else { &TAPS });
         // Sky from above, light bounced off the ground from below.
         let hemi = mix(v3(g.ground_bounce), v3(g.sky_color), 0.5 + 0.5 * n.z);
         let mut lit = base * (hemi + sun * ndl.max(0.0));
@@ -142,7 +152,7 @@ impl Light<'_> {
     pub fn flat(&self, m: &Material, world: Vec3, direction: Vec3, size: Vec3) -> (Vec3, f32) {
         let g = self.globals;
         let l = v3(g.sun_dir);
-        let sun = self.sun() * self.sunlit(world);
+        let sun = self.sun() * self.sunlit(world, &TAPS);
         let base = v3(m.color);
         let to_eye = v3(g.eye) - world;
         let pixels_per_metre = g.eye[3] * size.z / to_eye.length().max(1e-3);

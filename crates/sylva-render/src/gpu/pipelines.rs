@@ -157,6 +157,8 @@ impl Templates {
 pub(crate) struct Pipelines {
     pub templates: Templates,
     pub triangles: wgpu::RenderPipeline,
+    /// Whole leaf meshes: `triangles` lit as leaves.
+    pub leaf_triangles: wgpu::RenderPipeline,
     pub shadow_triangles: wgpu::RenderPipeline,
     /// Stored trees: segments as tubes and as lines, leaves as cards and as points.
     pub tubes: Pair,
@@ -299,6 +301,14 @@ impl Pipelines {
             &mesh,
             wgpu::PrimitiveTopology::TriangleList,
         );
+        let leaf_triangles = colour(
+            "leaves",
+            "vs_main",
+            "fs_leaf",
+            &layout,
+            &mesh,
+            wgpu::PrimitiveTopology::TriangleList,
+        );
         // A line or point covers as many of a pixel's samples as the stems or leaves it
         // stands for would.
         let (axis, dot, fs_flat) = if sample_mask {
@@ -382,7 +392,7 @@ impl Pipelines {
         let cards = pair(
             "cards",
             "vs_card",
-            "fs_main",
+            "fs_leaf",
             "vs_shadow_card",
             &cards,
             wgpu::PrimitiveTopology::TriangleList,
@@ -452,6 +462,7 @@ impl Pipelines {
         Self {
             templates: Templates::new(device),
             triangles,
+            leaf_triangles,
             shadow_triangles,
             tubes,
             axes,

@@ -175,6 +175,7 @@ pub(super) fn pipeline<'p>(p: &'p Pipelines, d: &Draw, shadow: bool) -> &'p wgpu
         (Part::Run { .. }, Primitive::Triangles) => &p.tubes,
         (Part::Run { .. }, _) => &p.axes,
         _ if shadow => return &p.shadow_triangles,
+        (Part::Mesh { leaves: true, .. }, _) => return &p.leaf_triangles,
         _ => return &p.triangles,
     };
     if shadow { &pair.shadow } else { &pair.colour }
