@@ -218,6 +218,12 @@ fn render_forest(
     // Each copy sways on the GPU, by its own phases, the same at every range.
     scene.wind = wind;
     let view = forest_view(args, &scene, base)?;
+    let t = Instant::now();
+    renderer.prepare(&scene)?;
+    println!(
+        "impostors baked in {:.0} ms",
+        t.elapsed().as_secs_f64() * 1e3
+    );
     let mut frame = |use_lod: bool| -> Result<(Picture, f64)> {
         scene.use_lod = use_lod;
         let t = Instant::now();

@@ -45,6 +45,9 @@ pub struct Camera {
     /// Distance to the far clipping plane, metres; `None`: from the eye-target distance, for
     /// cameras framing one tree.
     pub far: Option<f32>,
+    /// Distance to the near clipping plane where it may lie farther out than `far`'s
+    /// 1:100,000 (a camera far outside what it sees, as the impostors' bake).
+    pub near: Option<f32>,
 }
 
 impl Camera {
@@ -96,6 +99,7 @@ impl Camera {
             fov_y,
             aspect,
             far: None,
+            near: None,
         }
     }
 
@@ -111,7 +115,14 @@ impl Camera {
         let distance = self.eye.distance(self.target);
         let (near, far) = match self.far {
             // A 32-bit float depth buffer keeps a 1:100,000 near:far ratio free of fighting.
-            Some(far) => ((far * 1e-5).max(0.02), far),
+            Some(far) => (
+                self.near
+                    .unwrap_or(0.0)
+                    .max(far * 1e-5)
+                    .max(0.02)
+                    .min(far * 0.5),
+                far,
+            ),
             None => ((distance * 0.01).max(0.01), distance * 20.0 + 100.0),
         };
         let proj = directx::perspective(self.fov_y, self.aspect, near, far);

@@ -85,13 +85,17 @@ impl FrameStats {
     /// One line describing a frame: what it drew and, given `ms`, how long it took.
     pub fn describe(&self, ms: f64) -> String {
         format!(
-            "{} triangles, {} lines, {} points ({} primitives) in {} of {} trees; {:.0} ms",
+            "{} triangles, {} lines, {} points ({} primitives) in {} of {} trees{}; {:.0} ms",
             grouped(self.triangles),
             grouped(self.lines),
             grouped(self.points),
             grouped(self.primitives()),
             grouped(self.trees_drawn),
             grouped(self.trees),
+            match self.impostors {
+                0 => String::new(),
+                n => format!(" ({} as impostors)", grouped(n)),
+            },
             ms
         )
     }

@@ -3,6 +3,7 @@
 //! the CPU rasteriser draws the same plan, so both backends show the same picture.
 
 use crate::camera::Camera;
+use crate::impostor::{Atlas, Cell};
 use crate::props::{PropMesh, ground, person};
 use crate::scene::{FrameStats, Placement, Scene};
 use crate::tree::RenderTree;
@@ -109,6 +110,13 @@ pub(crate) enum Part<'a> {
         run: usize,
         flat: bool,
         card: sylva::LeafShape,
+        /// Whether the copy is dissolving into its impostor (its instance's `sway[3]` is the
+        /// impostor's share of pixels).
+        fading: bool,
+    },
+    /// The impostor of a copy of a tree: one quad showing `cell` of the atlas.
+    Impostor {
+        cell: Cell,
     },
     Ground,
     Person,
@@ -149,6 +157,7 @@ impl Draw<'_> {
         let n = self.range.len() * self.instances.len();
         match (self.part, self.primitive) {
             (Part::Run { flat: true, .. }, _) => n,
+            (Part::Impostor { .. }, _) => 2 * n,
             (Part::Run { list: 3, card, .. }, _) => n * sylva::mesh::leaf_triangles(card),
             (Part::Run { .. }, _) => n * self.part.run().map_or(0, |(_, r)| r.triangles_per_item()),
             (_, Primitive::Triangles) => n / 3,
@@ -170,12 +179,26 @@ pub(crate) struct Frame<'a> {
     pub person: PropMesh,
     /// Linear RGBA the picture starts from.
     pub clear: [f32; 4],
+    /// The views the impostors show.
+    pub atlas: Option<&'a Atlas>,
     pub stats: FrameStats,
 }
 
 pub(crate) fn linear(c: [f32; 3]) -> [f32; 4] {
     let [r, g, b] = c.map(sylva::colour::srgb_to_linear);
     [r, g, b, 1.0]
+}
+
+/// The linear colour a transparent picture of `scene` starts from: its first trees' leaves,
+/// darkened, with no alpha.
+pub(crate) fn transparent_clear(scene: &Scene) -> [f32; 4] {
+    match scene.stands.first() {
+        Some(s) => {
+            let [r, g, b, _] = linear(s.leaves);
+            [r * 0.5, g * 0.5, b * 0.5, 0.0]
+        }
+        None => [0.0; 4],
+    }
 }
 
 /// The six planes of a view-projection's frustum (WebGPU depth 0..1), as `n.p + d >= 0` inside.
@@ -242,11 +265,13 @@ fn phases(p: &Placement) -> [f32; 2] {
     [unit(h), unit(h >> 16)]
 }
 
-/// Which passes a set of draws is for.
+/// Which passes a set of draws is for, and the share of the copy's pixels its impostor
+/// takes.
 #[derive(Clone, Copy, PartialEq)]
 struct Passes {
     colour: bool,
     shadow: bool,
+    fade: f32,
 }
 
 /// Shadows are soft (the filter spans several texels of a map that covers the whole scene), so
@@ -290,6 +315,7 @@ fn stored_draws<'a>(
                 run: k,
                 flat,
                 card: choice.card(run).0,
+                fading: passes.fade > 0.0,
             };
             draws.push(Draw {
                 primitive: Primitive::Triangles,
@@ -316,14 +342,47 @@ fn stored_draws<'a>(
         }
         instances.push(InstanceData {
             stands_for: [unmeshed as f32 / flat.max(1) as f32, choice.leaf_grow],
-            sway: [sway.turn[0], sway.turn[1], sway.length, 0.0],
+            sway: [sway.turn[0], sway.turn[1], sway.length, passes.fade],
             ..p.into()
         });
     }
 }
 
+/// The impostor of one copy of a stored tree, drawing `fade` of its pixels.
+fn impostor_draw<'a>(
+    scene: &Scene<'a>,
+    (stand, cell): (usize, Cell),
+    p: &Placement,
+    fade: f32,
+    instances: &mut Vec<InstanceData>,
+    draws: &mut Vec<Draw<'a>>,
+) {
+    let Some(lod) = scene.stands[stand].tree.data.lod.as_ref() else {
+        return;
+    };
+    let sway = lod.sway(&scene.wind, phases(p));
+    let index = instances.len() as u32;
+    instances.push(InstanceData {
+        sway: [sway.turn[0], sway.turn[1], sway.length, fade],
+        ..p.into()
+    });
+    draws.push(Draw {
+        primitive: Primitive::Triangles,
+        part: Part::Impostor { cell },
+        range: 0..1,
+        shadow: 0..0,
+        instances: index..index + 1,
+        material: 2 * stand + 1,
+    });
+}
+
 /// Plans `scene` seen by `camera` (at `azimuth` degrees) in a picture `height` pixels tall.
-pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height: u32) -> Frame<'a> {
+pub(crate) fn plan<'a>(
+    scene: &Scene<'a>,
+    camera: &Camera,
+    (azimuth, height): (f32, u32),
+    atlas: Option<&'a Atlas>,
+) -> Frame<'a> {
     let (lo, hi) = scene.bounds(azimuth);
     let centre = (lo + hi) / 2.0;
     let radius = ((hi - lo).length() / 2.0).max(0.5);
@@ -363,7 +422,7 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
     let mut draws: Vec<Draw> = Vec::new();
     // Trees stored for range: every visible copy's choice first, then the frame's budget
     // shared among them, then their draws.
-    let mut chosen: Vec<(f32, usize, &Placement, Choice)> = Vec::new();
+    let mut chosen: Vec<(f32, usize, &Placement, Choice, f32)> = Vec::new();
     let mut wishes: Vec<(usize, f32)> = Vec::new();
     for (s, stand) in scene.stands.iter().enumerate() {
         let tree = stand.tree;
@@ -391,7 +450,14 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
             let pixels = 2.0 * r / p.scale.max(1e-3) * viewer.pixels_per_metre(range);
             let wish = lod.primitives(&choice).min(sylva::lod::tree_cap(pixels));
             wishes.push((wish, pixels));
-            chosen.push((range, s, p, choice));
+            // Small enough, a copy dissolves into its impostor when there is one.
+            let tall = (tree.hi.z - tree.lo.z) * viewer.pixels_per_metre(range);
+            let cell = atlas.and_then(|a| a.cells.get(s).copied().flatten());
+            let fade = match cell {
+                Some(_) if scene.use_lod => sylva::lod::impostor_share(tall),
+                _ => 0.0,
+            };
+            chosen.push((range, s, p, choice, fade));
         }
         if tree.data.lod.is_none() {
             whole_meshes(scene, s, tree, first..instances.len() as u32, &mut draws);
@@ -406,7 +472,7 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
     let mut order: Vec<(f32, usize)> = chosen.iter().map(|c| c.0).zip(0..).collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (_, k) in order {
-        let (_, s, p, choice) = chosen[k];
+        let (_, s, p, choice, fade) = chosen[k];
         let allowance = allowances[k];
         let stand = &scene.stands[s];
         let Some(lod) = stand.tree.data.lod.as_ref() else {
@@ -420,19 +486,35 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
         };
         let tree = (s, stand.tree);
         let mut draw = |choice: &Choice, colour, shadow| {
-            let passes = Passes { colour, shadow };
+            let passes = Passes {
+                colour,
+                shadow,
+                fade,
+            };
             stored_draws(scene, tree, choice, p, passes, &mut instances, &mut draws);
         };
+        // Wholly an impostor, the tree still casts its shadow.
+        let drawn = fade < 1.0;
         if shadow == colour {
-            draw(&colour, true, true);
+            draw(&colour, drawn, true);
         } else {
-            draw(&colour, true, false);
+            if drawn {
+                draw(&colour, true, false);
+            }
             draw(&shadow, false, true);
+        }
+        if let Some(cell) = atlas.and_then(|a| a.cells.get(s).copied().flatten())
+            && fade > 0.0
+        {
+            impostor_draw(scene, (s, cell), p, fade, &mut instances, &mut draws);
         }
     }
     draws.retain(|d| !(d.instances.is_empty() || d.range.is_empty() && d.shadow.is_empty()));
     for d in &draws {
         stats.draw_calls += 1;
+        if let Part::Impostor { .. } = d.part {
+            stats.impostors += d.instances.len();
+        }
         match d.primitive {
             Primitive::Triangles => stats.triangles += d.primitives(),
             Primitive::Lines => stats.lines += d.primitives(),
@@ -467,13 +549,9 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
     }
     // Transparent pictures clear to the leaves' colour, so that edge pixels blend towards it
     // rather than towards the sky.
-    let clear = match (scene.transparent, scene.stands.first()) {
-        (true, Some(s)) => {
-            let [r, g, b, _] = linear(s.leaves);
-            [r * 0.5, g * 0.5, b * 0.5, 0.0]
-        }
-        (true, None) => [0.0; 4],
-        (false, _) => linear(SKY_SRGB),
+    let clear = match scene.transparent {
+        true => transparent_clear(scene),
+        false => linear(SKY_SRGB),
     };
     Frame {
         globals,
@@ -483,6 +561,7 @@ pub(crate) fn plan<'a>(scene: &Scene<'a>, camera: &Camera, azimuth: f32, height:
         ground: ground_mesh,
         person: person_mesh,
         clear,
+        atlas,
         stats,
     }
 }

@@ -27,6 +27,7 @@ mod forest;
 mod frame;
 pub mod glb_scene;
 mod gpu;
+mod impostor;
 mod lod_chain;
 mod props;
 mod scene;
@@ -42,7 +43,8 @@ pub use scene::{DEFAULT_PRIMITIVE_BUDGET, FrameStats, Placement, Scene, Stand, V
 pub use tree::RenderTree;
 
 use gpu::{Api, GpuRenderer};
-use std::sync::OnceLock;
+use impostor::Atlas;
+use std::sync::{Arc, Mutex, OnceLock};
 use sylva::mesh::TreeMesh;
 use tree::TreeData;
 
@@ -218,6 +220,8 @@ pub struct Renderer {
     /// Set once the GPU has failed: from then on every picture is drawn on the CPU.
     gpu_failed: OnceLock<String>,
     notice: Notice,
+    /// The impostors of the last scene drawn, and what they were baked for.
+    impostors: Mutex<Option<(impostor::Key, Arc<Atlas>)>>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -267,6 +271,7 @@ impl Renderer {
             gpu,
             gpu_failed: OnceLock::new(),
             notice,
+            impostors: Mutex::new(None),
         })
     }
 
@@ -276,6 +281,7 @@ impl Renderer {
             gpu: None,
             gpu_failed: OnceLock::new(),
             notice: Box::new(|_| {}),
+            impostors: Mutex::new(None),
         }
     }
 
@@ -290,6 +296,7 @@ impl Renderer {
             gpu: Some(GpuRenderer::new(device, queue, target_format, adapter)?),
             gpu_failed: OnceLock::new(),
             notice: Box::new(|_| {}),
+            impostors: Mutex::new(None),
         })
     }
 
@@ -361,6 +368,37 @@ impl Renderer {
         self.store(data, lod.triangle_count())
     }
 
+    /// The impostors of `scene`, baked on first use and kept while the same trees are drawn
+    /// under the same sun; `None` when it draws none.
+    fn impostors(&self, scene: &Scene) -> Result<Option<Arc<Atlas>>, RenderError> {
+        let Some(key) = impostor::Key::of(scene) else {
+            return Ok(None);
+        };
+        let kept = |cache: &Option<(impostor::Key, Arc<Atlas>)>| {
+            cache
+                .as_ref()
+                .filter(|(k, _)| *k == key)
+                .map(|(_, a)| a.clone())
+        };
+        if let Some(atlas) = self.impostors.lock().ok().and_then(|c| kept(&c)) {
+            return Ok(Some(atlas));
+        }
+        // Baked without holding the lock: the bake draws through this renderer.
+        let max = self.gpu().map_or(CPU_MAX_SIDE, |g| g.max_texture());
+        let atlas = Arc::new(impostor::bake(self, scene, max)?);
+        if let Ok(mut cache) = self.impostors.lock() {
+            *cache = Some((key, atlas.clone()));
+        }
+        Ok(Some(atlas))
+    }
+
+    /// Makes ready what drawing `scene` needs beyond its trees: the impostors of its trees
+    /// stored for range, baked from 8 sides under its sun (a few small pictures; otherwise
+    /// the first frame bakes them).
+    pub fn prepare(&self, scene: &Scene) -> Result<(), RenderError> {
+        self.impostors(scene).map(|_| ())
+    }
+
     /// Draws `scene` into `resolve` (a single-sample view of this renderer's target format and
     /// `width` x `height`), e.g. the viewer's texture. Needs the GPU.
     pub fn render_into(
@@ -382,8 +420,9 @@ impl Renderer {
             }
             (None, _) => return Err(RenderError::NeedsGpu(what)),
         };
+        let atlas = self.impostors(scene)?;
         let camera = scene.camera(view, width as f32 / height as f32);
-        let frame = frame::plan(scene, &camera, view.azimuth, height);
+        let frame = frame::plan(scene, &camera, (view.azimuth, height), atlas.as_deref());
         gpu.render_into(&frame, resolve, width, height)?;
         Ok(frame.stats)
     }
@@ -401,8 +440,9 @@ impl Renderer {
         if !(16..=max).contains(&width) || !(16..=max).contains(&height) {
             return Err(RenderError::Size { width, height, max });
         }
+        let atlas = self.impostors(scene)?;
         let camera = scene.camera(view, width as f32 / height as f32);
-        let frame = frame::plan(scene, &camera, view.azimuth, height);
+        let frame = frame::plan(scene, &camera, (view.azimuth, height), atlas.as_deref());
         if let Some(gpu) = self.gpu() {
             match gpu.render(&frame, width, height) {
                 Ok(rgba) => {

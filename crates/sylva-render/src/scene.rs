@@ -130,6 +130,10 @@ pub struct Scene<'a> {
     /// among them by the pixels each covers (`sylva::lod::share_out`); each tree also draws at
     /// most `sylva::lod::PER_SQUARE_PIXEL` per pixel of its box. `None`: no frame budget.
     pub primitive_budget: Option<usize>,
+    /// With range degradation, trees stored for range under `sylva::lod::IMPOSTOR_PIXELS`
+    /// tall dissolve into impostors: pictures of them from 8 sides, baked for this scene's
+    /// trees and sun on first use, on one quad each.
+    pub impostors: bool,
     /// Clear to transparent instead of the sky (for baking impostors): the picture's alpha is
     /// then the trees' coverage.
     pub transparent: bool,
@@ -168,6 +172,7 @@ impl<'a> Scene<'a> {
             use_lod: true,
             lod_quality: 1.0,
             primitive_budget: Some(DEFAULT_PRIMITIVE_BUDGET),
+            impostors: true,
             transparent: false,
             wind: sylva::Wind::default(),
         }
@@ -237,12 +242,18 @@ impl<'a> Scene<'a> {
                 .max(ground)
                 * 1.1
                 + 10.0;
+            // An eye outside everything drawn (the ground reaches beyond the trees) needs no
+            // near plane closer than their bounds, and a farther one keeps the depth buffer's
+            // precision.
+            let outside = eye - eye.clamp(lo, hi);
+            let near = (!self.show_ground).then(|| outside.length() * 0.9);
             return Camera {
                 eye,
                 target,
                 fov_y: view.fov_y.to_radians(),
                 aspect,
                 far: Some(far),
+                near,
             };
         }
         let (lo, hi) = self.bounds(view.azimuth);
@@ -277,6 +288,9 @@ pub struct FrameStats {
     pub points: usize,
     /// Draw calls of trees.
     pub draw_calls: usize,
+    /// Tree copies drawn wholly or partly as impostors (2 triangles each, counted in
+    /// `triangles`).
+    pub impostors: usize,
 }
 
 impl FrameStats {

@@ -34,6 +34,8 @@ pub struct RenderTree {
     pub hi: Vec3,
     /// Triangles uploaded (bark + leaves).
     pub triangles: usize,
+    /// Unique among the trees of this process: what baked impostors are kept under.
+    pub(crate) id: u64,
 }
 
 /// A mesh in the renderer's vertex layout.
@@ -91,12 +93,14 @@ pub(crate) fn prepare(data: TreeData, triangles: usize) -> RenderTree {
         Some(lod) => lod.quantiser.bounds(),
         None => bounds(&data),
     };
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
     RenderTree {
         data,
         gpu: None,
         lo,
         hi,
         triangles,
+        id: NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
     }
 }
 

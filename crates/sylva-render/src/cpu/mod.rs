@@ -6,12 +6,15 @@
 //! does. Far stems and leaves (lines and points) are shaded as they are rasterised, since each
 //! covers only the samples its share of the pixel chooses.
 
+mod flat;
+mod impostor;
 mod raster;
 mod shade;
 
 use crate::frame::{Draw, Frame, InstanceData, Part, Primitive, SHADOW_SIZE};
 use crate::props::Vertex;
 use crate::tree::MeshData;
+use flat::FlatDraw;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use raster::{Grid, SAMPLE_POSITIONS, Setup};
 use rayon::prelude::*;
@@ -19,12 +22,12 @@ use shade::{Fragment, Light, ShadowMap};
 use std::ops::Range;
 use sylva::lod::expand::{Card, Tube};
 
-const SAMPLES: usize = 4;
+pub(super) const SAMPLES: usize = 4;
 /// A sample no primitive covers.
 const EMPTY: u64 = u64::MAX;
 /// Keys with this bit hold the index of a colour shaded while rasterising (lines, points);
 /// others hold a batch (draw and copy) and a triangle.
-const FLAT: u64 = 1 << 63;
+pub(super) const FLAT: u64 = 1 << 63;
 
 /// A line or point vertex: position, the size of what it stands for (stem diameter or blade
 /// area) and a unit direction for lighting (stem axis or blade normal).
@@ -176,7 +179,7 @@ fn view<'a>(frame: &'a Frame<'a>, d: &Draw<'a>, expanded: &'a Option<Expanded>) 
         } else {
             &tree.data.bark
         }),
-        (Part::Run { .. }, None) => Geometry::Flat(&[]),
+        (Part::Run { .. } | Part::Impostor { .. }, None) => Geometry::Flat(&[]),
         (Part::Ground, _) => Geometry::Mesh {
             vertices: &frame.ground.vertices,
             indices: &frame.ground.indices,
@@ -315,14 +318,14 @@ fn clamp_range(range: &std::ops::Range<u32>, len: usize) -> std::ops::Range<usiz
 }
 
 /// The visibility buffer: per sample, the nearest depth and what lies there.
-struct Samples {
+pub(super) struct Samples {
     depth: Vec<f32>,
     key: Vec<u64>,
 }
 
 impl Samples {
     #[inline]
-    fn test(&mut self, i: usize, z: f32, key: u64) {
+    pub(super) fn test(&mut self, i: usize, z: f32, key: u64) {
         if z < self.depth[i] {
             self.depth[i] = z;
             self.key[i] = key;
@@ -368,10 +371,32 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
         if view.range.is_empty() {
             continue;
         }
+        if let (Part::Impostor { cell, .. }, Some(atlas)) = (d.part, frame.atlas) {
+            let draw = impostor::ImpostorDraw {
+                atlas,
+                view_proj,
+                eye: Vec3::from_slice(&g.eye[..3]),
+                grid,
+            };
+            for copy in d.instances.clone() {
+                let instance = &frame.instances[copy as usize];
+                draw.draw(instance, &cell, &mut samples, &mut flat_colours);
+            }
+            continue;
+        }
         let geometry = view.geometry;
         let material = &frame.materials[d.material];
         for copy in d.instances.clone() {
             let instance = &frame.instances[copy as usize];
+            // A copy dissolving into its impostor leaves it the pixels it has taken.
+            let fade = match d.part {
+                Part::Run { fading: true, .. } => instance.sway[3],
+                _ => 0.0,
+            };
+            let given_up = |i: usize| {
+                let pixel = (i / SAMPLES) as u32;
+                fade > 0.0 && shade::dither(pixel % width, pixel / width).0 < fade
+            };
             let batch = batches.len() as u64;
             batches.push((draw_index, copy));
             match geometry {
@@ -388,7 +413,11 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
                         });
                         let Some(setup) = Setup::new(c) else { continue };
                         let key = batch << 32 | (first + k) as u64;
-                        grid.triangle(&setup, &c, |i, z, _| samples.test(i, z, key));
+                        grid.triangle(&setup, &c, |i, z, _| {
+                            if !given_up(i) {
+                                samples.test(i, z, key)
+                            }
+                        });
                     }
                 }
                 Geometry::Flat(points) => {
@@ -399,6 +428,7 @@ pub(crate) fn render(frame: &Frame, width: u32, height: u32) -> Vec<u8> {
                         instance,
                         view_proj,
                         grid,
+                        fade,
                     };
                     let mut out = (&mut samples, &mut flat_colours);
                     if d.primitive == Primitive::Lines {
@@ -444,74 +474,6 @@ fn encode_srgb(c: Vec4) -> [u8; 4] {
         s(c.z),
         (c.w.clamp(0.0, 1.0) * 255.0).round() as u8,
     ]
-}
-
-/// Far stems (lines) and leaves (points) of one copy of a tree.
-struct FlatDraw<'a> {
-    light: &'a Light<'a>,
-    material: &'a crate::frame::Material,
-    instance: &'a InstanceData,
-    view_proj: Mat4,
-    grid: Grid,
-}
-
-/// Where flat primitives go: the visibility buffer and the colours its flat keys point to.
-type FlatOut<'a> = (&'a mut Samples, &'a mut Vec<Vec3>);
-
-impl FlatDraw<'_> {
-    /// The colour and the share of a pixel of a line or point at `world` whose vertex is `v`,
-    /// stored under a new key.
-    fn lit(&self, world: Vec3, v: &FlatVertex, colours: &mut Vec<Vec3>) -> (u64, f32) {
-        let n = Vec3::new(v.normal[0] as f32, v.normal[1] as f32, v.normal[2] as f32) / 127.0;
-        let size = Vec3::new(v.size, self.instance.stands_for[0], self.instance.place[3]);
-        let (lit, cover) = self
-            .light
-            .flat(self.material, world, self.instance.turn(n), size);
-        colours.push(lit);
-        (FLAT | (colours.len() - 1) as u64, cover)
-    }
-
-    fn write(out: &mut FlatOut, pixel: (u32, u32), width: u32, z: f32, key: u64, mask: u32) {
-        let base = (pixel.1 * width + pixel.0) as usize * SAMPLES;
-        for s in 0..SAMPLES {
-            if mask & (1 << s) != 0 {
-                out.0.test(base + s, z, key);
-            }
-        }
-    }
-
-    /// A point: lit once; every pixel it touches shows the same samples of its share, as the
-    /// GPU's fragments of one point (same position, same seed) do.
-    fn point(&self, v: &FlatVertex, out: &mut FlatOut) {
-        let world = self.instance.place(Vec3::from(v.position));
-        let mut key = None;
-        self.grid
-            .point(self.view_proj * world.extend(1.0), |x, y, z, shape| {
-                let (k, cover) = *key.get_or_insert_with(|| self.lit(world, v, out.1));
-                let mask = shade::coverage_mask(cover, shade::world_seed(world)) & shape;
-                Self::write(out, (x, y), self.grid.width, z, k, mask);
-            });
-    }
-
-    /// A line: lit once at its middle (a far stem is a few pixels long); each pixel draws its
-    /// own share of samples, seeded by where along the line it lies.
-    fn line(&self, va: &FlatVertex, vb: &FlatVertex, out: &mut FlatOut) {
-        let (a, b) = (
-            self.instance.place(Vec3::from(va.position)),
-            self.instance.place(Vec3::from(vb.position)),
-        );
-        let (ca, cb) = (
-            self.view_proj * a.extend(1.0),
-            self.view_proj * b.extend(1.0),
-        );
-        let mut key = None;
-        self.grid.line(ca, cb, |x, y, z, t, shape| {
-            let (k, cover) = *key.get_or_insert_with(|| self.lit((a + b) / 2.0, va, out.1));
-            let seed = shade::world_seed(a + (b - a) * t);
-            let mask = shade::coverage_mask(cover, seed) & shape;
-            Self::write(out, (x, y), self.grid.width, z, k, mask);
-        });
-    }
 }
 
 /// Shades the visibility buffer.

@@ -188,6 +188,14 @@ pub(crate) fn hash(v: u32) -> u32 {
     (word >> 22) ^ word
 }
 
+/// The shader's `dither`: two thresholds in 0..1 for pixel (x, y), the same in every frame:
+/// the first for the dissolve between a tree and its impostor, the second for the impostor's
+/// alpha.
+pub(crate) fn dither(x: u32, y: u32) -> (f32, f32) {
+    let h = hash(x ^ hash(y.wrapping_add(0x9e37_79b9)));
+    ((h & 0xffff) as f32 / 65536.0, (h >> 16) as f32 / 65536.0)
+}
+
 /// The shader's `world_seed`.
 pub(crate) fn world_seed(world: Vec3) -> u32 {
     hash(world.x.to_bits() ^ hash(world.y.to_bits() ^ hash(world.z.to_bits())))

@@ -3,6 +3,7 @@
 //! error scopes, and uncaptured errors and device loss are recorded rather than panicking, so
 //! that any failure reaches the caller as a [`RenderError`].
 
+mod atlas;
 mod buffers;
 mod pipelines;
 mod record;
@@ -28,6 +29,8 @@ pub(crate) struct GpuRenderer {
     /// The first error no scope caught, or the device's loss.
     failure: Arc<Mutex<Option<String>>>,
     max_buffer: u64,
+    /// The last impostor atlas uploaded, under its id.
+    atlas: Mutex<Option<(u64, wgpu::BindGroup)>>,
 }
 
 /// Which wgpu backends to try.
@@ -124,6 +127,7 @@ impl GpuRenderer {
             name,
             failure,
             max_buffer,
+            atlas: Mutex::new(None),
         })
     }
 
@@ -154,6 +158,19 @@ impl GpuRenderer {
                 self.max_buffer >> 20
             ),
         })
+    }
+
+    /// The bind group of an impostor atlas, uploaded on first use.
+    fn atlas_group(&self, atlas: &crate::impostor::Atlas) -> wgpu::BindGroup {
+        let mut kept = self.atlas.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((id, group)) = kept.as_ref()
+            && *id == atlas.id
+        {
+            return group.clone();
+        }
+        let group = atlas::upload(&self.device, &self.queue, &self.pipelines, atlas);
+        *kept = Some((atlas.id, group.clone()));
+        group
     }
 
     fn prop(&self, label: &str, mesh: &PropMesh) -> crate::tree::GpuPart {
@@ -236,6 +253,7 @@ impl GpuRenderer {
                 }),
             }],
         });
+        let atlas = frame.atlas.map(|a| self.atlas_group(a));
         // Resolve every draw's buffers first, so that a tree without GPU buffers is an error
         // before anything is recorded.
         let sources: Vec<Vec<Source>> = frame
@@ -264,7 +282,7 @@ impl GpuRenderer {
             // with the camera's range.
             for ((d, s), &offset) in frame.draws.iter().zip(&sources).zip(&copy_offsets) {
                 pass.set_pipeline(record::pipeline(p, d, true));
-                let buffers = (&instances, &copy_group, offset);
+                let buffers = (&instances, &copy_group, offset, None);
                 record(&mut pass, d, s, buffers, &p.templates, d.shadow.clone());
             }
         }
@@ -296,7 +314,7 @@ impl GpuRenderer {
         for ((d, s), &offset) in frame.draws.iter().zip(&sources).zip(&copy_offsets) {
             pass.set_pipeline(record::pipeline(p, d, false));
             pass.set_bind_group(1, &materials[d.material], &[]);
-            let buffers = (&instances, &copy_group, offset);
+            let buffers = (&instances, &copy_group, offset, atlas.as_ref());
             record(&mut pass, d, s, buffers, &p.templates, d.range.clone());
         }
         Ok(())
@@ -418,6 +436,13 @@ impl GpuRenderer {
         }
         drop(data);
         readback.unmap();
+        // A picture is RGBA whatever the target (a window's may be BGRA).
+        if matches!(
+            self.target_format,
+            wgpu::TextureFormat::Bgra8UnormSrgb | wgpu::TextureFormat::Bgra8Unorm
+        ) {
+            rgba.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
+        }
         Ok(rgba)
     }
 

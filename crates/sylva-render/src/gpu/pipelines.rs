@@ -88,11 +88,23 @@ const TEMPLATE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLay
 /// alignment).
 pub(crate) const COPY_STRIDE: u64 = 256;
 
-/// The pipelines of one kind of primitive: the colour pass and the shadow pass.
+/// The pipelines of one kind of primitive: the colour pass and the shadow pass, and the
+/// colour pass of a copy dissolving into its impostor.
 pub(crate) struct Pair {
     pub colour: wgpu::RenderPipeline,
     pub shadow: wgpu::RenderPipeline,
+    /// `colour` dropping the pixels the impostor takes: a pipeline of its own because a
+    /// shader that may discard loses early depth testing on llvmpipe.
+    pub fading: wgpu::RenderPipeline,
 }
+
+/// The shaders: shader.wgsl, the shadow filter and the impostors' (which use its functions;
+/// WGSL's declarations may come in any order).
+const SHADER: &str = concat!(
+    include_str!("../shader.wgsl"),
+    include_str!("../shadow.wgsl"),
+    include_str!("../impostor.wgsl")
+);
 
 /// Most vertices around a stored stem's ring (`sylva::mesh::MeshOptions::ring_vertices`).
 const MAX_SIDES: u32 = 256;
@@ -165,6 +177,10 @@ pub(crate) struct Pipelines {
     pub axes: Pair,
     pub cards: Pair,
     pub dots: Pair,
+    /// Impostors: a quad per copy showing its views in the atlas (bind group 3).
+    pub impostors: wgpu::RenderPipeline,
+    pub atlas_layout: wgpu::BindGroupLayout,
+    pub atlas_sampler: wgpu::Sampler,
     pub copy_layout: wgpu::BindGroupLayout,
     pub globals: wgpu::Buffer,
     pub globals_group: wgpu::BindGroup,
@@ -183,7 +199,10 @@ impl Pipelines {
         target_format: wgpu::TextureFormat,
         sample_mask: bool,
     ) -> Self {
-        let shader = device.create_shader_module(wgpu::include_wgsl!("../shader.wgsl"));
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("sylva"),
+            source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+        });
         let globals_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("globals"),
             entries: &[
@@ -216,7 +235,8 @@ impl Pipelines {
             label: Some("copy"),
             entries: &[wgpu::BindGroupLayoutEntry {
                 binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
+                // The fragment stage reads the dissolve's share.
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                 ty: wgpu::BindingType::Buffer {
                     ty: wgpu::BufferBindingType::Uniform,
                     has_dynamic_offset: true,
@@ -312,12 +332,12 @@ impl Pipelines {
         // A line or point covers as many of a pixel's samples as the stems or leaves it
         // stands for would.
         let (axis, dot, fs_flat) = if sample_mask {
-            ("vs_axis", "vs_dot", "fs_flat")
+            ("vs_axis", "vs_dot", ("fs_flat", "fs_flat_fading"))
         } else {
             (
                 "vs_axis_per_sample",
                 "vs_dot_per_sample",
-                "fs_flat_per_sample",
+                ("fs_flat_per_sample", "fs_flat_per_sample_fading"),
             )
         };
         // Shadows of meshes, and of the lines and points that stand in for far stems and leaves.
@@ -363,20 +383,23 @@ impl Pipelines {
             &mesh,
             wgpu::PrimitiveTopology::TriangleList,
         );
-        let pair =
-            |label, vs, fs, shadow_vs, buffers: &[Option<wgpu::VertexBufferLayout>], topology| {
-                Pair {
-                    colour: colour(label, vs, fs, &stored_layout, buffers, topology),
-                    shadow: shadow(shadow_vs, &stored_shadow_layout, buffers, topology),
-                }
-            };
+        let pair = |label,
+                    vs,
+                    (fs, fading): (&'static str, &'static str),
+                    shadow_vs,
+                    buffers: &[Option<wgpu::VertexBufferLayout>],
+                    topology| Pair {
+            colour: colour(label, vs, fs, &stored_layout, buffers, topology),
+            shadow: shadow(shadow_vs, &stored_shadow_layout, buffers, topology),
+            fading: colour(label, vs, fading, &stored_layout, buffers, topology),
+        };
         let segments = [Some(SEGMENT_LAYOUT)];
         let cards = [Some(TEMPLATE_LAYOUT), Some(CARD_LAYOUT)];
         let dots = [Some(CARD_LAYOUT)];
         let tubes = pair(
             "tubes",
             "vs_tube",
-            "fs_main",
+            ("fs_main", "fs_main_fading"),
             "vs_shadow_tube",
             &segments,
             wgpu::PrimitiveTopology::TriangleList,
@@ -392,7 +415,7 @@ impl Pipelines {
         let cards = pair(
             "cards",
             "vs_card",
-            "fs_leaf",
+            ("fs_leaf", "fs_leaf_fading"),
             "vs_shadow_card",
             &cards,
             wgpu::PrimitiveTopology::TriangleList,
@@ -405,6 +428,51 @@ impl Pipelines {
             &dots,
             wgpu::PrimitiveTopology::PointList,
         );
+        let atlas_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("impostor atlas"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let impostor_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("impostors"),
+            bind_group_layouts: &[
+                Some(&globals_layout),
+                Some(&material_layout),
+                Some(&copy_layout),
+                Some(&atlas_layout),
+            ],
+            immediate_size: 0,
+        });
+        let impostors = colour(
+            "impostors",
+            "vs_impostor",
+            "fs_impostor",
+            &impostor_layout,
+            &[],
+            wgpu::PrimitiveTopology::TriangleList,
+        );
+        let atlas_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("impostor atlas"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
         let shadow_texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shadow map"),
             size: wgpu::Extent3d {
@@ -468,6 +536,9 @@ impl Pipelines {
             axes,
             cards,
             dots,
+            impostors,
+            atlas_layout,
+            atlas_sampler,
             copy_layout,
             globals,
             globals_group,

@@ -2,7 +2,7 @@
 
 use super::pipelines::{COPY_STRIDE, Pipelines};
 use crate::RenderError;
-use crate::frame::{Draw, Frame, Part, Primitive};
+use crate::frame::{Draw, Frame, InstanceData, Part, Primitive};
 use sylva::lod::packed::{Leaf, Segment};
 
 /// The frame's own buffers (the props).
@@ -30,6 +30,8 @@ pub(super) enum Source<'a> {
         /// Index of the leaf outline in [`super::pipelines::Templates`].
         shape: usize,
     },
+    /// A quad of six vertices made by the shader, showing the atlas (bind group 3).
+    Impostor,
 }
 
 /// What one record of a stored tree draws.
@@ -64,37 +66,11 @@ pub(super) fn copies(frame: &Frame) -> (Vec<u8>, Vec<u32>) {
         .draws
         .iter()
         .map(|d| {
-            let Some((lod, run)) = d.part.run() else {
-                return 0;
-            };
             let i = &frame.instances[d.instances.start as usize];
-            let q = &lod.quantiser;
-            let card = match d.part {
-                Part::Run { card, .. } => card,
-                _ => run.shape,
-            };
-            let data = CopyData {
-                place: i.place,
-                turn: [
-                    i.turn[0],
-                    i.turn[1],
-                    i.stands_for[0],
-                    sylva::lod::card_scale(run.shape, card, i.stands_for[1]),
-                ],
-                lo: q.lo.extend(q.radius).to_array(),
-                size: q.size.extend(q.leaf_length).to_array(),
-                run: if run.sides > 0 {
-                    [
-                        run.sides as f32,
-                        run.lobes as f32,
-                        run.lobe_depth,
-                        q.leaf_width,
-                    ]
-                } else {
-                    let area = sylva::mesh::leaf_template(run.shape).area();
-                    [area, 0.0, 0.0, q.leaf_width]
-                },
-                sway: i.sway,
+            let data = match (d.part, d.part.run()) {
+                (Part::Impostor { cell, .. }, _) => impostor_copy(i, &cell),
+                (_, Some((lod, run))) => stored_copy(d, i, lod, run),
+                _ => return 0,
             };
             let offset = bytes.len() as u32;
             bytes.extend_from_slice(bytemuck::bytes_of(&data));
@@ -106,6 +82,60 @@ pub(super) fn copies(frame: &Frame) -> (Vec<u8>, Vec<u32>) {
         bytes.resize(COPY_STRIDE as usize, 0);
     }
     (bytes, offsets)
+}
+
+/// The copy entry of an impostor: where it stands and the atlas cell it shows (`impostor.wgsl`).
+fn impostor_copy(i: &InstanceData, cell: &crate::impostor::Cell) -> CopyData {
+    CopyData {
+        place: i.place,
+        turn: [i.turn[0], i.turn[1], 0.0, 0.0],
+        lo: [
+            cell.x0 as f32,
+            cell.y0 as f32,
+            cell.width as f32,
+            cell.half_width,
+        ],
+        size: [cell.bottom, cell.top, 0.0, 0.0],
+        run: [0.0; 4],
+        sway: i.sway,
+    }
+}
+
+/// The copy entry of a stored tree's run: where it stands and its records' scales.
+fn stored_copy(
+    d: &Draw,
+    i: &InstanceData,
+    lod: &sylva::lod::LodTree,
+    run: &sylva::lod::Run,
+) -> CopyData {
+    let q = &lod.quantiser;
+    let card = match d.part {
+        Part::Run { card, .. } => card,
+        _ => run.shape,
+    };
+    CopyData {
+        place: i.place,
+        turn: [
+            i.turn[0],
+            i.turn[1],
+            i.stands_for[0],
+            sylva::lod::card_scale(run.shape, card, i.stands_for[1]),
+        ],
+        lo: q.lo.extend(q.radius).to_array(),
+        size: q.size.extend(q.leaf_length).to_array(),
+        run: if run.sides > 0 {
+            [
+                run.sides as f32,
+                run.lobes as f32,
+                run.lobe_depth,
+                q.leaf_width,
+            ]
+        } else {
+            let area = sylva::mesh::leaf_template(run.shape).area();
+            [area, 0.0, 0.0, q.leaf_width]
+        },
+        sway: i.sway,
+    }
 }
 
 impl Props {
@@ -121,6 +151,7 @@ impl Props {
         };
         Ok(match d.part {
             Part::Ground => vec![part(&self.ground, None)],
+            Part::Impostor { .. } => vec![Source::Impostor],
             Part::Person => vec![part(&self.person, None)],
             Part::Mesh { tree, leaves } => {
                 let gpu = tree.gpu.as_ref().ok_or_else(missing)?;
@@ -169,6 +200,14 @@ impl Props {
 
 /// The pipeline of a draw in the colour pass (`shadow`: the shadow pass).
 pub(super) fn pipeline<'p>(p: &'p Pipelines, d: &Draw, shadow: bool) -> &'p wgpu::RenderPipeline {
+    if let Part::Impostor { .. } = d.part {
+        // Impostors cast no shadow: their trees' own draws do.
+        return if shadow {
+            &p.shadow_triangles
+        } else {
+            &p.impostors
+        };
+    }
     let pair = match (d.part, d.primitive) {
         (Part::Run { list: 3, .. }, Primitive::Triangles) => &p.cards,
         (Part::Run { list: 3, .. }, _) => &p.dots,
@@ -178,7 +217,11 @@ pub(super) fn pipeline<'p>(p: &'p Pipelines, d: &Draw, shadow: bool) -> &'p wgpu
         (Part::Mesh { leaves: true, .. }, _) => return &p.leaf_triangles,
         _ => return &p.triangles,
     };
-    if shadow { &pair.shadow } else { &pair.colour }
+    match (shadow, d.part) {
+        (true, _) => &pair.shadow,
+        (false, Part::Run { fading: true, .. }) => &pair.fading,
+        _ => &pair.colour,
+    }
 }
 
 /// Records one draw of `range` (its records, for a stored tree).
@@ -186,14 +229,19 @@ pub(super) fn record(
     pass: &mut wgpu::RenderPass<'_>,
     d: &Draw,
     sources: &[Source],
-    draw_buffers: (&wgpu::Buffer, &wgpu::BindGroup, u32),
+    draw_buffers: (
+        &wgpu::Buffer,
+        &wgpu::BindGroup,
+        u32,
+        Option<&wgpu::BindGroup>,
+    ),
     templates: &super::pipelines::Templates,
     range: std::ops::Range<u32>,
 ) {
     if range.is_empty() || d.instances.is_empty() {
         return;
     }
-    let (instances, copy_group, copy_offset) = draw_buffers;
+    let (instances, copy_group, copy_offset, atlas) = draw_buffers;
     for s in sources {
         match *s {
             Source::Mesh {
@@ -207,6 +255,13 @@ pub(super) fn record(
                 pass.set_vertex_buffer(1, instances.slice(..));
                 pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(range, 0, d.instances.clone());
+            }
+            Source::Impostor => {
+                if let Some(atlas) = atlas {
+                    pass.set_bind_group(2, copy_group, &[copy_offset]);
+                    pass.set_bind_group(3, atlas, &[]);
+                    pass.draw(0..6, 0..1);
+                }
             }
             Source::Stored {
                 records,

@@ -6,7 +6,44 @@
 //! the library does not hold (`sylva generate --lod-chain` bakes them with `sylva-render`).
 
 use crate::mesh::{Mesh, TreeMesh};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
+
+/// Height on screen, pixels, below which a tree stored for range starts to dissolve into its
+/// impostor. Above it the tree draws at most [`super::tree_cap`] primitives (5,000 here);
+/// below, a baked picture on one quad draws what those would, at 2 triangles.
+pub const IMPOSTOR_PIXELS: f32 = 50.0;
+
+/// Height on screen, pixels, at which the tree has wholly become its impostor. Between this
+/// and [`IMPOSTOR_PIXELS`] both are drawn, each on a complementary share of the pixels (a
+/// dissolve), so the switch happens over many frames and pixels rather than at once.
+pub const IMPOSTOR_WHOLE_PIXELS: f32 = 40.0;
+
+/// The share of a tree's pixels its impostor draws at `height_pixels` tall: 0 at
+/// [`IMPOSTOR_PIXELS`] and above, 1 at [`IMPOSTOR_WHOLE_PIXELS`] and below.
+pub fn impostor_share(height_pixels: f32) -> f32 {
+    let share = (IMPOSTOR_PIXELS - height_pixels) / (IMPOSTOR_PIXELS - IMPOSTOR_WHOLE_PIXELS);
+    if share.is_nan() {
+        0.0
+    } else {
+        share.clamp(0.0, 1.0)
+    }
+}
+
+/// The two baked views on either side of an eye in horizontal direction `towards_eye` (from
+/// the tree), for `views` views taken as [`ImpostorFrame::direction`] takes them, and the
+/// weight of the second: the picture turns smoothly from one view to the next as the eye
+/// goes round.
+pub fn view_blend(views: u32, towards_eye: Vec2) -> (u32, u32, f32) {
+    let views = views.max(1);
+    let turns = towards_eye.x.atan2(-towards_eye.y) / std::f32::consts::TAU;
+    let t = turns.rem_euclid(1.0) * views as f32;
+    let first = (t.floor() as u32).min(views - 1);
+    (
+        first,
+        (first + 1) % views,
+        (t - first as f32).clamp(0.0, 1.0),
+    )
+}
 
 /// A baked impostor.
 #[derive(Clone, Debug, PartialEq)]
@@ -106,6 +143,40 @@ impl ImpostorFrame {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_impostor_takes_over_between_fifty_and_forty_pixels() {
+        assert_eq!(impostor_share(400.0), 0.0);
+        assert_eq!(impostor_share(50.0), 0.0);
+        assert!((impostor_share(45.0) - 0.5).abs() < 1e-6);
+        assert_eq!(impostor_share(40.0), 1.0);
+        assert_eq!(impostor_share(3.0), 1.0);
+        assert_eq!(impostor_share(f32::NAN), 0.0);
+    }
+
+    #[test]
+    fn views_blend_towards_the_eye() {
+        let f = ImpostorFrame {
+            views: 8,
+            columns: 4,
+            half_width: 3.0,
+            bottom: 0.0,
+            top: 10.0,
+        };
+        for k in 0..8 {
+            // Straight from view k's eye: view k alone.
+            let (a, _, w) = view_blend(8, f.direction(k).truncate());
+            assert!(
+                (a == k && w < 1e-4) || ((a + 1) % 8 == k && w > 1.0 - 1e-4),
+                "{k}: {a} {w}"
+            );
+        }
+        // Halfway between views 7 and 0, south of south-west.
+        let half = (f.direction(7) + f.direction(0)).truncate();
+        let (a, b, w) = view_blend(8, half);
+        assert_eq!((a, b), (7, 0));
+        assert!((w - 0.5).abs() < 1e-4);
+    }
 
     #[test]
     fn quads_face_their_views_and_tile_the_atlas() {

@@ -19,6 +19,7 @@ pub mod packed;
 pub mod sway;
 
 pub use budget::{Choice, PER_SQUARE_PIXEL, THINNED_OUTLINE, card_scale, share_out, tree_cap};
+pub use impostor::{IMPOSTOR_PIXELS, IMPOSTOR_WHOLE_PIXELS, impostor_share, view_blend};
 
 use crate::skeleton::LeafShape;
 use order::prefix_len;
