@@ -189,18 +189,6 @@ pub(crate) fn linear(c: [f32; 3]) -> [f32; 4] {
     [r, g, b, 1.0]
 }
 
-/// The linear colour a transparent picture of `scene` starts from: its first trees' leaves,
-/// darkened, with no alpha.
-pub(crate) fn transparent_clear(scene: &Scene) -> [f32; 4] {
-    match scene.stands.first() {
-        Some(s) => {
-            let [r, g, b, _] = linear(s.leaves);
-            [r * 0.5, g * 0.5, b * 0.5, 0.0]
-        }
-        None => [0.0; 4],
-    }
-}
-
 /// The six planes of a view-projection's frustum (WebGPU depth 0..1), as `n.p + d >= 0` inside.
 fn frustum_planes(m: glam::Mat4) -> [glam::Vec4; 6] {
     let (r0, r1, r2, r3) = (m.row(0), m.row(1), m.row(2), m.row(3));
@@ -550,7 +538,7 @@ pub(crate) fn plan<'a>(
     // Transparent pictures clear to the leaves' colour, so that edge pixels blend towards it
     // rather than towards the sky.
     let clear = match scene.transparent {
-        true => transparent_clear(scene),
+        true => scene.transparent_clear(),
         false => linear(SKY_SRGB),
     };
     Frame {

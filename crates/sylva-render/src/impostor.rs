@@ -271,7 +271,7 @@ pub(crate) fn bake(
         let mut pictures = Vec::with_capacity(VIEWS as usize);
         for k in 0..VIEWS {
             let (bake, view) = view_scene(scene, &row, k);
-            let clear = crate::frame::transparent_clear(&bake);
+            let clear = bake.transparent_clear();
             let mut rgba = renderer.render(&bake, &view, row.width(), CELL)?.rgba;
             premultiply(&mut rgba, clear);
             pictures.extend(rgba);

@@ -178,6 +178,19 @@ impl<'a> Scene<'a> {
         }
     }
 
+    /// The linear colour a transparent picture starts from: the first trees' leaves,
+    /// darkened, with no alpha, so that edge pixels blend towards a leaf's colour rather
+    /// than the sky's.
+    pub(crate) fn transparent_clear(&self) -> [f32; 4] {
+        match self.stands.first() {
+            Some(s) => {
+                let [r, g, b] = s.leaves.map(|c| sylva::colour::srgb_to_linear(c) * 0.5);
+                [r, g, b, 0.0]
+            }
+            None => [0.0; 4],
+        }
+    }
+
     /// Bounds of every placed tree (metres, Z up); the unit cube for an empty scene.
     pub fn tree_bounds(&self) -> (Vec3, Vec3) {
         let mut lo = Vec3::splat(f32::MAX);
