@@ -312,8 +312,13 @@ pub struct ForestArgs {
     #[arg(value_name = "FOREST.toml")]
     pub file: Option<PathBuf>,
 
-    /// Species, comma-separated (built-in names or species files).
-    #[arg(long, value_delimiter = ',', required_unless_present = "file")]
+    /// Species, comma-separated (built-in names or species files); by default the paper's
+    /// four appendix species.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_values = sylva::bench::APPENDIX_SPECIES
+    )]
     pub species: Vec<String>,
 
     /// Number of trees.

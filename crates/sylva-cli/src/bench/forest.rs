@@ -19,6 +19,8 @@ const FOV: f32 = 45.0;
 
 /// Frames of `scene` from each range along a low view towards `target`, with and without LOD.
 fn table(renderer: &Renderer, scene: &mut Scene, target: Vec3, runs: u32) -> Result<()> {
+    // The impostors are baked once per scene, as trees are grown once: not part of a frame.
+    renderer.prepare(scene)?;
     println!(
         "{:>8} {:>13} {:>10} {:>10} {:>9} | {:>13} {:>9} | {:>8}",
         "range m", "LOD prims", "lines", "points", "frame ms", "full prims", "frame ms", "x faster"

@@ -84,3 +84,38 @@ fn forest_writes_shared_variants_as_instances() {
         );
     }
 }
+
+#[test]
+fn a_unique_forest_is_the_same_on_one_thread_as_on_two() {
+    // Every tree its own, of the paper's four appendix species by default: the same bytes
+    // whatever the number of threads that grew them.
+    let dir = tempfile::tempdir().unwrap();
+    let write = |threads: &str| {
+        let out = dir.path().join(format!("forest-{threads}.glb"));
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_sylva"))
+            .args([
+                "forest",
+                "--count",
+                "8",
+                "--variants",
+                "0",
+                "--quality",
+                "0.1",
+            ])
+            .args(["--seed", "3", "--json", "-o", out.to_str().unwrap()])
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .expect("runs sylva");
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+        assert_eq!(
+            (v["trees"].as_u64(), v["variants"].as_u64()),
+            (Some(8), Some(8))
+        );
+        std::fs::read(&out).unwrap()
+    };
+    let (one, two) = (write("1"), write("2"));
+    assert!(one == two, "{} and {} bytes differ", one.len(), two.len());
+    let (doc, _, _) = gltf::import_slice(&one).expect("valid GLB");
+    assert_eq!(doc.meshes().count(), 8, "one mesh per tree");
+}
