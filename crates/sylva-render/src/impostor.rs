@@ -74,14 +74,14 @@ impl Atlas {
     }
 }
 
-/// What a bake depends on: the trees (and their colours), the sun, the leaves and the
-/// degradation's quality.
+/// What a bake depends on: the trees (and their colours), the sun and the leaves. Not the
+/// degradation's quality, which a viewer's slider may sweep through many values: the views are
+/// baked at the paper's quality 1, which under 50 pixels looks the same as any other.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Key {
     trees: Vec<(u64, [u32; 6])>,
     sun: [u32; 3],
     leaves: bool,
-    quality: u32,
 }
 
 impl Key {
@@ -104,7 +104,6 @@ impl Key {
                 .collect(),
             sun: bits(scene.sun.to_array()),
             leaves: scene.show_leaves,
-            quality: scene.lod_quality.to_bits(),
         })
     }
 }
@@ -227,7 +226,7 @@ fn view_scene<'a>(scene: &Scene<'a>, row: &Row, k: u32) -> (Scene<'a>, View) {
         impostors: false,
         primitive_budget: None,
         use_lod: true,
-        lod_quality: scene.lod_quality,
+        lod_quality: 1.0,
         show_leaves: scene.show_leaves,
         sun: scene.sun,
         ..Scene::forest(stands)
