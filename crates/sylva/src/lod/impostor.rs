@@ -144,6 +144,16 @@ impl ImpostorFrame {
 mod tests {
     use super::*;
 
+    fn eight_views() -> ImpostorFrame {
+        ImpostorFrame {
+            views: 8,
+            columns: 4,
+            half_width: 3.0,
+            bottom: 0.0,
+            top: 10.0,
+        }
+    }
+
     #[test]
     fn an_impostor_takes_over_between_fifty_and_forty_pixels() {
         assert_eq!(impostor_share(400.0), 0.0);
@@ -156,13 +166,7 @@ mod tests {
 
     #[test]
     fn views_blend_towards_the_eye() {
-        let f = ImpostorFrame {
-            views: 8,
-            columns: 4,
-            half_width: 3.0,
-            bottom: 0.0,
-            top: 10.0,
-        };
+        let f = eight_views();
         for k in 0..8 {
             // Straight from view k's eye: view k alone.
             let (a, _, w) = view_blend(8, f.direction(k).truncate());
@@ -180,13 +184,7 @@ mod tests {
 
     #[test]
     fn quads_face_their_views_and_tile_the_atlas() {
-        let f = ImpostorFrame {
-            views: 8,
-            columns: 4,
-            half_width: 3.0,
-            bottom: 0.0,
-            top: 10.0,
-        };
+        let f = eight_views();
         let q = f.quads();
         assert_eq!(q.triangle_count(), 16);
         for k in 0..8 {
