@@ -66,15 +66,16 @@ pub(super) fn build(skeleton: &Skeleton, options: &MeshOptions) -> LodTree {
             q.ring(c.position, c.radius, ring_frame(sections, j))
         };
         let sum = &mut sums[key.list];
+        // Each ring is packed once and ends one segment and starts the next.
+        let mut a = ring(0);
         for j in 0..sections.len() - 1 {
-            let (a, b) = (&sections[j], &sections[j + 1]);
-            sum.0 += (a.radius + b.radius) as f64;
-            sum.1 += a.position.distance(b.position) as f64;
+            let (near, far) = (&sections[j], &sections[j + 1]);
+            sum.0 += (near.radius + far.radius) as f64;
+            sum.1 += near.position.distance(far.position) as f64;
             sum.2 += 1;
-            runs[at].1.push(super::packed::Segment {
-                a: ring(j),
-                b: ring(j + 1),
-            });
+            let b = ring(j + 1);
+            runs[at].1.push(super::packed::Segment { a, b });
+            a = b;
         }
     }
     tree.segments.reserve_exact(sums.iter().map(|s| s.2).sum());
@@ -113,15 +114,13 @@ pub(super) fn build(skeleton: &Skeleton, options: &MeshOptions) -> LodTree {
         }
     }
     for shape in shapes {
-        let items: Vec<_> = skeleton
+        // Packed in the order they were made, then put in rank-major order: reading the
+        // skeleton's leaves in that order instead cost a cache miss per leaf.
+        let items: Vec<super::packed::Leaf> = skeleton
             .leaves
             .iter()
             .filter(|l| l.shape == shape)
-            .collect();
-        let start = tree.leaves.len() as u32;
-        tree.leaves
-            .extend(rank_major(items.len(), LEAF_MASS).iter().map(|&i| {
-                let l = items[i as usize];
+            .map(|l| {
                 q.leaf(
                     l.position,
                     l.orientation,
@@ -129,7 +128,14 @@ pub(super) fn build(skeleton: &Skeleton, options: &MeshOptions) -> LodTree {
                     l.width,
                     light_class(l.light),
                 )
-            }));
+            })
+            .collect();
+        let start = tree.leaves.len() as u32;
+        tree.leaves.extend(
+            rank_major(items.len(), LEAF_MASS)
+                .iter()
+                .map(|&i| items[i as usize]),
+        );
         leaves.runs.push(Run {
             items: start..tree.leaves.len() as u32,
             sides: 0,
