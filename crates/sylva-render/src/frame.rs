@@ -11,6 +11,7 @@ use glam::Vec3;
 use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_at_mat4;
 use sylva::lod::Choice;
+use sylva::lod::sway::Sway;
 
 /// Side of the square shadow map, texels.
 pub(crate) const SHADOW_SIZE: u32 = 2048;
@@ -272,7 +273,7 @@ fn stored_draws<'a>(
     scene: &Scene<'a>,
     (stand, tree): (usize, &'a RenderTree),
     choice: &Choice,
-    p: &Placement,
+    (p, sway): (&Placement, &Sway),
     passes: Passes,
     instances: &mut Vec<InstanceData>,
     draws: &mut Vec<Draw<'a>>,
@@ -281,7 +282,6 @@ fn stored_draws<'a>(
     let Some(lod) = tree.data.lod.as_ref() else {
         return;
     };
-    let sway = lod.sway(&scene.wind, phases(p));
     for (list, items) in lod.lists.iter().enumerate() {
         let is_leaves = list == 3;
         if is_leaves && !scene.show_leaves {
@@ -338,17 +338,12 @@ fn stored_draws<'a>(
 
 /// The impostor of one copy of a stored tree, drawing `fade` of its pixels.
 fn impostor_draw<'a>(
-    scene: &Scene<'a>,
     (stand, cell): (usize, Cell),
-    p: &Placement,
+    (p, sway): (&Placement, &Sway),
     fade: f32,
     instances: &mut Vec<InstanceData>,
     draws: &mut Vec<Draw<'a>>,
 ) {
-    let Some(lod) = scene.stands[stand].tree.data.lod.as_ref() else {
-        return;
-    };
-    let sway = lod.sway(&scene.wind, phases(p));
     let index = instances.len() as u32;
     instances.push(InstanceData {
         sway: [sway.turn[0], sway.turn[1], sway.length, fade],
@@ -362,6 +357,17 @@ fn impostor_draw<'a>(
         instances: index..index + 1,
         material: 2 * stand + 1,
     });
+}
+
+/// What one visible copy of a stored tree draws, before the frame's budget is shared out.
+#[derive(Clone, Copy)]
+struct Chosen<'a> {
+    range: f32,
+    stand: usize,
+    placement: &'a Placement,
+    choice: Choice,
+    /// Its impostor's cell and share of the copy's pixels, while it has one.
+    impostor: Option<(Cell, f32)>,
 }
 
 /// Plans `scene` seen by `camera` (at `azimuth` degrees) in a picture `height` pixels tall.
@@ -410,7 +416,7 @@ pub(crate) fn plan<'a>(
     let mut draws: Vec<Draw> = Vec::new();
     // Trees stored for range: every visible copy's choice first, then the frame's budget
     // shared among them, then their draws.
-    let mut chosen: Vec<(f32, usize, &Placement, Choice, f32)> = Vec::new();
+    let mut chosen: Vec<Chosen> = Vec::new();
     let mut wishes: Vec<(usize, f32)> = Vec::new();
     for (s, stand) in scene.stands.iter().enumerate() {
         let tree = stand.tree;
@@ -440,12 +446,18 @@ pub(crate) fn plan<'a>(
             wishes.push((wish, pixels));
             // Small enough, a copy dissolves into its impostor when there is one.
             let tall = (tree.hi.z - tree.lo.z) * viewer.pixels_per_metre(range);
-            let cell = atlas.and_then(|a| a.cells.get(s).copied().flatten());
-            let fade = match cell {
-                Some(_) if scene.use_lod => sylva::lod::impostor_share(tall),
-                _ => 0.0,
-            };
-            chosen.push((range, s, p, choice, fade));
+            let impostor = atlas
+                .and_then(|a| a.cells.get(s).copied().flatten())
+                .filter(|_| scene.use_lod)
+                .map(|cell| (cell, sylva::lod::impostor_share(tall)))
+                .filter(|&(_, fade)| fade > 0.0);
+            chosen.push(Chosen {
+                range,
+                stand: s,
+                placement: p,
+                choice,
+                impostor,
+            });
         }
         if tree.data.lod.is_none() {
             whole_meshes(scene, s, tree, first..instances.len() as u32, &mut draws);
@@ -457,10 +469,17 @@ pub(crate) fn plan<'a>(
         (false, _) => vec![usize::MAX; wishes.len()],
     };
     // Nearest first, so that the depth test turns away what they hide before it is shaded.
-    let mut order: Vec<(f32, usize)> = chosen.iter().map(|c| c.0).zip(0..).collect();
+    let mut order: Vec<(f32, usize)> = chosen.iter().map(|c| c.range).zip(0..).collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (_, k) in order {
-        let (_, s, p, choice, fade) = chosen[k];
+        let Chosen {
+            stand: s,
+            placement: p,
+            choice,
+            impostor,
+            ..
+        } = chosen[k];
+        let fade = impostor.map_or(0.0, |(_, fade)| fade);
         let allowance = allowances[k];
         let stand = &scene.stands[s];
         let Some(lod) = stand.tree.data.lod.as_ref() else {
@@ -473,13 +492,24 @@ pub(crate) fn plan<'a>(
             colour
         };
         let tree = (s, stand.tree);
+        // Once per copy and frame: every draw of the copy, and its impostor, sway alike.
+        let sway = lod.sway(&scene.wind, phases(p));
         let mut draw = |choice: &Choice, colour, shadow| {
             let passes = Passes {
                 colour,
                 shadow,
                 fade,
             };
-            stored_draws(scene, tree, choice, p, passes, &mut instances, &mut draws);
+            let copy = (p, &sway);
+            stored_draws(
+                scene,
+                tree,
+                choice,
+                copy,
+                passes,
+                &mut instances,
+                &mut draws,
+            );
         };
         // Wholly an impostor, the tree still casts its shadow.
         let drawn = fade < 1.0;
@@ -491,10 +521,8 @@ pub(crate) fn plan<'a>(
             }
             draw(&shadow, false, true);
         }
-        if let Some(cell) = atlas.and_then(|a| a.cells.get(s).copied().flatten())
-            && fade > 0.0
-        {
-            impostor_draw(scene, (s, cell), p, fade, &mut instances, &mut draws);
+        if let Some((cell, fade)) = impostor {
+            impostor_draw((s, cell), (p, &sway), fade, &mut instances, &mut draws);
         }
     }
     draws.retain(|d| !(d.instances.is_empty() || d.range.is_empty() && d.shadow.is_empty()));

@@ -50,6 +50,16 @@ fn silhouette(p: &Picture) -> ((u32, u32, u32, u32), usize) {
     ((x0, y0, x1, y1), n)
 }
 
+/// A Black Tupelo stored for range at quality 0.5, as forests store it.
+fn stored_tupelo() -> (sylva::lod::LodTree, sylva::TreeParams) {
+    let p = builtin("black_tupelo").unwrap();
+    let sk = generate(&p, &GenerateOptions::default()).unwrap();
+    (
+        sylva::lod::LodTree::build(&sk, &MeshOptions::for_species(&p, 0.5)),
+        p,
+    )
+}
+
 fn bare<'a>(gpu: &'a sylva_render::RenderTree, p: &sylva::TreeParams) -> Scene<'a> {
     let mut scene = Scene::new(gpu, p.bark_color, p.leaf_color);
     scene.show_ground = false;
@@ -399,9 +409,7 @@ fn wind_sways_a_stored_tree_alike_at_every_range() {
     // One stored tupelo seen from the front: in the wind its silhouette's centre moves, by
     // the same amount whether it is drawn whole or held to a few thousand primitives (the
     // sway is a function of where a point is, whatever draws it).
-    let p = builtin("black_tupelo").unwrap();
-    let sk = generate(&p, &GenerateOptions::default()).unwrap();
-    let lod = sylva::lod::LodTree::build(&sk, &MeshOptions::for_species(&p, 0.5));
+    let (lod, p) = stored_tupelo();
     let centre_x = |pic: &Picture| {
         let (mut sum, mut n) = (0.0f64, 0.0f64);
         for y in 0..pic.height {
@@ -450,9 +458,7 @@ fn a_far_tree_dissolves_into_its_impostor_unseen() {
     // two) at sizes about the switch: drawn with impostors it takes about as much light from
     // the sky, channel by channel, as drawn as geometry alone, and as the whole tree; below 40
     // pixels it is 2 triangles.
-    let p = builtin("black_tupelo").unwrap();
-    let sk = generate(&p, &GenerateOptions::default()).unwrap();
-    let lod = sylva::lod::LodTree::build(&sk, &MeshOptions::for_species(&p, 0.5));
+    let (lod, p) = stored_tupelo();
     // What a far tree does to the picture: per channel, how much light its pixels take from
     // the sky's, summed (in linear light, which is what the eye sums over a small area: a
     // half-covered pixel counts half), and the pixels it touches.
