@@ -6,7 +6,7 @@ use crate::shared::{headless, load_params, save_picture};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
 use std::time::Instant;
-use sylva::export::{Materials, to_glb, write_atomically, write_obj};
+use sylva::export::{Materials, write_atomically, write_glb, write_obj};
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use sylva::{GenerateOptions, TreeParams};
 use sylva_render::Scene;
@@ -83,10 +83,7 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
                 println!("LOD chain: {}", chain.summary);
             }
         }
-        Format::Glb => {
-            let bytes = to_glb(&mesh, &params.name, &materials)?;
-            write_atomically(&args.output, &bytes)?;
-        }
+        Format::Glb => write_glb(&args.output, &mesh, &params.name, &materials)?,
         Format::Obj if args.lod_chain => {
             bail!("--lod-chain: LOD chains are written as GLB; use a .glb file name")
         }

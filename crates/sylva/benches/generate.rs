@@ -1,6 +1,7 @@
 //! Generation and meshing throughput of the paper's four appendix species, in triangles per
 //! second (criterion's "thrpt" in elements/s), plus the copy of the finished mesh as a baseline
-//! measured in the same run.
+//! measured in the same run; the OBJ and GLB writers in bytes per second, beside a copy of as
+//! many bytes; and a growth step of a street tree.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
@@ -45,5 +46,74 @@ fn appendix_species(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, appendix_species);
+fn writers(c: &mut Criterion) {
+    use sylva::export::{Instance, Materials, glb_scene, to_obj};
+    let params = builtin("black_tupelo").unwrap();
+    let skeleton = sylva::generate(&params, &GenerateOptions::default()).unwrap();
+    let mesh = sylva::mesh::mesh_tree(&skeleton, &MeshOptions::for_species(&params, 1.0));
+    let materials = Materials::default();
+    let one = [Instance {
+        mesh: 0,
+        position: [0.0; 3],
+        turn: 0.0,
+        scale: 1.0,
+    }];
+    let mut group = c.benchmark_group("write");
+    group.sample_size(20);
+    let obj_bytes = to_obj(&mesh, "t", "t.mtl", &materials).0.len();
+    group.throughput(Throughput::Bytes(obj_bytes as u64));
+    group.bench_function("obj", |b| {
+        b.iter(|| black_box(to_obj(&mesh, "t", "t.mtl", &materials).0.len()))
+    });
+    let mut out = Vec::new();
+    glb_scene(&[("t", &mesh, materials)], &one)
+        .unwrap()
+        .write_to(&mut out)
+        .unwrap();
+    group.throughput(Throughput::Bytes(out.len() as u64));
+    group.bench_function("glb", |b| {
+        b.iter(|| {
+            out.clear();
+            let glb = glb_scene(&[("t", &mesh, materials)], &one).unwrap();
+            glb.write_to(&mut out).unwrap();
+            black_box(out.len())
+        })
+    });
+    let mut copy = Vec::with_capacity(out.len());
+    group.bench_function("glb/baseline-copy", |b| {
+        b.iter(|| {
+            copy.clear();
+            copy.extend_from_slice(&out);
+            black_box(copy.len())
+        })
+    });
+    group.finish();
+}
+
+/// A step of a silver maple grown past 10,000 segments (it keeps growing while measured, a
+/// few per cent over the samples), beside copying its skeleton.
+fn growth_step(c: &mut Criterion) {
+    use sylva::growth::{Database, Grower, GrowthOptions};
+    let measured = Database::builtin().find("InlVal", "ACSA1").unwrap();
+    let options = GrowthOptions::default();
+    let dt = 1.0 / options.steps_per_year as f64;
+    let mut grower = Grower::new(measured, options);
+    while grower.segment_count() < 10_000 {
+        grower.step_once(dt);
+    }
+    let mut group = c.benchmark_group("growth");
+    group.sample_size(10);
+    group.bench_function("step-10k-segments", |b| b.iter(|| grower.step_once(dt)));
+    let skeleton = grower.skeleton();
+    let mut copy = Skeleton::default();
+    group.bench_function("step-10k-segments/baseline-copy-skeleton", |b| {
+        b.iter(|| {
+            copy.clone_from(&skeleton);
+            black_box(copy.stems.len())
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, appendix_species, writers, growth_step);
 criterion_main!(benches);

@@ -46,7 +46,8 @@ pub fn fastest_of(runs: u32, mut f: impl FnMut()) -> f64 {
     }
 }
 
-/// Generating and meshing one tree, fastest of several runs on one thread.
+/// Generating and meshing one tree, fastest of several runs, on every core of rayon's pool
+/// (a tree's main branches grow apart, its bark and leaves are meshed at once) and on one.
 #[derive(Clone, Copy, Debug)]
 pub struct GenerateTimes {
     /// Triangles in the mesh.
@@ -59,6 +60,9 @@ pub struct GenerateTimes {
     pub mesh_ms: f64,
     /// Baseline: copy the finished mesh's buffers into warm buffers, ms.
     pub copy_ms: f64,
+    /// Baseline: generate and mesh into warm buffers on one thread, ms (`None` where no
+    /// one-thread pool could be made).
+    pub one_thread_ms: Option<f64>,
 }
 
 impl GenerateTimes {
@@ -85,13 +89,106 @@ pub fn generate_times(params: &TreeParams, runs: u32) -> Result<GenerateTimes, G
     let mesh_ms = fastest_of(runs, || mesh_tree_into(&skeleton, &mesh_options, &mut mesh));
     let mut copy = TreeMesh::default();
     let copy_ms = fastest_of(runs, || copy.clone_from(&mesh));
+    let one_thread_ms = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+        Ok(pool) => Some(pool.install(|| {
+            fastest_ms(runs, || {
+                crate::generate_into(params, &options, &mut skeleton)?;
+                mesh_tree_into(&skeleton, &mesh_options, &mut mesh);
+                Ok::<(), GenerateError>(())
+            })
+        })?),
+        Err(_) => None,
+    };
     Ok(GenerateTimes {
         triangles: mesh.triangle_count(),
         cold_ms,
         generate_ms,
         mesh_ms,
         copy_ms,
+        one_thread_ms,
     })
+}
+
+/// Writing a mesh as OBJ and as GLB into memory (the disk is left out: it is the machine's,
+/// not the writer's), fastest of several runs, each beside a baseline from the same run.
+#[derive(Clone, Copy, Debug)]
+pub struct WriterTimes {
+    /// OBJ bytes, as [`crate::export::to_obj`] writes them.
+    pub obj_bytes: usize,
+    /// Formatting them, ms.
+    pub obj_ms: f64,
+    /// Baseline: the plain writer (`std::fmt`, absolute indices, a normal per vertex), bytes.
+    pub plain_obj_bytes: usize,
+    /// Baseline: the plain writer, ms.
+    pub plain_obj_ms: f64,
+    /// GLB bytes.
+    pub glb_bytes: usize,
+    /// Laying out and writing them, ms.
+    pub glb_ms: f64,
+    /// Baseline: copying that many bytes from one buffer to another, ms (the memory's
+    /// bandwidth, the most a writer can approach).
+    pub copy_ms: f64,
+}
+
+/// Times writing `mesh` as OBJ and GLB, fastest of `runs`.
+pub fn writer_times(mesh: &TreeMesh, runs: u32) -> Result<WriterTimes, crate::ExportError> {
+    use crate::export::{Materials, glb_scene, to_obj};
+    let materials = Materials::default();
+    let mut obj_bytes = 0;
+    let obj_ms = fastest_of(runs, || {
+        obj_bytes = to_obj(mesh, "tree", "tree.mtl", &materials).0.len();
+    });
+    let mut plain_obj_bytes = 0;
+    let plain_obj_ms = fastest_of(runs, || plain_obj_bytes = plain_obj(mesh).len());
+    let one = [crate::export::Instance {
+        mesh: 0,
+        position: [0.0; 3],
+        turn: 0.0,
+        scale: 1.0,
+    }];
+    let mut out = Vec::new();
+    let glb_ms = fastest_ms(runs, || {
+        out.clear();
+        glb_scene(&[("tree", mesh, materials)], &one)?
+            .write_to(&mut out)
+            .map_err(|e| crate::ExportError::Format(e.to_string()))
+    })?;
+    let mut copy = Vec::with_capacity(out.len());
+    let copy_ms = fastest_of(runs, || {
+        copy.clear();
+        copy.extend_from_slice(&out);
+    });
+    Ok(WriterTimes {
+        obj_bytes,
+        obj_ms,
+        plain_obj_bytes,
+        plain_obj_ms,
+        glb_bytes: out.len(),
+        glb_ms,
+        copy_ms,
+    })
+}
+
+/// The reference OBJ writer the fast one is measured against: every number through
+/// `std::fmt`, every vertex with its own UV and normal, faces by absolute index.
+fn plain_obj(mesh: &TreeMesh) -> String {
+    use std::fmt::Write;
+    let mut obj = String::new();
+    let mut base = 1;
+    for part in [&mesh.bark, &mesh.leaves] {
+        for ([x, y, z], [nx, ny, nz]) in part.positions.iter().zip(&part.normals) {
+            let _ = writeln!(obj, "v {x} {z} {}\nvn {nx} {nz} {}", -y, -ny);
+        }
+        for [u, v] in &part.uvs {
+            let _ = writeln!(obj, "vt {u} {v}");
+        }
+        for t in part.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| i as usize + base);
+            let _ = writeln!(obj, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}");
+        }
+        base += part.vertex_count();
+    }
+    obj
 }
 
 /// The cost of an edit in the editor, ms: `1DownAngle` changed, the tree regenerated and

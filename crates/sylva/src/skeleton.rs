@@ -218,6 +218,29 @@ impl Skeleton {
         StemId(self.stems.len() as u32 - 1)
     }
 
+    /// Appends `part`, a subtree grown into a skeleton of its own whose roots are at `root_level`
+    /// and hang from stems already here: its stem ids (clones, parents below the roots, leaves'
+    /// stems) and section ranges are moved past what this skeleton holds. The roots' parents
+    /// already name stems of this skeleton and stay.
+    pub(crate) fn append_subtree(&mut self, part: Skeleton, root_level: u8) {
+        let stem_base = self.stems.len() as u32;
+        let section_base = self.sections.len() as u32;
+        let moved = |id: StemId| StemId(id.0 + stem_base);
+        self.stems.extend(part.stems.into_iter().map(|mut s| {
+            if s.level > root_level {
+                s.parent = s.parent.map(moved);
+            }
+            s.clone_of = s.clone_of.map(moved);
+            s.sections = s.sections.start + section_base..s.sections.end + section_base;
+            s
+        }));
+        self.sections.extend_from_slice(&part.sections);
+        self.leaves.extend(part.leaves.into_iter().map(|mut l| {
+            l.stem = moved(l.stem);
+            l
+        }));
+    }
+
     /// Cross-sections of a stem.
     pub fn sections_of(&self, id: StemId) -> &[CrossSection] {
         let r = &self.stems[id.0 as usize].sections;

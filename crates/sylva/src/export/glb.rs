@@ -1,13 +1,15 @@
 //! GLB (binary glTF 2.0): one node, one mesh with a bark primitive and a leaf primitive, each
 //! with its own material; positions, normals, UVs and 32-bit indices in one binary chunk.
 
-use super::y_up;
+use super::{write_atomically_with, y_up};
 use crate::error::ExportError;
 use crate::mesh::{Mesh, TreeMesh};
 use gltf_json as json;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::Path;
 
 /// Base colours (linear RGBA) of the two materials.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,28 +44,72 @@ impl Default for Materials {
     }
 }
 
-struct Builder {
+struct Builder<'a> {
     root: json::Root,
-    bin: Vec<u8>,
+    /// The binary chunk's views in order, each with the zero bytes that align it to 4.
+    pieces: Vec<(usize, Piece<'a>)>,
+    /// Bytes of the binary chunk so far.
+    bin_len: usize,
     buffer: json::Index<json::Buffer>,
 }
 
-impl Builder {
-    /// Appends `bytes` as a buffer view (4-byte aligned) and returns it.
+/// A buffer view's bytes, left where the mesh holds them until the file is written: a GLB is
+/// written straight from the mesh's buffers, never gathered into a copy of itself.
+enum Piece<'a> {
+    Bytes(&'a [u8]),
+    /// Positions or normals, turned Y up as they are written.
+    YUp(&'a [[f32; 3]]),
+    /// Leaf shades, written as grey colours.
+    Shades(&'a [f32]),
+}
+
+impl Piece<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Piece::Bytes(b) => b.len(),
+            Piece::YUp(v) => std::mem::size_of_val(*v),
+            Piece::Shades(s) => s.len() * 12,
+        }
+    }
+
+    fn write_to(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        // Converted pieces go out through a small buffer, some thousands of vertices at a time.
+        const AT_ONCE: usize = 4096;
+        let mut converted: Vec<[f32; 3]> = Vec::new();
+        let mut out = |items: &mut dyn Iterator<Item = [f32; 3]>| -> std::io::Result<()> {
+            loop {
+                converted.clear();
+                converted.extend(items.take(AT_ONCE));
+                if converted.is_empty() {
+                    return Ok(());
+                }
+                w.write_all(bytes_of(&converted))?;
+            }
+        };
+        match self {
+            Piece::Bytes(b) => w.write_all(b),
+            Piece::YUp(v) => out(&mut v.iter().map(|p| y_up(*p))),
+            Piece::Shades(s) => out(&mut s.iter().map(|&s| [s; 3])),
+        }
+    }
+}
+
+impl<'a> Builder<'a> {
+    /// Adds `piece` as a buffer view (4-byte aligned) and returns it.
     fn view(
         &mut self,
-        bytes: &[u8],
+        piece: Piece<'a>,
         target: impl Into<Option<json::buffer::Target>>,
     ) -> json::Index<json::buffer::View> {
         let target = target.into();
-        while !self.bin.len().is_multiple_of(4) {
-            self.bin.push(0);
-        }
-        let offset = self.bin.len();
-        self.bin.extend_from_slice(bytes);
+        let pad = self.bin_len.next_multiple_of(4) - self.bin_len;
+        let offset = self.bin_len + pad;
+        let length = piece.len();
+        self.bin_len = offset + length;
+        self.pieces.push((pad, piece));
         self.root.push(json::buffer::View {
             buffer: self.buffer,
-            byte_length: USize64::from(bytes.len()),
+            byte_length: USize64::from(length),
             byte_offset: Some(USize64::from(offset)),
             byte_stride: None,
             name: None,
@@ -99,29 +145,32 @@ impl Builder {
 
     fn primitive(
         &mut self,
-        mesh: &Mesh,
+        mesh: &'a Mesh,
         material: json::Index<json::Material>,
     ) -> json::mesh::Primitive {
         use json::accessor::{ComponentType as C, Type as T};
         use json::buffer::Target;
-        let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| y_up(*p)).collect();
-        let normals: Vec<[f32; 3]> = mesh.normals.iter().map(|n| y_up(*n)).collect();
-        let bounds = positions
+        let bounds = mesh
+            .positions
             .iter()
             .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
+                let p = y_up(*p);
                 (
                     [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
                     [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
                 )
             });
-        let n = positions.len();
-        let v = self.view(bytes_of(&positions), Target::ArrayBuffer);
+        let n = mesh.positions.len();
+        let v = self.view(Piece::YUp(&mesh.positions), Target::ArrayBuffer);
         let pos = self.accessor(v, n, C::F32, T::Vec3, Some(bounds));
-        let v = self.view(bytes_of(&normals), Target::ArrayBuffer);
+        let v = self.view(Piece::YUp(&mesh.normals), Target::ArrayBuffer);
         let nor = self.accessor(v, n, C::F32, T::Vec3, None);
-        let v = self.view(bytes_of(&mesh.uvs), Target::ArrayBuffer);
+        let v = self.view(Piece::Bytes(bytes_of(&mesh.uvs)), Target::ArrayBuffer);
         let uv = self.accessor(v, n, C::F32, T::Vec2, None);
-        let v = self.view(bytes_of(&mesh.indices), Target::ElementArrayBuffer);
+        let v = self.view(
+            Piece::Bytes(bytes_of(&mesh.indices)),
+            Target::ElementArrayBuffer,
+        );
         let idx = self.accessor(v, mesh.indices.len(), C::U32, T::Scalar, None);
         let mut attributes = BTreeMap::new();
         attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
@@ -129,8 +178,7 @@ impl Builder {
         attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), uv);
         if mesh.shades.len() == n {
             // glTF multiplies the base colour by COLOR_0: the leaves' luminance classes.
-            let colours: Vec<[f32; 3]> = mesh.shades.iter().map(|&s| [s; 3]).collect();
-            let v = self.view(bytes_of(&colours), Target::ArrayBuffer);
+            let v = self.view(Piece::Shades(&mesh.shades), Target::ArrayBuffer);
             let colour = self.accessor(v, n, C::F32, T::Vec3, None);
             attributes.insert(Valid(json::mesh::Semantic::Colors(0)), colour);
         }
@@ -146,28 +194,12 @@ impl Builder {
     }
 }
 
-/// Little-endian bytes of plain numeric arrays.
-fn bytes_of<T: Copy + AsBytes>(items: &[T]) -> &[u8] {
-    T::as_bytes(items)
+/// Little-endian bytes of plain numeric arrays: glTF wants little-endian, which this machine
+/// is (checked at compile time), so the arrays go out as they lie in memory.
+fn bytes_of<T: bytemuck::Pod>(items: &[T]) -> &[u8] {
+    const _: () = assert!(cfg!(target_endian = "little"));
+    bytemuck::cast_slice(items)
 }
-
-trait AsBytes: Sized {
-    fn as_bytes(items: &[Self]) -> &[u8];
-}
-
-macro_rules! as_bytes {
-    ($($t:ty),*) => {$(
-        impl AsBytes for $t {
-            fn as_bytes(items: &[Self]) -> &[u8] {
-                // SAFETY: arrays of f32/u32 have no padding and any byte pattern is a valid u8;
-                // glTF wants little-endian, which the compile-time check below guarantees.
-                const _: () = assert!(cfg!(target_endian = "little"));
-                unsafe { std::slice::from_raw_parts(items.as_ptr().cast::<u8>(), std::mem::size_of_val(items)) }
-            }
-        }
-    )*};
-}
-as_bytes!(u32, [f32; 2], [f32; 3]);
 
 fn material(name: &str, colour: [f32; 4], double_sided: bool, roughness: f32) -> json::Material {
     json::Material {
@@ -199,13 +231,29 @@ pub struct Instance {
 
 /// Encodes a tree mesh as GLB bytes. `name` names the node and mesh.
 pub fn to_glb(mesh: &TreeMesh, name: &str, materials: &Materials) -> Result<Vec<u8>, ExportError> {
+    Ok(glb(mesh, name, materials)?.to_vec())
+}
+
+/// Writes a tree mesh to `path` as GLB (atomically), straight from the mesh's buffers.
+pub fn write_glb(
+    path: &Path,
+    mesh: &TreeMesh,
+    name: &str,
+    materials: &Materials,
+) -> Result<(), ExportError> {
+    let glb = glb(mesh, name, materials)?;
+    write_atomically_with(path, |w| glb.write_to(w))
+}
+
+/// A tree mesh laid out as a GLB, one node at the origin.
+fn glb<'a>(mesh: &'a TreeMesh, name: &str, materials: &Materials) -> Result<Glb<'a>, ExportError> {
     let instance = Instance {
         mesh: 0,
         position: [0.0; 3],
         turn: 0.0,
         scale: 1.0,
     };
-    to_glb_scene(&[(name, mesh, *materials)], &[instance])
+    glb_scene(&[(name, mesh, *materials)], &[instance])
 }
 
 /// Encodes a scene: each mesh once (bark and leaf primitives with their materials), and one
@@ -215,6 +263,14 @@ pub fn to_glb_scene(
     meshes: &[(&str, &TreeMesh, Materials)],
     instances: &[Instance],
 ) -> Result<Vec<u8>, ExportError> {
+    Ok(glb_scene(meshes, instances)?.to_vec())
+}
+
+/// [`to_glb_scene`], laid out to be written straight from the meshes.
+pub fn glb_scene<'a>(
+    meshes: &[(&str, &'a TreeMesh, Materials)],
+    instances: &[Instance],
+) -> Result<Glb<'a>, ExportError> {
     if meshes
         .iter()
         .all(|(_, m, _)| m.bark.indices.is_empty() && m.leaves.indices.is_empty())
@@ -268,6 +324,7 @@ pub fn to_glb_lod(
     if chain.is_empty() || chain[0].0.triangle_count() == 0 {
         return Err(ExportError::Format("the LOD chain is empty".into()));
     }
+    let quads = impostor.map(|(imp, _)| imp.frame.quads());
     let mut b = Builder::new();
     let mut levels: Vec<(json::Index<json::Mesh>, f32)> = chain
         .iter()
@@ -280,10 +337,10 @@ pub fn to_glb_lod(
         })
         .collect();
     let mut extensions_used = vec!["MSFT_lod".to_string()];
-    if let Some((imp, coverage)) = impostor {
+    if let (Some((imp, coverage)), Some(quads)) = (impostor, &quads) {
         extensions_used.push("KHR_materials_unlit".into());
         levels.push((
-            b.impostor_mesh(&format!("{name}_LOD{}", chain.len()), imp),
+            b.impostor_mesh(&format!("{name}_LOD{}", chain.len()), imp, quads),
             coverage,
         ));
     }
@@ -315,14 +372,15 @@ pub fn to_glb_lod(
     });
     b.root.extensions_used = extensions_used;
     b.scene(vec![top]);
-    finish(b)
+    Ok(finish(b)?.to_vec())
 }
 
-impl Builder {
+impl<'a> Builder<'a> {
     fn new() -> Self {
         let mut b = Builder {
             root: json::Root::default(),
-            bin: Vec::new(),
+            pieces: Vec::new(),
+            bin_len: 0,
             buffer: json::Index::new(0),
         };
         b.root.asset = json::Asset {
@@ -344,7 +402,7 @@ impl Builder {
     fn tree_mesh(
         &mut self,
         name: &str,
-        mesh: &TreeMesh,
+        mesh: &'a TreeMesh,
         materials: &Materials,
     ) -> json::Index<json::Mesh> {
         let mut primitives = Vec::new();
@@ -373,9 +431,10 @@ impl Builder {
     fn impostor_mesh(
         &mut self,
         name: &str,
-        imp: &super::super::lod::impostor::Impostor,
+        imp: &'a super::super::lod::impostor::Impostor,
+        quads: &'a Mesh,
     ) -> json::Index<json::Mesh> {
-        let view = self.view(&imp.png, None);
+        let view = self.view(Piece::Bytes(&imp.png), None);
         let image = self.root.push(json::Image {
             buffer_view: Some(view),
             mime_type: Some(json::image::MimeType("image/png".into())),
@@ -419,8 +478,7 @@ impl Builder {
             extensions: Some(json::extensions::material::Material { others }),
             ..Default::default()
         });
-        let quads = imp.frame.quads();
-        let primitive = self.primitive(&quads, material);
+        let primitive = self.primitive(quads, material);
         self.root.push(json::Mesh {
             extensions: None,
             extras: Default::default(),
@@ -432,10 +490,12 @@ impl Builder {
 
     /// Closes the buffer and makes the default scene of `nodes`.
     fn scene(&mut self, nodes: Vec<json::Index<json::Node>>) {
-        while !self.bin.len().is_multiple_of(4) {
-            self.bin.push(0);
+        let pad = self.bin_len.next_multiple_of(4) - self.bin_len;
+        if pad > 0 {
+            self.pieces.push((pad, Piece::Bytes(&[])));
+            self.bin_len += pad;
         }
-        self.root.buffers[0].byte_length = USize64::from(self.bin.len());
+        self.root.buffers[0].byte_length = USize64::from(self.bin_len);
         let scene = self.root.push(json::Scene {
             extensions: None,
             extras: Default::default(),
@@ -446,8 +506,46 @@ impl Builder {
     }
 }
 
-/// Packs the JSON and binary chunks into a GLB file.
-fn finish(b: Builder) -> Result<Vec<u8>, ExportError> {
+/// A GLB ready to be written: its header and JSON chunk, and the views of its binary chunk
+/// where the meshes hold them.
+pub struct Glb<'a> {
+    head: Vec<u8>,
+    pieces: Vec<(usize, Piece<'a>)>,
+    len: usize,
+}
+
+impl Glb<'_> {
+    /// Bytes of the whole file.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True for no file at all (never: a GLB has at least its header).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Writes the file to `w`, the binary chunk straight from the meshes.
+    pub fn write_to(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        w.write_all(&self.head)?;
+        for (pad, piece) in &self.pieces {
+            w.write_all(&[0; 3][..*pad])?;
+            piece.write_to(w)?;
+        }
+        Ok(())
+    }
+
+    /// The file as bytes.
+    pub fn to_vec(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.len);
+        // Writing into a Vec cannot fail.
+        let _ = self.write_to(&mut out);
+        out
+    }
+}
+
+/// Closes the JSON and lays out the chunks of a GLB file.
+fn finish(b: Builder<'_>) -> Result<Glb<'_>, ExportError> {
     let mut json_bytes = b
         .root
         .to_vec()
@@ -455,21 +553,24 @@ fn finish(b: Builder) -> Result<Vec<u8>, ExportError> {
     while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');
     }
-    let total = 12 + 8 + json_bytes.len() + 8 + b.bin.len();
-    let total = u32::try_from(total).map_err(|_| {
+    let total = 12 + 8 + json_bytes.len() + 8 + b.bin_len;
+    let total32 = u32::try_from(total).map_err(|_| {
         ExportError::Format(format!(
             "{total} bytes exceed the 4 GiB limit of a GLB file"
         ))
     })?;
-    let mut out = Vec::with_capacity(total as usize);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total.to_le_bytes());
-    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json_bytes);
-    out.extend_from_slice(&(b.bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&b.bin);
-    Ok(out)
+    let mut head = Vec::with_capacity(28 + json_bytes.len());
+    head.extend_from_slice(b"glTF");
+    head.extend_from_slice(&2u32.to_le_bytes());
+    head.extend_from_slice(&total32.to_le_bytes());
+    head.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+    head.extend_from_slice(b"JSON");
+    head.extend_from_slice(&json_bytes);
+    head.extend_from_slice(&(b.bin_len as u32).to_le_bytes());
+    head.extend_from_slice(b"BIN\0");
+    Ok(Glb {
+        head,
+        pieces: b.pieces,
+        len: total,
+    })
 }

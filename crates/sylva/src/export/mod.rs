@@ -10,7 +10,7 @@ mod glb;
 mod obj;
 
 pub use atomic::{write_atomically, write_atomically_with};
-pub use glb::{Instance, Materials, to_glb, to_glb_lod, to_glb_scene};
+pub use glb::{Glb, Instance, Materials, glb_scene, to_glb, to_glb_lod, to_glb_scene, write_glb};
 pub use obj::{to_obj, write_obj};
 
 /// Z-up model coordinates to Y-up file coordinates.

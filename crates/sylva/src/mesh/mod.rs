@@ -148,8 +148,13 @@ pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Tre
     mesh.bark.reserve(v, i);
     let (v, i) = leaves::count(skeleton);
     mesh.leaves.reserve(v, i);
-    stems::mesh_stems(skeleton, options, &mut mesh.bark);
-    leaves::mesh_leaves(skeleton, &mut mesh.leaves);
+    // Bark and leaves fill buffers of their own, so they can be meshed at once on two
+    // threads with the same bytes as one after the other.
+    let TreeMesh { bark, leaves } = mesh;
+    rayon::join(
+        || stems::mesh_stems(skeleton, options, bark),
+        || leaves::mesh_leaves(skeleton, leaves),
+    );
     debug_assert_eq!(
         (mesh.bark.vertex_count(), mesh.bark.indices.len()),
         stems::count(skeleton, options)

@@ -65,6 +65,10 @@ impl<'a> Generator<'a> {
         }
         let mut around = Phyllotaxis::starting_at(t.start.rotate_start);
         let fan_count = zs.len();
+        // Every child's start is worked out before any child grows: a child's subtree draws
+        // from its own streams and reads only its own sections, so growing it earlier or later,
+        // here or on another thread, changes nothing.
+        let mut children = Vec::with_capacity(zs.len());
         for (index, &z) in zs.iter().enumerate() {
             let (pos, q_seg, r_here) = self.skeleton.sample(t.id, z as f32);
             let offset = z * length;
@@ -111,7 +115,7 @@ impl<'a> Generator<'a> {
             };
             let radius =
                 (t.start.radius * (child_length / length).powf(p.ratio_power)).min(limit as f64);
-            let child = StemStart {
+            children.push(StemStart {
                 level: child_level,
                 parent: Some(t.id),
                 clone_of: None,
@@ -129,10 +133,9 @@ impl<'a> Generator<'a> {
                 parent_lmax: lmax,
                 z_min: (r_here as f64 / child_length).min(1.0),
                 rotate_start: 0.0,
-            };
-            self.grow_stem(child)?;
+            });
         }
-        Ok(())
+        self.grow_stems(children)
     }
 
     pub(super) fn grow_leaves(&mut self, t: Traced) -> Result<(), GenerateError> {

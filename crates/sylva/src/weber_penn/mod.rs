@@ -5,6 +5,7 @@
 //! of that, clone k of that...), so the tree does not depend on generation order, and changing a
 //! parameter of a deep level leaves the stems above it untouched.
 
+mod apart;
 mod children;
 pub mod equations;
 mod trace;
@@ -16,6 +17,7 @@ use crate::rng::{Random, StreamKey};
 use crate::skeleton::{Leaf, LeafShape, Skeleton, Stem, StemId};
 use equations::{Envelope, inside_envelope, shape_ratio};
 use glam::{DQuat, DVec3, Quat, Vec3};
+use std::sync::atomic::{AtomicU64, Ordering};
 use trace::{StemStart, Tracer};
 
 const KEY_TRUNK: u64 = 1;
@@ -125,6 +127,7 @@ pub fn generate_into(
     let stem_levels = options
         .max_levels
         .map_or(params.levels, |m| m.clamp(1, params.levels)) as usize;
+    let spent = AtomicU64::new(0);
     let mut g = Generator {
         tracer: Tracer {
             p: params,
@@ -142,7 +145,7 @@ pub fn generate_into(
             power_high: params.prune_power_high,
         },
         skeleton: std::mem::take(skeleton),
-        triangles: 0,
+        spent: &spent,
         profile: Vec::new(),
         shares: Vec::new(),
     };
@@ -178,7 +181,9 @@ struct Generator<'a> {
     leaf_shape: LeafShape,
     envelope: Envelope,
     skeleton: Skeleton,
-    triangles: u64,
+    /// Triangles the tree's mesh would hold so far, shared by every thread growing a part of
+    /// the tree (see `apart.rs`), so a runaway tree stops wherever it runs away.
+    spent: &'a AtomicU64,
     profile: Vec<f64>,
     shares: Vec<f64>,
 }
@@ -189,12 +194,12 @@ impl<'a> Generator<'a> {
     }
 
     fn spend(&mut self, triangles: u64, level: usize) -> Result<(), GenerateError> {
-        self.triangles += triangles;
-        if self.triangles > self.options.max_triangles {
+        let reached = self.spent.fetch_add(triangles, Ordering::Relaxed) + triangles;
+        if reached > self.options.max_triangles {
             return Err(GenerateError::Budget {
                 what: "triangles",
                 limit: self.options.max_triangles,
-                reached: self.triangles,
+                reached,
                 level,
             });
         }

@@ -169,6 +169,46 @@ fn same_seed_same_tree_and_seeds_differ() {
 }
 
 #[test]
+fn a_tree_is_the_same_grown_and_meshed_on_one_thread_or_three() {
+    // The oak's trunk splits at its base, so its main branches hang from clones too; the
+    // tupelo reaches four levels. One thread takes the plain path, three grow the main
+    // branches apart and join them (apart.rs) and mesh bark and leaves at once.
+    let on = |threads: usize, id: &str| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        pool.install(|| {
+            let params = builtin(id).expect("built-in");
+            let options = GenerateOptions {
+                quality: 0.3,
+                ..opts(3)
+            };
+            let skeleton = generate(&params, &options).expect("grows");
+            let mesh = crate::mesh::mesh_tree(
+                &skeleton,
+                &crate::mesh::MeshOptions::for_species(&params, 0.3),
+            );
+            (skeleton, mesh)
+        })
+    };
+    for id in ["ca_black_oak", "black_tupelo"] {
+        let (one, one_mesh) = on(1, id);
+        let (three, three_mesh) = on(3, id);
+        assert!(one.stems.len() > 1000 && !one.leaves.is_empty(), "{id}");
+        if id == "ca_black_oak" {
+            assert!(
+                one.stems
+                    .iter()
+                    .any(|s| s.level == 0 && s.clone_of.is_some())
+            );
+        }
+        assert!(one == three, "{id}: the skeletons differ");
+        assert!(one_mesh == three_mesh, "{id}: the meshes differ");
+    }
+}
+
+#[test]
 fn a_deep_parameter_does_not_reshuffle_the_trunk() {
     let p = builtin("black_tupelo").unwrap();
     let mut q = p.clone();

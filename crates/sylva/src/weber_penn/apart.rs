@@ -1,0 +1,61 @@
+//! Growing a trunk's branches on several threads, with the very bytes one thread makes.
+//!
+//! Each main branch's subtree draws only from its own random streams (keyed by its place in
+//! the tree) and reads only the sections it traces itself. So the subtrees can grow apart, each
+//! into a skeleton of its own, and be joined in the order one thread would have made them:
+//! stems, sections and leaves land at the same indices, with the same values.
+
+use super::*;
+use rayon::prelude::*;
+
+/// Stems of this level are grown on separate threads: the trunk's main branches, a few dozen
+/// subtrees of some thousands of stems each, enough to share out and few enough to join.
+const APART_LEVEL: usize = 1;
+
+impl Generator<'_> {
+    /// Grows `children`, the stems starting on one traced parent, in order.
+    pub(super) fn grow_stems(&mut self, children: Vec<StemStart>) -> Result<(), GenerateError> {
+        let apart = children.len() > 1
+            && children[0].level == APART_LEVEL
+            && rayon::current_num_threads() > 1;
+        if !apart {
+            for child in children {
+                self.grow_stem(child)?;
+            }
+            return Ok(());
+        }
+        let grown = children
+            .into_par_iter()
+            .map(|child| {
+                let mut part = self.fork();
+                part.grow_stem(child)?;
+                Ok(part.skeleton)
+            })
+            .collect::<Result<Vec<Skeleton>, GenerateError>>()?;
+        for part in grown {
+            self.skeleton.append_subtree(part, APART_LEVEL as u8);
+        }
+        Ok(())
+    }
+
+    /// A generator for one subtree: the same tree's settings and budget, an empty skeleton.
+    fn fork(&self) -> Self {
+        Generator {
+            tracer: Tracer {
+                p: self.tracer.p,
+                wind: self.tracer.wind,
+            },
+            options: self.options,
+            scale: self.scale,
+            stem_levels: self.stem_levels,
+            leaves_on: self.leaves_on,
+            leaf_quality: self.leaf_quality,
+            leaf_shape: self.leaf_shape,
+            envelope: self.envelope,
+            skeleton: Skeleton::default(),
+            spent: self.spent,
+            profile: Vec::new(),
+            shares: Vec::new(),
+        }
+    }
+}
