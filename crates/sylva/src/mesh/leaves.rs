@@ -75,15 +75,30 @@ pub(super) fn leaf_vertices(skeleton: &Skeleton, mesh: &mut Mesh) {
                 .extend(std::iter::repeat_n(luminance(leaf.light), n));
         }
     }
+    // Leaves of a tree mostly share one shape: its template is looked up once per run of
+    // them, and a flat template's one normal is turned once per leaf, not once per vertex.
+    let mut current: Option<(LeafShape, &LeafTemplate, bool)> = None;
     for leaf in &skeleton.leaves {
-        let t = leaf_template(leaf.shape);
+        let (t, flat) = match current {
+            Some((shape, t, flat)) if shape == leaf.shape => (t, flat),
+            _ => {
+                let t = leaf_template(leaf.shape);
+                let flat = t.normals.windows(2).all(|w| w[0] == w[1]);
+                current = Some((leaf.shape, t, flat));
+                (t, flat)
+            }
+        };
         let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
-        for ((p, n), uv) in t.positions.iter().zip(&t.normals).zip(&t.uvs) {
-            mesh.push(
-                leaf.position + leaf.orientation * (*p * scale),
-                leaf.orientation * *n,
-                *uv,
-            );
+        let place = |p: Vec3| leaf.position + leaf.orientation * (p * scale);
+        if flat && !t.normals.is_empty() {
+            let n = leaf.orientation * t.normals[0];
+            for (p, uv) in t.positions.iter().zip(&t.uvs) {
+                mesh.push(place(*p), n, *uv);
+            }
+        } else {
+            for ((p, n), uv) in t.positions.iter().zip(&t.normals).zip(&t.uvs) {
+                mesh.push(place(*p), leaf.orientation * *n, *uv);
+            }
         }
     }
 }

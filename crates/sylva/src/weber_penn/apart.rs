@@ -19,9 +19,11 @@ impl Generator<'_> {
             && children[0].level == APART_LEVEL
             && rayon::current_num_threads() > 1;
         if !apart {
-            for child in children {
+            let mut children = children;
+            for child in children.drain(..) {
                 self.grow_stem(child)?;
             }
+            self.spare.starts.push(children);
             return Ok(());
         }
         let grown = children
@@ -56,6 +58,7 @@ impl Generator<'_> {
             spent: self.spent,
             profile: Vec::new(),
             shares: Vec::new(),
+            spare: Spare::default(),
         }
     }
 }

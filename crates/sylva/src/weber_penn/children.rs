@@ -39,7 +39,7 @@ impl<'a> Generator<'a> {
         }
     }
 
-    pub(super) fn grow_child_stems(&mut self, t: Traced) -> Result<(), GenerateError> {
+    pub(super) fn grow_child_stems(&mut self, t: &Traced) -> Result<(), GenerateError> {
         let p = self.p();
         let level = t.start.level;
         let child_level = level + 1;
@@ -47,7 +47,7 @@ impl<'a> Generator<'a> {
         let mut rng = t.rng.clone();
         let lmax = cp.length + rng.var(cp.length_v);
         let length = t.start.length;
-        let mut zs = Vec::new();
+        let mut zs = self.spare.numbers();
         let fan = cp.branches < 0;
         if fan {
             zs.resize(cp.branches.unsigned_abs() as usize, 1.0);
@@ -61,14 +61,14 @@ impl<'a> Generator<'a> {
                 }
                 _ => b * (1.0 - 0.5 * t.start.offset / t.start.parent_length.max(1e-9)),
             };
-            self.place(&t, count, cp.branch_dist, &mut rng, &mut zs);
+            self.place(t, count, cp.branch_dist, &mut rng, &mut zs);
         }
         let mut around = Phyllotaxis::starting_at(t.start.rotate_start);
         let fan_count = zs.len();
         // Every child's start is worked out before any child grows: a child's subtree draws
         // from its own streams and reads only its own sections, so growing it earlier or later,
         // here or on another thread, changes nothing.
-        let mut children = Vec::with_capacity(zs.len());
+        let mut children = self.spare.starts();
         for (index, &z) in zs.iter().enumerate() {
             let (pos, q_seg, r_here) = self.skeleton.sample(t.id, z as f32);
             let offset = z * length;
@@ -135,10 +135,11 @@ impl<'a> Generator<'a> {
                 rotate_start: 0.0,
             });
         }
+        self.spare.numbers.push(zs);
         self.grow_stems(children)
     }
 
-    pub(super) fn grow_leaves(&mut self, t: Traced) -> Result<(), GenerateError> {
+    pub(super) fn grow_leaves(&mut self, t: &Traced) -> Result<(), GenerateError> {
         let p = self.p();
         let lp = p.level(p.levels as usize).clone();
         let mut rng = t.start.key.child(KEY_LEAF).stream();
@@ -146,7 +147,7 @@ impl<'a> Generator<'a> {
         let leaf_length = (p.leaf_scale / quality.sqrt()) as f32;
         let leaf_width = (p.leaf_scale * p.leaf_scale_x / quality.sqrt()) as f32;
         let stem_offset = (p.leaf_stem_len * leaf_length as f64) as f32;
-        let mut zs = Vec::new();
+        let mut zs = self.spare.numbers();
         let fan = p.leaves < 0;
         if fan {
             zs.resize(p.leaves.unsigned_abs() as usize, 1.0);
@@ -157,7 +158,7 @@ impl<'a> Generator<'a> {
                 1.0
             };
             let count = p.leaves as f64 * shape_ratio(p.leaf_distrib, r, &self.envelope) * quality;
-            self.place(&t, count, 1.0, &mut rng, &mut zs);
+            self.place(t, count, 1.0, &mut rng, &mut zs);
         }
         let per_leaf = leaf_triangles(self.leaf_shape) as u64;
         self.spend(per_leaf * zs.len() as u64, t.start.level + 1)?;
@@ -187,6 +188,7 @@ impl<'a> Generator<'a> {
                 stem: t.id,
             });
         }
+        self.spare.numbers.push(zs);
         Ok(())
     }
 }

@@ -148,6 +148,7 @@ pub fn generate_into(
         spent: &spent,
         profile: Vec::new(),
         shares: Vec::new(),
+        spare: Spare::default(),
     };
     let grown = g.grow_trunks(root);
     *skeleton = std::mem::take(&mut g.skeleton);
@@ -186,6 +187,33 @@ struct Generator<'a> {
     spent: &'a AtomicU64,
     profile: Vec<f64>,
     shares: Vec<f64>,
+    spare: Spare,
+}
+
+/// Buffers lent to one stem at a time and handed back when it is done, so that growing a tree
+/// allocates only until the recursion has been as deep once (there is one buffer per level in
+/// use at a time), not per stem.
+#[derive(Default)]
+struct Spare {
+    numbers: Vec<Vec<f64>>,
+    starts: Vec<Vec<StemStart>>,
+    family: Vec<Vec<Traced>>,
+    /// Stems of one family waiting to be traced (one family is traced at a time).
+    pending: Vec<(StemStart, Random)>,
+}
+
+impl Spare {
+    fn numbers(&mut self) -> Vec<f64> {
+        let mut v = self.numbers.pop().unwrap_or_default();
+        v.clear();
+        v
+    }
+
+    fn starts(&mut self) -> Vec<StemStart> {
+        let mut v = self.starts.pop().unwrap_or_default();
+        v.clear();
+        v
+    }
 }
 
 impl<'a> Generator<'a> {
@@ -265,10 +293,12 @@ impl<'a> Generator<'a> {
                 _ => return Ok(()),
             }
         }
-        let family = self.trace_family(start, rng)?;
-        for traced in family {
-            self.grow_children(traced)?;
+        let mut family = self.trace_family(start, rng)?;
+        for traced in family.drain(..) {
+            self.grow_children(&traced)?;
+            self.spare.numbers.push(traced.shares);
         }
+        self.spare.family.push(family);
         Ok(())
     }
 
@@ -278,9 +308,12 @@ impl<'a> Generator<'a> {
         start: StemStart,
         rng: Random,
     ) -> Result<Vec<Traced>, GenerateError> {
-        let mut pending = vec![(start, rng)];
-        let mut family = Vec::new();
-        let mut clones = Vec::new();
+        let mut pending = std::mem::take(&mut self.spare.pending);
+        pending.clear();
+        pending.push((start, rng));
+        let mut family = self.spare.family.pop().unwrap_or_default();
+        family.clear();
+        let mut clones = self.spare.starts();
         while let Some((st, mut rng)) = pending.pop() {
             let level = st.level;
             let id = StemId(self.skeleton.stems.len() as u32);
@@ -320,13 +353,17 @@ impl<'a> Generator<'a> {
                 let crng = c.key.stream();
                 pending.push((c, crng));
             }
+            let mut shares = self.spare.numbers();
+            shares.extend_from_slice(&self.shares);
             family.push(Traced {
                 id,
                 start: st,
-                shares: self.shares.clone(),
+                shares,
                 rng,
             });
         }
+        self.spare.starts.push(clones);
+        self.spare.pending = pending;
         Ok(family)
     }
 
@@ -391,7 +428,7 @@ impl<'a> Generator<'a> {
     }
 
     /// Children (stems or leaves) of a traced stem.
-    fn grow_children(&mut self, t: Traced) -> Result<(), GenerateError> {
+    fn grow_children(&mut self, t: &Traced) -> Result<(), GenerateError> {
         let level = t.start.level;
         if level + 1 < self.stem_levels {
             self.grow_child_stems(t)
