@@ -128,6 +128,13 @@ impl Tracer<'_> {
         } else {
             None
         };
+        // Each turn of a helix is sampled at the same places; they are worked out once.
+        let mut helix = [(DVec3::ZERO, DQuat::IDENTITY); HELIX_SAMPLES];
+        if helix_radius > 0.0 {
+            for (j, h) in helix.iter_mut().enumerate() {
+                *h = helix_point(helix_radius, seg_len, j as f64 / HELIX_SAMPLES as f64);
+            }
+        }
         shares.resize(n, 0.0);
         let mut samples: Vec<f64> = Vec::with_capacity(HELIX_SAMPLES + 8);
         #[allow(clippy::needless_range_loop)]
@@ -152,21 +159,15 @@ impl Tracer<'_> {
             samples.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
             for &t in &samples {
                 let (offset, frame) = if helix_radius > 0.0 {
-                    let a = TAU * t;
-                    let local = DVec3::new(
-                        helix_radius * (a.cos() - 1.0),
-                        helix_radius * a.sin(),
-                        t * seg_len,
-                    );
-                    let tangent = DVec3::new(
-                        -TAU * helix_radius * a.sin(),
-                        TAU * helix_radius * a.cos(),
-                        seg_len,
-                    );
-                    (
-                        q * local,
-                        q * DQuat::from_rotation_arc(DVec3::Z, tangent.normalize()),
-                    )
+                    // The helix's own samples are the same in every segment of the stem.
+                    let j = (t * HELIX_SAMPLES as f64).round();
+                    let (local, turn) = if j < HELIX_SAMPLES as f64 && j / HELIX_SAMPLES as f64 == t
+                    {
+                        helix[j as usize]
+                    } else {
+                        helix_point(helix_radius, seg_len, t)
+                    };
+                    (q * local, q * turn)
                 } else {
                     (q * DVec3::new(0.0, 0.0, t * seg_len), q)
                 };
@@ -293,6 +294,18 @@ impl Tracer<'_> {
         }
         q.normalize()
     }
+}
+
+/// The point of one turn of a helix of `radius` rising `rise` a turn at unit position `t` of the
+/// turn, relative to the turn's start, and the frame of its tangent.
+fn helix_point(radius: f64, rise: f64, t: f64) -> (DVec3, DQuat) {
+    let a = TAU * t;
+    let local = DVec3::new(radius * (a.cos() - 1.0), radius * a.sin(), t * rise);
+    let tangent = DVec3::new(-TAU * radius * a.sin(), TAU * radius * a.cos(), rise);
+    (
+        local,
+        DQuat::from_rotation_arc(DVec3::Z, tangent.normalize()),
+    )
 }
 
 fn section(position: DVec3, orientation: DQuat, radius: f64, z: f64) -> CrossSection {
