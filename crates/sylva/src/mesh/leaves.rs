@@ -55,6 +55,14 @@ pub(super) fn count(skeleton: &Skeleton) -> (usize, usize) {
 }
 
 pub(super) fn mesh_leaves(skeleton: &Skeleton, mesh: &mut Mesh) {
+    let empty = mesh.positions.is_empty() && mesh.indices.is_empty() && mesh.shades.is_empty();
+    if empty
+        && skeleton.leaves.len() >= super::leaves_apart::APART_FROM
+        && rayon::current_num_threads() > 1
+        && super::leaves_apart::mesh_leaves_apart(skeleton, mesh)
+    {
+        return;
+    }
     let mut base = mesh.positions.len() as u32;
     leaf_vertices(skeleton, mesh);
     for leaf in &skeleton.leaves {
@@ -75,19 +83,9 @@ pub(super) fn leaf_vertices(skeleton: &Skeleton, mesh: &mut Mesh) {
                 .extend(std::iter::repeat_n(luminance(leaf.light), n));
         }
     }
-    // Leaves of a tree mostly share one shape: its template is looked up once per run of
-    // them, and a flat template's one normal is turned once per leaf, not once per vertex.
-    let mut current: Option<(LeafShape, &LeafTemplate, bool)> = None;
+    let mut templates = Templates::default();
     for leaf in &skeleton.leaves {
-        let (t, flat) = match current {
-            Some((shape, t, flat)) if shape == leaf.shape => (t, flat),
-            _ => {
-                let t = leaf_template(leaf.shape);
-                let flat = t.normals.windows(2).all(|w| w[0] == w[1]);
-                current = Some((leaf.shape, t, flat));
-                (t, flat)
-            }
-        };
+        let (t, flat) = templates.of(leaf.shape);
         let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
         let place = |p: Vec3| leaf.position + leaf.orientation * (p * scale);
         if flat && !t.normals.is_empty() {
@@ -98,6 +96,29 @@ pub(super) fn leaf_vertices(skeleton: &Skeleton, mesh: &mut Mesh) {
         } else {
             for ((p, n), uv) in t.positions.iter().zip(&t.normals).zip(&t.uvs) {
                 mesh.push(place(*p), leaf.orientation * *n, *uv);
+            }
+        }
+    }
+}
+
+/// Leaf templates looked up in turn. The leaves of a tree mostly share one shape, so its
+/// template is looked up once per run of them; and a flat template's one normal can be turned
+/// once per leaf, not once per vertex.
+#[derive(Default)]
+pub(super) struct Templates {
+    current: Option<(LeafShape, &'static LeafTemplate, bool)>,
+}
+
+impl Templates {
+    /// The template of `shape`, and whether all its normals are one.
+    pub(super) fn of(&mut self, shape: LeafShape) -> (&'static LeafTemplate, bool) {
+        match self.current {
+            Some((s, t, flat)) if s == shape => (t, flat),
+            _ => {
+                let t = leaf_template(shape);
+                let flat = t.normals.windows(2).all(|w| w[0] == w[1]);
+                self.current = Some((shape, t, flat));
+                (t, flat)
             }
         }
     }

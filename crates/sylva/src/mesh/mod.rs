@@ -3,6 +3,7 @@
 //! bark and one for leaves, in the skeleton's Z-up metres; exporters convert the axes.
 
 mod leaves;
+mod leaves_apart;
 mod stems;
 
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
