@@ -55,14 +55,6 @@ pub(super) fn count(skeleton: &Skeleton) -> (usize, usize) {
 }
 
 pub(super) fn mesh_leaves(skeleton: &Skeleton, mesh: &mut Mesh) {
-    let empty = mesh.positions.is_empty() && mesh.indices.is_empty() && mesh.shades.is_empty();
-    if empty
-        && skeleton.leaves.len() >= super::leaves_apart::APART_FROM
-        && rayon::current_num_threads() > 1
-        && super::leaves_apart::mesh_leaves_apart(skeleton, mesh)
-    {
-        return;
-    }
     let mut base = mesh.positions.len() as u32;
     leaf_vertices(skeleton, mesh);
     for leaf in &skeleton.leaves {

@@ -17,7 +17,7 @@ use std::mem::MaybeUninit;
 const RUN: usize = 4096;
 
 /// Below this many leaves one thread is quicker than sharing out.
-pub(super) const APART_FROM: usize = 4 * RUN;
+const APART_FROM: usize = 4 * RUN;
 
 /// One run's stretch of each buffer.
 struct Stretch<'a> {
@@ -30,11 +30,15 @@ struct Stretch<'a> {
     first: u32,
 }
 
-/// Meshes `skeleton`'s leaves into `mesh`, which must be empty, on every core. Returns false,
-/// leaving `mesh` empty, if the counts did not come out as planned (they always do: the same
-/// templates size and fill the buffers); the caller then meshes on one thread.
+/// Meshes `skeleton`'s leaves into `mesh` on every core where that pays (enough leaves, more
+/// than one thread, `mesh` empty) and returns true; otherwise, or if the counts did not come
+/// out as planned (they always do: the same templates size and fill the buffers), returns
+/// false with `mesh` as it was, and the caller meshes them on one thread.
 pub(super) fn mesh_leaves_apart(skeleton: &Skeleton, mesh: &mut Mesh) -> bool {
-    debug_assert!(mesh.positions.is_empty() && mesh.indices.is_empty());
+    let empty = mesh.positions.is_empty() && mesh.indices.is_empty() && mesh.shades.is_empty();
+    if !empty || skeleton.leaves.len() < APART_FROM || rayon::current_num_threads() < 2 {
+        return false;
+    }
     let runs: Vec<&[Leaf]> = skeleton.leaves.chunks(RUN).collect();
     // Vertices and indices of each run.
     let sizes: Vec<(usize, usize)> = runs

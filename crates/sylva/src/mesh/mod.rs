@@ -154,7 +154,11 @@ pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Tre
     let TreeMesh { bark, leaves } = mesh;
     rayon::join(
         || stems::mesh_stems(skeleton, options, bark),
-        || leaves::mesh_leaves(skeleton, leaves),
+        || {
+            if !leaves_apart::mesh_leaves_apart(skeleton, leaves) {
+                leaves::mesh_leaves(skeleton, leaves)
+            }
+        },
     );
     debug_assert_eq!(
         (mesh.bark.vertex_count(), mesh.bark.indices.len()),
