@@ -79,6 +79,7 @@ impl Grower {
                 || p.x + leaf > wood_hi.x
                 || p.y + leaf > wood_hi.y
         };
+        let floor = self.leaf_floor();
         for (i, b) in self.branches.iter().enumerate() {
             // The leader's young shoot carries leaves too: always look at those.
             if (i > 0 && !counted(b))
@@ -90,7 +91,7 @@ impl Grower {
             {
                 continue;
             }
-            self.for_each_leaf(i, leaf, tree_top, |p, q| {
+            self.for_each_leaf(i, (leaf, tree_top, floor), |p, q| {
                 let tip = p + q * Vec3::new(0.0, 0.0, leaf);
                 lo = lo.min(p.min(tip));
                 hi = hi.max(p.max(tip));

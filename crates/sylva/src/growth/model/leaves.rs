@@ -185,17 +185,22 @@ impl Grower {
 }
 
 impl Grower {
+    /// The lowest a leaf may hang: just below the crown base (the survey's crown base is
+    /// where the lowest foliage is). Worked out once for all branches: it evaluates the
+    /// growth equations.
+    pub(super) fn leaf_floor(&self) -> f32 {
+        self.targets_now().crown_base() as f32 - 0.02
+    }
+
     /// The leaves of branch `b` (position and orientation), spiralling at a fixed divergence,
-    /// tilted 50 degrees off the shoot, none above the tree's top or below the crown base
-    /// (the survey's crown base is where the lowest foliage is).
+    /// tilted 50 degrees off the shoot, none above the tree's top or below `floor`
+    /// ([`Grower::leaf_floor`]).
     pub(super) fn for_each_leaf(
         &self,
         b: usize,
-        length: f32,
-        top: f32,
+        (length, top, floor): (f32, f32, f32),
         mut f: impl FnMut(Vec3, Quat),
     ) {
-        let floor = self.targets_now().crown_base() as f32 - 0.02;
         let mut turn = 0.0f32;
         let mut rng = self.key.child(1000 + b as u64).stream();
         for &si in &self.branches[b].segments {

@@ -165,12 +165,13 @@ impl Grower {
         }
         let (leaf_len, leaf_width) = self.drawn_leaf_size();
         let top = self.targets_now().height as f32;
+        let floor = self.leaf_floor();
         let written: Vec<usize> = parts
             .into_par_iter()
             .map(|(run, part)| {
                 let mut k = 0;
                 for &(b, id) in run {
-                    self.for_each_leaf(b, leaf_len, top, |position, orientation| {
+                    self.for_each_leaf(b, (leaf_len, top, floor), |position, orientation| {
                         part[k] = Leaf {
                             light: self.light.light_at(position),
                             position,
