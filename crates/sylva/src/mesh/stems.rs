@@ -61,19 +61,22 @@ fn tip_is_point(sections: &[CrossSection]) -> bool {
 }
 
 pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) {
-    let mut unit = Vec::new();
-    let mut unit_n = 0;
+    // Stems come parent before children, so the ring size changes from one stem to the next:
+    // each size's circle is worked out once and kept.
+    let mut circles: Vec<Vec<(f32, f32)>> = Vec::new();
     for stem in &skeleton.stems {
         let sections = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
         if sections.len() < 2 {
             continue;
         }
         let n = options.ring_vertices(stem);
-        if n != unit_n {
-            circle(n, &mut unit);
-            unit_n = n;
+        if circles.len() <= n {
+            circles.resize(n + 1, Vec::new());
         }
-        mesh_stem(stem, sections, &unit, mesh);
+        if circles[n].is_empty() {
+            circle(n, &mut circles[n]);
+        }
+        mesh_stem(stem, sections, &circles[n], mesh);
     }
 }
 
