@@ -22,7 +22,50 @@ impl Grower {
         sk.stems.clear();
         sk.sections.clear();
         sk.leaves.clear();
+        // Which branches are drawn, and as which stems, is known before any is traced; so
+        // the wood and the leaves (each branch's from its own random stream) are laid out at
+        // once, into the skeleton's separate lists.
+        let (stem_of, leafy) = self.drawn_branches();
+        let Skeleton {
+            stems,
+            sections,
+            leaves,
+        } = sk;
+        rayon::join(
+            || self.wood_into(&stem_of, stems, sections),
+            || self.leaves_into(&leafy, leaves),
+        );
+        if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
+            self.fronds_into(&mut sk.leaves);
+        }
+    }
+
+    /// The branches drawn (live, on a drawn parent, with a segment of some length) as stem
+    /// ids per branch (`u32::MAX`: not drawn), and the drawn branches with their stems, in
+    /// order.
+    fn drawn_branches(&self) -> (Vec<u32>, Vec<(usize, u32)>) {
         let mut stem_of = vec![u32::MAX; self.branches.len()];
+        let mut drawn = Vec::new();
+        for (b, branch) in self.branches.iter().enumerate() {
+            let parent_drawn = branch
+                .parent
+                .is_none_or(|(p, _)| stem_of[p as usize] != u32::MAX);
+            let long = || {
+                branch
+                    .segments
+                    .iter()
+                    .any(|&s| self.segments[s as usize].length > 1e-4)
+            };
+            if branch.alive && parent_drawn && long() {
+                stem_of[b] = drawn.len() as u32;
+                drawn.push((b, drawn.len() as u32));
+            }
+        }
+        (stem_of, drawn)
+    }
+
+    /// The stems and sections of the branches `stem_of` draws.
+    fn wood_into(&self, stem_of: &[u32], stems: &mut Vec<Stem>, sections: &mut Vec<CrossSection>) {
         let mut segs: Vec<(u32, &Segment)> = Vec::new();
         // (position, direction, distance along the stem, radius)
         let mut points: Vec<(Vec3, Vec3, f32, f32)> = Vec::new();
@@ -34,17 +77,12 @@ impl Grower {
         let mut offsets = vec![0.0f32; self.branches.len()];
         // Where DBH is read (breast height, or caliper height on a tree too short for it).
         let dbh_at = self.dbh_read_at();
-        // Live branches drawn, with their stems: their leaves come after the wood.
-        let mut leafy: Vec<(usize, u32)> = Vec::new();
         for (b, branch) in self.branches.iter().enumerate() {
-            if !branch.alive {
+            if stem_of[b] == u32::MAX {
                 continue;
             }
             let parent = branch.parent.map(|(p, _)| StemId(stem_of[p as usize]));
-            if parent.is_some_and(|p| p.0 == u32::MAX) {
-                continue;
-            }
-            let first = sk.sections.len() as u32;
+            let first = sections.len() as u32;
             segs.clear();
             segs.extend(
                 branch
@@ -53,9 +91,10 @@ impl Grower {
                     .map(|&s| (s, &self.segments[s as usize]))
                     .filter(|(_, s)| s.length > 1e-4),
             );
-            if segs.is_empty() {
-                continue;
-            }
+            debug_assert!(
+                !segs.is_empty(),
+                "drawn_branches draws only branches of some length"
+            );
             // Where each live side branch leaves this one: (segment, distance along it, its
             // base radius), in order.
             junctions.clear();
@@ -110,31 +149,25 @@ impl Grower {
             };
             points.push((last.end(), last.direction, total, tip_radius));
             for &(p, d, at, radius) in &points {
-                sk.sections.push(CrossSection {
+                sections.push(CrossSection {
                     position: p,
                     orientation: frame(d),
                     radius: radius.max(0.0008),
                     z: if total > 0.0 { at / total } else { 0.0 },
                 });
             }
-            let id = sk.stems.len() as u32;
-            stem_of[b] = id;
+            debug_assert_eq!(stem_of[b], stems.len() as u32);
             let offset = if b == 0 { 0.0 } else { offsets[b] };
-            sk.stems.push(Stem {
+            stems.push(Stem {
                 level: branch.order,
                 parent,
                 clone_of: None,
                 offset,
                 length: total,
-                sections: first..sk.sections.len() as u32,
+                sections: first..sections.len() as u32,
                 lobes: 0,
                 lobe_depth: 0.0,
             });
-            leafy.push((b, id));
-        }
-        self.leaves_into(&leafy, &mut sk.leaves);
-        if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
-            self.fronds_into(&mut sk.leaves);
         }
     }
 
