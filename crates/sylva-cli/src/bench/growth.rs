@@ -10,10 +10,11 @@ const RUDNICK_MS: (f64, f64, f64) = (40.0, 13.0, 60.0);
 pub fn bench_growth(runs: u32) -> Result<()> {
     println!();
     println!(
-        "growth steps of a silver maple (InlVal), 1/20 year each, {GROWTH_STEPS} steps per row; \
-         light: the sky's directions spread over the cores, and the skeleton's leaves runs of \
-         branches, the rest on one thread; mesh = skeleton and mesh (quality 0.6), fastest of {runs}; x copy = step total / time to copy \
-         the tree's skeleton"
+        "growth steps of a silver maple (InlVal), 1/20 year each, {GROWTH_STEPS} steps per row \
+         (growth and light: their mean); light: the sky's directions spread over the cores; \
+         skeleton: wood and leaves at once, the leaves in runs of branches; mesh = skeleton and \
+         mesh (quality 0.6: bark and leaves at once, leaves in runs), fastest of {runs}; x copy \
+         = step total / time to copy the tree's skeleton"
     );
     println!(
         "{:>9} {:>5} {:>8} {:>10} {:>9} {:>9} {:>13} {:>9} {:>9} {:>7}",
