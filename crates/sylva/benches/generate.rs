@@ -47,17 +47,11 @@ fn appendix_species(c: &mut Criterion) {
 }
 
 fn writers(c: &mut Criterion) {
-    use sylva::export::{Instance, Materials, glb_scene, to_obj};
+    use sylva::export::{Materials, to_obj, tree_glb};
     let params = builtin("black_tupelo").unwrap();
     let skeleton = sylva::generate(&params, &GenerateOptions::default()).unwrap();
     let mesh = sylva::mesh::mesh_tree(&skeleton, &MeshOptions::for_species(&params, 1.0));
     let materials = Materials::default();
-    let one = [Instance {
-        mesh: 0,
-        position: [0.0; 3],
-        turn: 0.0,
-        scale: 1.0,
-    }];
     let mut group = c.benchmark_group("write");
     group.sample_size(20);
     let obj_bytes = to_obj(&mesh, "t", "t.mtl", &materials).0.len();
@@ -66,7 +60,7 @@ fn writers(c: &mut Criterion) {
         b.iter(|| black_box(to_obj(&mesh, "t", "t.mtl", &materials).0.len()))
     });
     let mut out = Vec::new();
-    glb_scene(&[("t", &mesh, materials)], &one)
+    tree_glb(&mesh, "t", &materials)
         .unwrap()
         .write_to(&mut out)
         .unwrap();
@@ -74,7 +68,7 @@ fn writers(c: &mut Criterion) {
     group.bench_function("glb", |b| {
         b.iter(|| {
             out.clear();
-            let glb = glb_scene(&[("t", &mesh, materials)], &one).unwrap();
+            let glb = tree_glb(&mesh, "t", &materials).unwrap();
             glb.write_to(&mut out).unwrap();
             black_box(out.len())
         })

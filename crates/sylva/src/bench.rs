@@ -132,7 +132,7 @@ pub struct WriterTimes {
 
 /// Times writing `mesh` as OBJ and GLB, fastest of `runs`.
 pub fn writer_times(mesh: &TreeMesh, runs: u32) -> Result<WriterTimes, crate::ExportError> {
-    use crate::export::{Materials, glb_scene, to_obj};
+    use crate::export::{Materials, to_obj, tree_glb};
     let materials = Materials::default();
     let mut obj_bytes = 0;
     let obj_ms = fastest_of(runs, || {
@@ -140,16 +140,10 @@ pub fn writer_times(mesh: &TreeMesh, runs: u32) -> Result<WriterTimes, crate::Ex
     });
     let mut plain_obj_bytes = 0;
     let plain_obj_ms = fastest_of(runs, || plain_obj_bytes = plain_obj(mesh).len());
-    let one = [crate::export::Instance {
-        mesh: 0,
-        position: [0.0; 3],
-        turn: 0.0,
-        scale: 1.0,
-    }];
     let mut out = Vec::new();
     let glb_ms = fastest_ms(runs, || {
         out.clear();
-        glb_scene(&[("tree", mesh, materials)], &one)?
+        tree_glb(mesh, "tree", &materials)?
             .write_to(&mut out)
             .map_err(|e| crate::ExportError::Format(e.to_string()))
     })?;

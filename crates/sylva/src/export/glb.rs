@@ -231,7 +231,7 @@ pub struct Instance {
 
 /// Encodes a tree mesh as GLB bytes. `name` names the node and mesh.
 pub fn to_glb(mesh: &TreeMesh, name: &str, materials: &Materials) -> Result<Vec<u8>, ExportError> {
-    Ok(glb(mesh, name, materials)?.to_vec())
+    Ok(tree_glb(mesh, name, materials)?.to_vec())
 }
 
 /// Writes a tree mesh to `path` as GLB (atomically), straight from the mesh's buffers.
@@ -241,12 +241,17 @@ pub fn write_glb(
     name: &str,
     materials: &Materials,
 ) -> Result<(), ExportError> {
-    let glb = glb(mesh, name, materials)?;
+    let glb = tree_glb(mesh, name, materials)?;
     write_atomically_with(path, |w| glb.write_to(w))
 }
 
-/// A tree mesh laid out as a GLB, one node at the origin.
-fn glb<'a>(mesh: &'a TreeMesh, name: &str, materials: &Materials) -> Result<Glb<'a>, ExportError> {
+/// A tree mesh laid out as a GLB, one node at the origin: [`to_glb`] without gathering the
+/// bytes, to be written with [`Glb::write_to`].
+pub fn tree_glb<'a>(
+    mesh: &'a TreeMesh,
+    name: &str,
+    materials: &Materials,
+) -> Result<Glb<'a>, ExportError> {
     let instance = Instance {
         mesh: 0,
         position: [0.0; 3],
@@ -511,20 +516,11 @@ impl<'a> Builder<'a> {
 pub struct Glb<'a> {
     head: Vec<u8>,
     pieces: Vec<(usize, Piece<'a>)>,
+    /// Bytes of the whole file.
     len: usize,
 }
 
 impl Glb<'_> {
-    /// Bytes of the whole file.
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    /// True for no file at all (never: a GLB has at least its header).
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
     /// Writes the file to `w`, the binary chunk straight from the meshes.
     pub fn write_to(&self, w: &mut dyn Write) -> std::io::Result<()> {
         w.write_all(&self.head)?;

@@ -10,7 +10,9 @@ mod glb;
 mod obj;
 
 pub use atomic::{write_atomically, write_atomically_with};
-pub use glb::{Glb, Instance, Materials, glb_scene, to_glb, to_glb_lod, to_glb_scene, write_glb};
+pub use glb::{
+    Glb, Instance, Materials, glb_scene, to_glb, to_glb_lod, to_glb_scene, tree_glb, write_glb,
+};
 pub use obj::{to_obj, write_obj};
 
 /// Z-up model coordinates to Y-up file coordinates.

@@ -3,7 +3,7 @@
 //! leaves are instances of it, scaled and placed by the skeleton's leaf frames.
 
 use super::Mesh;
-use crate::skeleton::{LeafShape, Skeleton};
+use crate::skeleton::{Leaf, LeafShape, Skeleton};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 use std::sync::OnceLock;
@@ -46,9 +46,9 @@ pub fn leaf_triangles(shape: LeafShape) -> usize {
     leaf_template(shape).indices.len() / 3
 }
 
-/// Vertices and indices that [`mesh_leaves`] will write.
-pub(super) fn count(skeleton: &Skeleton) -> (usize, usize) {
-    skeleton.leaves.iter().fold((0, 0), |(v, i), leaf| {
+/// Vertices and indices that [`mesh_leaves`] will write for `leaves`.
+pub(super) fn count(leaves: &[Leaf]) -> (usize, usize) {
+    leaves.iter().fold((0, 0), |(v, i), leaf| {
         let t = leaf_template(leaf.shape);
         (v + t.positions.len(), i + t.indices.len())
     })
@@ -77,20 +77,33 @@ pub(super) fn leaf_vertices(skeleton: &Skeleton, mesh: &mut Mesh) {
     }
     let mut templates = Templates::default();
     for leaf in &skeleton.leaves {
-        let (t, flat) = templates.of(leaf.shape);
-        let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
-        let place = |p: Vec3| leaf.position + leaf.orientation * (p * scale);
-        if flat && !t.normals.is_empty() {
-            let n = leaf.orientation * t.normals[0];
-            for (p, uv) in t.positions.iter().zip(&t.uvs) {
-                mesh.push(place(*p), n, *uv);
-            }
-        } else {
-            for ((p, n), uv) in t.positions.iter().zip(&t.normals).zip(&t.uvs) {
-                mesh.push(place(*p), leaf.orientation * *n, *uv);
-            }
+        for (p, n, uv) in corners(leaf, templates.of(leaf.shape)) {
+            mesh.push(p, n, uv);
         }
     }
+}
+
+/// A leaf's vertices (position, normal, texture coordinate) from its template and whether the
+/// template is flat ([`Templates::of`]): the one place both leaf meshers take them from, so
+/// meshing on one thread or many gives the same bytes.
+#[inline]
+pub(super) fn corners<'a>(
+    leaf: &'a Leaf,
+    (t, flat): (&'static LeafTemplate, bool),
+) -> impl Iterator<Item = (Vec3, Vec3, [f32; 2])> + 'a {
+    let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
+    let shared = (flat && !t.normals.is_empty()).then(|| leaf.orientation * t.normals[0]);
+    t.positions
+        .iter()
+        .zip(&t.normals)
+        .zip(&t.uvs)
+        .map(move |((p, n), uv)| {
+            (
+                leaf.position + leaf.orientation * (*p * scale),
+                shared.unwrap_or_else(|| leaf.orientation * *n),
+                *uv,
+            )
+        })
 }
 
 /// Leaf templates looked up in turn. The leaves of a tree mostly share one shape, so its

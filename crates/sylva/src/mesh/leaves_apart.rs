@@ -7,9 +7,8 @@
 //! much as the meshing saves.
 
 use super::Mesh;
-use super::leaves::{Templates, leaf_template, luminance};
+use super::leaves::{Templates, corners, count, luminance};
 use crate::skeleton::{Leaf, Skeleton};
-use glam::Vec3;
 use rayon::prelude::*;
 use std::mem::MaybeUninit;
 
@@ -41,15 +40,7 @@ pub(super) fn mesh_leaves_apart(skeleton: &Skeleton, mesh: &mut Mesh) -> bool {
     }
     let runs: Vec<&[Leaf]> = skeleton.leaves.chunks(RUN).collect();
     // Vertices and indices of each run.
-    let sizes: Vec<(usize, usize)> = runs
-        .iter()
-        .map(|run| {
-            run.iter().fold((0, 0), |(v, i), leaf| {
-                let t = leaf_template(leaf.shape);
-                (v + t.positions.len(), i + t.indices.len())
-            })
-        })
-        .collect();
+    let sizes: Vec<(usize, usize)> = runs.iter().map(|run| count(run)).collect();
     let vertices: usize = sizes.iter().map(|s| s.0).sum();
     let indices: usize = sizes.iter().map(|s| s.1).sum();
     let shaded = skeleton.leaves.iter().any(|l| l.light < 1.0);
@@ -114,21 +105,18 @@ fn fill(run: &[Leaf], out: Stretch<'_>, shaded: bool) -> bool {
     let (mut v, mut i) = (0usize, 0usize);
     let mut templates = Templates::default();
     for leaf in run {
-        let (t, flat) = templates.of(leaf.shape);
+        let template = templates.of(leaf.shape);
+        let t = template.0;
         let n = t.positions.len();
         let whole = t.normals.len() == n && t.uvs.len() == n;
         if !whole || v + n > out.positions.len() || i + t.indices.len() > out.indices.len() {
             return false;
         }
-        let scale = Vec3::new(leaf.width, leaf.width, leaf.length);
-        let shared = (flat && n > 0).then(|| leaf.orientation * t.normals[0]);
         let base = out.first + v as u32;
-        for (k, ((p, normal), uv)) in t.positions.iter().zip(&t.normals).zip(&t.uvs).enumerate() {
-            let normal = shared.unwrap_or_else(|| leaf.orientation * *normal);
-            out.positions[v + k]
-                .write((leaf.position + leaf.orientation * (*p * scale)).to_array());
+        for (k, (p, normal, uv)) in corners(leaf, template).enumerate() {
+            out.positions[v + k].write(p.to_array());
             out.normals[v + k].write(normal.to_array());
-            out.uvs[v + k].write(*uv);
+            out.uvs[v + k].write(uv);
             if shaded {
                 out.shades[v + k].write(luminance(leaf.light));
             }

@@ -147,7 +147,7 @@ pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Tre
     // Size every buffer exactly first: growing them by doubling costs more than filling them.
     let (v, i) = stems::count(skeleton, options);
     mesh.bark.reserve(v, i);
-    let (v, i) = leaves::count(skeleton);
+    let (v, i) = leaves::count(&skeleton.leaves);
     mesh.leaves.reserve(v, i);
     // Bark and leaves fill buffers of their own, so they can be meshed at once on two
     // threads with the same bytes as one after the other.

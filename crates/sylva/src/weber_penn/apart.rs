@@ -43,22 +43,11 @@ impl Generator<'_> {
     /// A generator for one subtree: the same tree's settings and budget, an empty skeleton.
     fn fork(&self) -> Self {
         Generator {
-            tracer: Tracer {
-                p: self.tracer.p,
-                wind: self.tracer.wind,
-            },
-            options: self.options,
-            scale: self.scale,
-            stem_levels: self.stem_levels,
-            leaves_on: self.leaves_on,
-            leaf_quality: self.leaf_quality,
-            leaf_shape: self.leaf_shape,
-            envelope: self.envelope,
             skeleton: Skeleton::default(),
-            spent: self.spent,
             profile: Vec::new(),
             shares: Vec::new(),
             spare: Spare::default(),
+            ..*self
         }
     }
 }

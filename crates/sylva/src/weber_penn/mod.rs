@@ -204,16 +204,19 @@ struct Spare {
 
 impl Spare {
     fn numbers(&mut self) -> Vec<f64> {
-        let mut v = self.numbers.pop().unwrap_or_default();
-        v.clear();
-        v
+        lend(&mut self.numbers)
     }
 
     fn starts(&mut self) -> Vec<StemStart> {
-        let mut v = self.starts.pop().unwrap_or_default();
-        v.clear();
-        v
+        lend(&mut self.starts)
     }
+}
+
+/// An empty buffer from `pool`, or a new one.
+fn lend<T>(pool: &mut Vec<Vec<T>>) -> Vec<T> {
+    let mut v = pool.pop().unwrap_or_default();
+    v.clear();
+    v
 }
 
 impl<'a> Generator<'a> {
@@ -311,8 +314,7 @@ impl<'a> Generator<'a> {
         let mut pending = std::mem::take(&mut self.spare.pending);
         pending.clear();
         pending.push((start, rng));
-        let mut family = self.spare.family.pop().unwrap_or_default();
-        family.clear();
+        let mut family = lend(&mut self.spare.family);
         let mut clones = self.spare.starts();
         while let Some((st, mut rng)) = pending.pop() {
             let level = st.level;

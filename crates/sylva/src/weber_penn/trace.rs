@@ -46,6 +46,7 @@ pub(crate) struct StemStart {
 }
 
 /// Read-only context of a tree being traced.
+#[derive(Clone, Copy)]
 pub(crate) struct Tracer<'a> {
     pub p: &'a TreeParams,
     pub wind: Wind,
