@@ -64,6 +64,7 @@ pub mod rng;
 pub mod skeleton;
 pub mod species;
 pub mod weber_penn;
+pub mod whole;
 
 pub use error::{ExportError, GenerateError, ParamsError};
 pub use params::TreeParams;

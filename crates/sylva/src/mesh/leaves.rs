@@ -136,7 +136,7 @@ pub const LUMINANCE_CLASSES: u32 = 10;
 /// (open sky), scaled so the darkest class still shows its colour in the sky's ambient.
 pub fn luminance(light: f32) -> f32 {
     let classes = LUMINANCE_CLASSES as f32;
-    let class = (light.clamp(0.0, 1.0) * classes).ceil().max(1.0);
+    let class = crate::whole::pieces(light.clamp(0.0, 1.0) * classes) as f32;
     0.3 + 0.7 * class / classes
 }
 

@@ -7,7 +7,7 @@
 //! expands as the envelope does, without any branch being told its length.
 
 use super::*;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// Most markers scattered in a year: beyond this they are spaced wider, not made more.
 const MAX_MARKERS: usize = 6000;
@@ -79,20 +79,24 @@ impl Space {
 /// Points hashed into cubes of one size, for neighbour queries.
 struct PointGrid {
     cell: f32,
-    cells: HashMap<(i32, i32, i32), Vec<u32>>,
+    /// Keyed by a fast hash: the grid is probed 27 times a point, and nothing iterates the
+    /// map, so its order does not reach the tree.
+    cells: FxHashMap<(i32, i32, i32), Vec<u32>>,
 }
 
 impl PointGrid {
     fn new(cell: f32) -> Self {
         PointGrid {
             cell,
-            cells: HashMap::new(),
+            cells: FxHashMap::default(),
         }
     }
 
     fn key(&self, p: Vec3) -> (i32, i32, i32) {
-        let k = (p / self.cell).floor();
-        (k.x as i32, k.y as i32, k.z as i32)
+        let k = p / self.cell;
+        let floor =
+            |x: f32| crate::whole::floor_i64(x).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+        (floor(k.x), floor(k.y), floor(k.z))
     }
 
     fn insert(&mut self, p: Vec3, id: u32) {
@@ -160,7 +164,7 @@ impl Markers {
         for &(a, b) in wood {
             // Points half a reach apart: every point of the segment is then within a
             // quarter reach of one.
-            let pieces = (a.distance(b) / (reach * 0.5)).ceil().max(1.0) as usize;
+            let pieces = crate::whole::pieces(a.distance(b) / (reach * 0.5));
             for k in 0..=pieces {
                 let p = a.lerp(b, k as f32 / pieces as f32);
                 taken.insert(p, wood_points.len() as u32);

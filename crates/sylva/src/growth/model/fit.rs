@@ -208,11 +208,12 @@ impl Grower {
     /// the bias of the envelope's fitting (`spread`) by how the crown came out.
     pub(super) fn fit_crown(&mut self) {
         let t = self.targets_now();
-        let (diameter, _) = self.crown_now();
         // The vigour steers the crown that will still be there in a year: scaffolds the crown
-        // base is about to pass are shed soon whatever their length.
+        // base is about to pass are shed soon whatever their length. Both crowns are
+        // measured at once.
         let coming_base = self.targets(self.age + 1.0).crown_base() as f32;
-        let (mut coming, _) = self.crown_above(coming_base);
+        let ((diameter, _), (mut coming, _)) =
+            rayon::join(|| self.crown_now(), || self.crown_above(coming_base));
         if coming <= 1e-3 {
             coming = diameter;
         }

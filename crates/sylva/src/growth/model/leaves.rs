@@ -3,6 +3,10 @@
 //! branches and leaves that shade it.
 
 use super::*;
+use rayon::prelude::*;
+
+/// Segments whose shade one task works out.
+const SHADE_RUN: usize = 2048;
 
 impl Grower {
     /// Leaves on young, thin, lit shoots, adding up to f_LA.
@@ -28,7 +32,7 @@ impl Grower {
         let radii = &self.radii;
         let lights: Vec<f32> = self
             .segments
-            .iter()
+            .par_iter()
             .map(|s| self.light.light_at(s.start + s.direction * s.length * 0.5))
             .collect();
         // Young, thin, lit shoots first; where they cannot hold the measured leaf area, older
@@ -44,41 +48,47 @@ impl Grower {
         let spur_weight = SPUR_WEIGHT * ((t.crown_height as f32 - 3.0) / 3.0).clamp(0.0, 1.0);
         let mut weights = vec![0.0f32; self.segments.len()];
         let mut capacity = vec![0u32; self.segments.len()];
+        // Each shoot's room and weight depend on that shoot alone, so they are worked out on
+        // every core; the sums over them below stay in shoot order.
         for (k, &(years, radius, min_light)) in levels.iter().enumerate() {
-            let mut room = 0usize;
-            for (i, s) in self.segments.iter().enumerate() {
-                let b = &self.branches[s.branch as usize];
-                // The leader's young shoot is leafy too, or it would stand bare above the
-                // crown.
-                let leader = b.order == 0 && self.age - s.born <= LEAF_SHOOT_YEARS;
-                let placed_ok =
-                    b.alive && (b.order > 0 || leader) && s.start.z.min(s.end().z) >= floor;
-                let eligible = placed_ok
-                    && (self.age - s.born <= years || tip_shoot[i])
-                    && radii[i] <= radius
-                    && lights[i] >= min_light;
-                // Short shoots (spurs) on older lit limbs: each bears a rosette of leaves a
-                // year, so the crown is leafy along its limbs inside, not only at its rim.
-                let spur = !eligible
-                    && spur_weight > 0.0
-                    && placed_ok
-                    && radii[i] <= SPUR_MAX_RADIUS
-                    && lights[i] >= LEAF_MIN_LIGHT;
-                let (slots, weight) = if eligible {
-                    (s.length / self.leaf_spacing, 1.0)
-                } else if spur {
-                    (s.length / self.leaf_spacing * SPUR_DENSITY, spur_weight)
-                } else {
-                    (0.0, 0.0)
-                };
-                capacity[i] = slots.floor() as u32;
-                weights[i] = if capacity[i] > 0 {
-                    weight * s.length * lights[i].max(0.01).sqrt()
-                } else {
-                    0.0
-                };
-                room += capacity[i] as usize;
-            }
+            let room: usize = (self.segments.par_iter().enumerate())
+                .zip(weights.par_iter_mut().zip(capacity.par_iter_mut()))
+                .map(|((i, s), (weight_i, capacity_i))| {
+                    let b = &self.branches[s.branch as usize];
+                    // The leader's young shoot is leafy too, or it would stand bare above
+                    // the crown.
+                    let leader = b.order == 0 && self.age - s.born <= LEAF_SHOOT_YEARS;
+                    let placed_ok =
+                        b.alive && (b.order > 0 || leader) && s.start.z.min(s.end().z) >= floor;
+                    let eligible = placed_ok
+                        && (self.age - s.born <= years || tip_shoot[i])
+                        && radii[i] <= radius
+                        && lights[i] >= min_light;
+                    // Short shoots (spurs) on older lit limbs: each bears a rosette of leaves
+                    // a year, so the crown is leafy along its limbs inside, not only at its
+                    // rim.
+                    let spur = !eligible
+                        && spur_weight > 0.0
+                        && placed_ok
+                        && radii[i] <= SPUR_MAX_RADIUS
+                        && lights[i] >= LEAF_MIN_LIGHT;
+                    let (slots, weight) = if eligible {
+                        (s.length / self.leaf_spacing, 1.0)
+                    } else if spur {
+                        (s.length / self.leaf_spacing * SPUR_DENSITY, spur_weight)
+                    } else {
+                        (0.0, 0.0)
+                    };
+                    // Truncation is the floor here: `as u32` takes anything below zero to 0.
+                    *capacity_i = slots as u32;
+                    *weight_i = if *capacity_i > 0 {
+                        weight * s.length * lights[i].max(0.01).sqrt()
+                    } else {
+                        0.0
+                    };
+                    *capacity_i as usize
+                })
+                .sum();
             if room >= wanted || k == levels.len() - 1 {
                 break;
             }
@@ -96,7 +106,7 @@ impl Grower {
                 continue;
             }
             let share = wanted as f32 * weights[i] / total + carry;
-            let n = (share.floor() as u32).min(capacity[i]).min(u16::MAX as u32);
+            let n = (share as u32).min(capacity[i]).min(u16::MAX as u32);
             carry = share - n as f32;
             self.leaves_on[i] = n as u16;
             placed += n as usize;
@@ -140,13 +150,20 @@ impl Grower {
 
     /// Densities from every live segment and its leaves, then the rays.
     pub(super) fn update_light(&mut self) {
-        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        for s in &self.segments {
-            if self.branches[s.branch as usize].alive {
-                lo = lo.min(s.start.min(s.end()));
-                hi = hi.max(s.start.max(s.end()));
-            }
-        }
+        let live = |s: &&Segment| self.branches[s.branch as usize].alive;
+        // Minima and maxima are exact whatever order they are taken in.
+        let (lo, hi) = self
+            .segments
+            .par_iter()
+            .filter(live)
+            .fold(
+                || (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+                |(lo, hi), s| (lo.min(s.start.min(s.end())), hi.max(s.start.max(s.end()))),
+            )
+            .reduce(
+                || (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+                |a, b| (a.0.min(b.0), a.1.max(b.1)),
+            );
         let margin = Vec3::splat(self.leaf_size.0 + self.options.light_cell);
         self.light.reshape(
             lo - margin,
@@ -159,26 +176,43 @@ impl Grower {
         } else {
             self.leaf_area_each() * self.leaf_boost
         };
-        let cell = self.light.cell;
-        for (i, s) in self.segments.iter().enumerate() {
-            let b = &self.branches[s.branch as usize];
-            if !b.alive || s.length <= 0.0 {
-                continue;
-            }
-            let r = self.radii[i];
-            let pieces = (s.length / (cell * 0.5)).ceil().max(1.0) as usize;
-            let piece = s.length / pieces as f32;
-            let leaves = self.leaves_on.get(i).copied().unwrap_or(0) as f32;
-            // Leaves lie at all angles: on average half their area faces up.
-            let leaf_share = leaves * leaf_area * 0.5 / pieces as f32;
-            for k in 0..pieces {
-                let p = s.start + s.direction * piece * (k as f32 + 0.5);
-                // A cylinder piece seen from above covers about its diameter times its
-                // horizontal length (its end disc when it stands upright).
-                let horizontal = piece * (1.0 - s.direction.z * s.direction.z).sqrt();
-                let covered = 2.0 * r * horizontal + PI * r * r * s.direction.z.abs();
-                self.light.occlude(p, covered, leaf_share);
-            }
+        // Each segment's pieces are found on any core, and their shade is laid on the cells
+        // after, in segment order: a cell's density is a product of factors, and the same
+        // factors in the same order give the same bits on any number of cores.
+        let grid = &self.light;
+        let cell = grid.cell;
+        let runs: Vec<Vec<(usize, f32)>> = self
+            .segments
+            .par_chunks(SHADE_RUN)
+            .enumerate()
+            .map(|(run, segments)| {
+                let mut out = Vec::new();
+                for (j, s) in segments.iter().enumerate() {
+                    let i = run * SHADE_RUN + j;
+                    let b = &self.branches[s.branch as usize];
+                    if !b.alive || s.length <= 0.0 {
+                        continue;
+                    }
+                    let r = self.radii[i];
+                    let pieces = crate::whole::pieces(s.length / (cell * 0.5));
+                    let piece = s.length / pieces as f32;
+                    let leaves = self.leaves_on.get(i).copied().unwrap_or(0) as f32;
+                    // Leaves lie at all angles: on average half their area faces up.
+                    let leaf_share = leaves * leaf_area * 0.5 / pieces as f32;
+                    // A cylinder piece seen from above covers about its diameter times its
+                    // horizontal length (its end disc when it stands upright).
+                    let horizontal = piece * (1.0 - s.direction.z * s.direction.z).sqrt();
+                    let covered = 2.0 * r * horizontal + PI * r * r * s.direction.z.abs();
+                    out.extend((0..pieces).filter_map(|k| {
+                        let p = s.start + s.direction * piece * (k as f32 + 0.5);
+                        grid.occluder(p, covered, leaf_share)
+                    }));
+                }
+                out
+            })
+            .collect();
+        for (i, passing) in runs.iter().flatten() {
+            self.light.density[*i] *= passing;
         }
         self.light.illuminate(&self.sky);
     }
@@ -202,6 +236,7 @@ impl Grower {
         mut f: impl FnMut(Vec3, Quat),
     ) {
         let mut turn = 0.0f32;
+        let mut turns = leaf_turns().iter();
         let mut rng = self.key.child(1000 + b as u64).stream();
         for &si in &self.branches[b].segments {
             let s = &self.segments[si as usize];
@@ -213,9 +248,10 @@ impl Grower {
             for k in 0..n {
                 let along = (k as f32 + 0.5) / n as f32;
                 let p = s.start + s.direction * s.length * along;
-                turn += 137.5;
+                turn += DIVERGENCE;
+                let turned = (turns.next().copied()).unwrap_or_else(|| turn.to_radians().sin_cos());
                 let tilt = 50.0 + rng.var(10.0) as f32;
-                let q = leaf_frame(base, turn.to_radians(), tilt.to_radians());
+                let q = leaf_frame(base, turned, tilt.to_radians());
                 let tip = (q * Vec3::Z).z * length + p.z;
                 if tip <= top && tip.min(p.z) >= floor {
                     f(p, q);
@@ -225,14 +261,32 @@ impl Grower {
     }
 }
 
-/// The frame of a leaf on a shoot whose frame is `shoot`: turned `turn` about the shoot, tilted
-/// `tilt` off it (radians), then rolled about its own axis so the blade faces the sky (local y
+/// How many leaves of a branch find their turn about it in [`leaf_turns`].
+const TURNS_TABLED: usize = 1024;
+
+/// The sine and cosine of the turn of a branch's first [`TURNS_TABLED`] leaves about it: every
+/// branch's k-th leaf turns by the same angle, so the sines are worked out once, not once per
+/// leaf (the same numbers, from the same angles).
+fn leaf_turns() -> &'static [(f32, f32)] {
+    static TURNS: std::sync::OnceLock<Vec<(f32, f32)>> = std::sync::OnceLock::new();
+    TURNS.get_or_init(|| {
+        let mut turn = 0.0f32;
+        (0..TURNS_TABLED)
+            .map(|_| {
+                turn += DIVERGENCE;
+                turn.to_radians().sin_cos()
+            })
+            .collect()
+    })
+}
+
+/// The frame of a leaf on a shoot whose frame is `shoot`: turned about the shoot by the angle
+/// whose sine and cosine are `turn`, tilted `tilt` off it (radians), then rolled about its own axis so the blade faces the sky (local y
 /// as near to up as it can be). Built from its axes: the leaf's axis is the shoot frame applied
 /// to z turned and tilted, and the roll leaves that axis alone, so there is no need to compose
 /// the three rotations and measure the roll's angle.
-pub(super) fn leaf_frame(shoot: Quat, turn: f32, tilt: f32) -> Quat {
+pub(super) fn leaf_frame(shoot: Quat, (sin_turn, cos_turn): (f32, f32), tilt: f32) -> Quat {
     let (sin_tilt, cos_tilt) = tilt.sin_cos();
-    let (sin_turn, cos_turn) = turn.sin_cos();
     let z = shoot * Vec3::new(sin_turn * sin_tilt, -cos_turn * sin_tilt, cos_tilt);
     // A leaf standing upright keeps the roll it came with.
     facing_sky(z, || {
@@ -276,7 +330,7 @@ mod tests {
             let y = q * Vec3::Y;
             let up = (Vec3::Z - z * z.z).normalize_or(y);
             let want = Quat::from_axis_angle(z, y.cross(up).dot(z).atan2(y.dot(up))) * q;
-            let got = leaf_frame(shoot, turn, tilt);
+            let got = leaf_frame(shoot, turn.sin_cos(), tilt);
             for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
                 let miss = (got * axis - want * axis).length();
                 assert!(miss < 1e-4, "{d} {turn} {tilt}: {axis} off by {miss}");

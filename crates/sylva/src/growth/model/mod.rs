@@ -32,6 +32,8 @@ mod fit;
 mod leaves;
 mod palm;
 mod skeleton;
+#[cfg(test)]
+mod tests;
 mod wood;
 
 /// Exponent of the pipe model: parent^n = sum of children^n (2 is da Vinci's area rule;

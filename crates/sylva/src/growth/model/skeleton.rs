@@ -125,7 +125,7 @@ impl Grower {
                 at.clear();
                 at.extend(profile.iter().map(|p| p.0));
                 if branch.order == 0 {
-                    let pieces = (s.length / 0.5).ceil().max(1.0) as usize;
+                    let pieces = crate::whole::pieces(s.length / 0.5);
                     at.extend((1..pieces).map(|k| s.length * k as f32 / pieces as f32));
                     let reading = (dbh_at - s.start.z) / s.direction.z.max(1e-6);
                     if reading > 1e-3 && reading < s.length - 1e-3 {
