@@ -2,6 +2,7 @@
 //! their outlines. Output is flat buffers (positions, normals, UVs, 32-bit indices), one mesh for
 //! bark and one for leaves, in the skeleton's Z-up metres; exporters convert the axes.
 
+mod apart;
 mod leaves;
 mod leaves_apart;
 mod stems;

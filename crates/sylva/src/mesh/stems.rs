@@ -1,9 +1,16 @@
 //! Stem tubes: one ring per cross-section, rings joined by quads, a point or a cap at the tip.
 
+use super::apart::{Sink, mesh_apart};
 use super::{Mesh, MeshOptions};
 use crate::skeleton::{CrossSection, Skeleton, Stem};
 use glam::{Quat, Vec3};
 use std::f32::consts::TAU;
+
+/// Bark vertices one task meshes, at least (a run ends at a whole stem).
+const RUN_VERTICES: usize = 16_384;
+
+/// Below this many bark vertices one thread is quicker than sharing out.
+const APART_FROM: usize = 4 * RUN_VERTICES;
 
 /// Vertices around a stem of `level` at mesh `quality` (at least 3). A lobed trunk gets at least
 /// four vertices per lobe so the lobes show.
@@ -28,22 +35,29 @@ fn circle(n: usize, out: &mut Vec<(f32, f32)>) {
 
 /// Vertices and indices that [`mesh_stems`] will write.
 pub(super) fn count(skeleton: &Skeleton, options: &MeshOptions) -> (usize, usize) {
-    let (mut vertices, mut indices) = (0, 0);
-    for stem in &skeleton.stems {
-        let sections = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
-        if sections.len() < 2 {
-            continue;
-        }
-        let n = options.ring_vertices(stem);
-        let (rings, tip_vertices) = if tip_is_point(sections) {
-            (sections.len() - 1, n)
-        } else {
-            (sections.len(), n + 2)
-        };
-        vertices += rings * (n + 1) + tip_vertices;
-        indices += (rings - 1) * n * 6 + n * 3;
+    skeleton.stems.iter().fold((0, 0), |(v, i), stem| {
+        let (sv, si) = stem_size(skeleton, stem, options);
+        (v + sv, i + si)
+    })
+}
+
+/// Vertices and indices one stem's mesh takes.
+fn stem_size(skeleton: &Skeleton, stem: &Stem, options: &MeshOptions) -> (usize, usize) {
+    let sections = sections_of(skeleton, stem);
+    if sections.len() < 2 {
+        return (0, 0);
     }
-    (vertices, indices)
+    let n = options.ring_vertices(stem);
+    let (rings, tip_vertices) = if tip_is_point(sections) {
+        (sections.len() - 1, n)
+    } else {
+        (sections.len(), n + 2)
+    };
+    (rings * (n + 1) + tip_vertices, (rings - 1) * n * 6 + n * 3)
+}
+
+fn sections_of<'a>(skeleton: &'a Skeleton, stem: &Stem) -> &'a [CrossSection] {
+    &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize]
 }
 
 /// The largest radius of a stem (its base, or its flare).
@@ -61,11 +75,46 @@ fn tip_is_point(sections: &[CrossSection]) -> bool {
 }
 
 pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) {
+    if !mesh_stems_apart(skeleton, options, mesh) {
+        mesh_run(skeleton, &skeleton.stems, options, mesh);
+    }
+}
+
+/// Meshes the stems on every core, in runs of whole stems, straight into `mesh`'s buffers
+/// (see `apart`), where that pays: enough bark, more than one thread, `mesh` empty. False,
+/// with `mesh` as it was, otherwise.
+fn mesh_stems_apart(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) -> bool {
+    let empty = mesh.positions.is_empty() && mesh.indices.is_empty() && mesh.shades.is_empty();
+    if !empty || rayon::current_num_threads() < 2 {
+        return false;
+    }
+    let mut runs: Vec<(&[Stem], (usize, usize))> = Vec::new();
+    let (mut start, mut size, mut total) = (0, (0, 0), 0);
+    for (k, stem) in skeleton.stems.iter().enumerate() {
+        let (v, i) = stem_size(skeleton, stem, options);
+        size = (size.0 + v, size.1 + i);
+        if size.0 >= RUN_VERTICES || k + 1 == skeleton.stems.len() {
+            runs.push((&skeleton.stems[start..=k], size));
+            total += size.0;
+            (start, size) = (k + 1, (0, 0));
+        }
+    }
+    if total < APART_FROM {
+        return false;
+    }
+    mesh_apart(mesh, runs, false, |run, out| {
+        mesh_run(skeleton, run, options, out)
+    })
+}
+
+/// Meshes `stems` (of `skeleton`) in order into `out`.
+fn mesh_run(skeleton: &Skeleton, stems: &[Stem], options: &MeshOptions, out: &mut impl Sink) {
     // Stems come parent before children, so the ring size changes from one stem to the next:
     // each size's circle is worked out once and kept.
     let mut circles: Vec<Vec<(f32, f32)>> = Vec::new();
-    for stem in &skeleton.stems {
-        let sections = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
+    let mut rim = Vec::new();
+    for stem in stems {
+        let sections = sections_of(skeleton, stem);
         if sections.len() < 2 {
             continue;
         }
@@ -76,7 +125,7 @@ pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut 
         if circles[n].is_empty() {
             circle(n, &mut circles[n]);
         }
-        mesh_stem(stem, sections, &circles[n], mesh);
+        mesh_stem(stem, sections, &circles[n], &mut rim, out);
     }
 }
 
@@ -92,8 +141,14 @@ pub(crate) fn ring_frame(sections: &[CrossSection], j: usize) -> Quat {
     }
 }
 
-/// Meshes one stem.
-fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: &mut Mesh) {
+/// Meshes one stem; `rim` is room for its last ring, which an open tip's cap repeats.
+fn mesh_stem(
+    stem: &Stem,
+    sections: &[CrossSection],
+    unit: &[(f32, f32)],
+    rim: &mut Vec<Vec3>,
+    mesh: &mut impl Sink,
+) {
     let n = unit.len() - 1;
     let m = sections.len();
     let base_radius = max_radius(sections);
@@ -103,7 +158,8 @@ fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: 
     let tip_is_point = tip_is_point(sections);
     let rings = if tip_is_point { m - 1 } else { m };
     let mut distance = 0.0f32;
-    let first_ring = mesh.positions.len() as u32;
+    let first_ring = mesh.next_vertex();
+    rim.clear();
     for j in 0..rings {
         let c = &sections[j];
         if j > 0 {
@@ -133,7 +189,11 @@ fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: 
                 (c.radius, radial)
             };
             let normal = (normal_in_plane - z * slope).normalize_or(radial);
-            mesh.push(c.position + radial * r, normal, [i as f32 / n as f32, v]);
+            let position = c.position + radial * r;
+            mesh.vertex(position, normal, [i as f32 / n as f32, v]);
+            if j + 1 == rings && !tip_is_point {
+                rim.push(position);
+            }
         }
     }
     let stride = (n + 1) as u32;
@@ -143,8 +203,7 @@ fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: 
         let a = first_ring + j * stride;
         let b = a + stride;
         for i in 0..n as u32 {
-            mesh.indices
-                .extend_from_slice(&[a + i, a + i + 1, b + i + 1, a + i, b + i + 1, b + i]);
+            mesh.indices(&[a + i, a + i + 1, b + i + 1, a + i, b + i + 1, b + i]);
         }
     }
     let last_ring = first_ring + (rings as u32 - 1) * stride;
@@ -152,30 +211,27 @@ fn mesh_stem(stem: &Stem, sections: &[CrossSection], unit: &[(f32, f32)], mesh: 
     let axis = tip.orientation * Vec3::Z;
     if tip_is_point {
         distance += tip.position.distance(sections[m - 2].position);
-        let apex = mesh.positions.len() as u32;
+        let apex = mesh.next_vertex();
         // One apex vertex per quad column keeps the u coordinate continuous.
         for i in 0..n {
-            mesh.push(
+            mesh.vertex(
                 tip.position,
                 axis,
                 [(i as f32 + 0.5) / n as f32, distance * v_scale],
             );
         }
         for i in 0..n as u32 {
-            mesh.indices
-                .extend_from_slice(&[last_ring + i, last_ring + i + 1, apex + i]);
+            mesh.indices(&[last_ring + i, last_ring + i + 1, apex + i]);
         }
     } else {
         // Close the open end with a flat cap.
-        let centre = mesh.push(tip.position, axis, [0.5, 0.5]);
-        let rim = mesh.positions.len() as u32;
-        for (i, &(cos, sin)) in unit.iter().enumerate() {
-            let p = mesh.positions[(last_ring + i as u32) as usize];
-            mesh.push(Vec3::from(p), axis, [0.5 + 0.5 * cos, 0.5 + 0.5 * sin]);
+        let centre = mesh.vertex(tip.position, axis, [0.5, 0.5]);
+        let first_rim = mesh.next_vertex();
+        for (&p, &(cos, sin)) in rim.iter().zip(unit) {
+            mesh.vertex(p, axis, [0.5 + 0.5 * cos, 0.5 + 0.5 * sin]);
         }
         for i in 0..n as u32 {
-            mesh.indices
-                .extend_from_slice(&[centre, rim + i, rim + i + 1]);
+            mesh.indices(&[centre, first_rim + i, first_rim + i + 1]);
         }
     }
 }
@@ -289,6 +345,37 @@ mod tests {
         );
         let n = ring_vertices(0, 1.0, 0);
         assert_eq!(mesh.triangle_count(), 2 * 2 * n + n);
+    }
+
+    /// An oak's bark, every third stem cut open at its tip so caps are meshed too, meshed in
+    /// runs on three threads straight into the buffers and in order on one: the same bytes.
+    #[test]
+    fn stems_meshed_apart_are_the_stems_meshed_in_order() {
+        let params = crate::species::builtin("ca_black_oak").expect("built-in");
+        let options = crate::GenerateOptions {
+            quality: 0.4,
+            ..Default::default()
+        };
+        let mut skeleton = crate::generate(&params, &options).expect("grows");
+        for stem in skeleton.stems.iter().step_by(3) {
+            let last = stem.sections.end as usize - 1;
+            skeleton.sections[last].radius = skeleton.sections[last].radius.max(0.01);
+        }
+        let mesh_options = MeshOptions::for_species(&params, 0.4);
+        let mut in_order = Mesh::default();
+        mesh_run(&skeleton, &skeleton.stems, &mesh_options, &mut in_order);
+        let mut apart = Mesh::default();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .expect("a pool");
+        assert!(pool.install(|| mesh_stems_apart(&skeleton, &mesh_options, &mut apart)));
+        assert!(in_order.vertex_count() > 2 * APART_FROM);
+        assert_eq!(
+            (in_order.vertex_count(), in_order.indices.len()),
+            count(&skeleton, &mesh_options)
+        );
+        assert!(apart == in_order, "the bark meshes differ");
     }
 
     #[test]
