@@ -2,14 +2,13 @@
 //! summary of what was made, and optionally a picture of it.
 
 use crate::args::{GenerateArgs, RenderView};
-use crate::shared::{headless, load_params, save_picture};
+use crate::shared::{headless, load_params, picture_of, save_picture};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
 use std::time::Instant;
 use sylva::export::{Materials, write_atomically, write_glb, write_obj};
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use sylva::{GenerateOptions, TreeParams};
-use sylva_render::Scene;
 
 #[derive(Clone, Copy, PartialEq)]
 enum Format {
@@ -124,10 +123,8 @@ fn write_preview(
     params: &TreeParams,
     view: RenderView,
 ) -> Result<()> {
-    let renderer = headless()?;
-    let tree = renderer.upload(mesh);
-    let scene = Scene::new(&tree, params.bark_color, params.leaf_color);
-    let picture = renderer.render(&scene, &view.to_view(), 1024, 768)?;
+    let colours = (params.bark_color, params.leaf_color);
+    let picture = picture_of(mesh, colours, &view.to_view(), (1024, 768))?;
     save_picture(path, &picture)
 }
 

@@ -1,14 +1,15 @@
 //! `sylva lobes`: Fields' lobe-driven trees.
 
-use crate::args::{LobesArgs, UpAxis};
-use crate::shared::{draw_options, print_written};
+use crate::args::{LineView, LobesArgs, UpAxis};
+use crate::shared::{draw_options, picture_of, print_written, save_picture};
 use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
 use sylva::drawing::{MeshLook, Meshable, plan, write_outputs};
 use sylva::export::{Materials, write_atomically};
 use sylva::fields::points::Up;
 use sylva::fields::{Lobe, TreeFile, TreeRules};
-use sylva::mesh::MeshOptions;
+use sylva::mesh::{MeshOptions, mesh_tree};
+use sylva_render::{View, ViewKind};
 
 fn rules_for(name: &str) -> Result<TreeRules> {
     if let Some(r) = sylva::fields::builtin(name) {
@@ -46,19 +47,29 @@ fn parse_lobe(text: &str) -> Result<Lobe> {
     })
 }
 
+fn has_extension(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
 pub fn run(args: &LobesArgs) -> Result<()> {
-    // `.tree` outputs are written here; the rest by extension as for every line-drawable tree.
-    let (tree_outputs, others): (Vec<PathBuf>, Vec<PathBuf>) =
-        args.out.outputs.iter().cloned().partition(|p| {
-            p.extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("tree"))
-        });
+    // `.tree` files and rendered `.png` pictures are written here; the rest by extension as
+    // for every line-drawable tree.
+    let (tree_outputs, others): (Vec<PathBuf>, Vec<PathBuf>) = args
+        .out
+        .outputs
+        .iter()
+        .cloned()
+        .partition(|p| has_extension(p, "tree"));
+    let (pictures, others): (Vec<PathBuf>, Vec<PathBuf>) =
+        others.into_iter().partition(|p| has_extension(p, "png"));
     let planned = plan(&others)?;
-    for p in &tree_outputs {
+    for p in tree_outputs.iter().chain(&pictures) {
         if p.is_dir() {
             bail!("output {}: is a folder; give a file name", p.display());
         }
     }
+    let camera = picture_view(args, !pictures.is_empty())?;
     if !(args.scale.is_finite() && args.scale > 0.0 && args.scale <= 100.0) {
         bail!("--scale {}: expected more than 0, at most 100", args.scale);
     }
@@ -151,11 +162,28 @@ pub fn run(args: &LobesArgs) -> Result<()> {
             sides: Some(sides),
             ..Default::default()
         },
-        materials: Materials::from_srgb([0.36, 0.28, 0.22], rules.leaf_texture.color),
+        materials: Materials::from_srgb(sylva::fields::BARK_COLOR, rules.leaf_texture.color),
     };
     let options = draw_options(&args.out);
-    let mesh = Meshable::Skeleton(&skeleton);
+    // A picture needs the mesh too: make it once for the picture and any mesh file.
+    let meshed = (!pictures.is_empty()).then(|| mesh_tree(&skeleton, &look.options));
+    let mesh = match &meshed {
+        Some(m) => Meshable::Mesh(m),
+        None => Meshable::Skeleton(&skeleton),
+    };
     let mut written = write_outputs(&planned, &options, &skeleton, mesh, &rules.name, &look)?;
+    if let (Some(mesh), Some((view, width, height))) = (&meshed, camera) {
+        let colours = (sylva::fields::BARK_COLOR, rules.leaf_texture.color);
+        let picture = picture_of(mesh, colours, &view, (width, height))?;
+        for path in &pictures {
+            save_picture(path, &picture)?;
+            written.push(format!(
+                "{} (rendered, {width}x{height}, {} triangles)",
+                path.display(),
+                mesh.triangle_count()
+            ));
+        }
+    }
     for path in &tree_outputs {
         let scaled = placement.scaled(args.scale as f32);
         let file = TreeFile::from_placement(&rules.name, seed as i64, &scaled);
@@ -179,4 +207,27 @@ pub fn run(args: &LobesArgs) -> Result<()> {
     );
     print_written(written);
     Ok(())
+}
+
+/// The camera and size of rendered `.png` outputs (`None` without any): `--view` as the line
+/// drawings read it, perspective drawn from the renderer's raised corner view, and `--size`,
+/// else the size `generate --preview` draws.
+fn picture_view(args: &LobesArgs, wanted: bool) -> Result<Option<(View, u32, u32)>> {
+    if !wanted {
+        return Ok(None);
+    }
+    let kind = match args.out.view {
+        LineView::Front => ViewKind::Front,
+        LineView::Side => ViewKind::Side,
+        LineView::Top => ViewKind::Top,
+        LineView::Perspective => ViewKind::Iso,
+        LineView::Overlay => bail!(
+            "--view overlay is a line drawing: write it as .svg (a .png from `lobes` is rendered)"
+        ),
+    };
+    let (width, height) = args.out.size.unwrap_or((1024, 768));
+    if width > 8192 || height > 8192 {
+        bail!("--size {width}x{height}: a rendered picture is at most 8192 pixels a side");
+    }
+    Ok(Some((View::named(kind), width, height)))
 }

@@ -8,7 +8,7 @@ use anyhow::{Context, Result, bail};
 use std::path::Path;
 use sylva::drawing::{DrawOptions, MeshLook, Meshable, Planned, View, write_outputs};
 use sylva::export::write_atomically;
-use sylva::forest::{Forest, ForestSpec};
+use sylva::forest::{Forest, ForestSpec, ForestSpecies};
 use sylva::lod::LodTree;
 use sylva::nagel::WhiskParams;
 use sylva::{Skeleton, TreeParams};
@@ -52,6 +52,20 @@ pub fn headless() -> Result<Renderer> {
     })?)
 }
 
+/// One tree mesh drawn lit and shadowed beside the person, as `generate --preview` and
+/// `lobes -o t.png` draw it.
+pub fn picture_of(
+    mesh: &sylva::mesh::TreeMesh,
+    (bark, leaves): ([f32; 3], [f32; 3]),
+    view: &sylva_render::View,
+    (width, height): (u32, u32),
+) -> Result<Picture> {
+    let renderer = headless()?;
+    let tree = renderer.upload(mesh);
+    let scene = sylva_render::Scene::new(&tree, bark, leaves);
+    Ok(renderer.render(&scene, view, width, height)?)
+}
+
 /// Writes a picture as a PNG file.
 pub fn save_picture(path: &Path, picture: &Picture) -> Result<()> {
     write_atomically(path, &picture.to_png()?)?;
@@ -59,10 +73,12 @@ pub fn save_picture(path: &Path, picture: &Picture) -> Result<()> {
 }
 
 /// A forest's species, loaded with their warnings told.
-pub fn forest_species(spec: &ForestSpec) -> Result<Vec<TreeParams>> {
+pub fn forest_species(spec: &ForestSpec) -> Result<Vec<ForestSpecies>> {
     let species = spec.load_species()?;
-    for (name, params) in spec.species.iter().zip(&species) {
-        warn_notes(name, params);
+    for (name, s) in spec.species.iter().zip(&species) {
+        for note in s.notes() {
+            eprintln!("sylva: warning: {name}: {note}");
+        }
     }
     Ok(species)
 }
@@ -89,6 +105,9 @@ pub fn grow_for_range(spec: &ForestSpec) -> Result<Forest<LodTree>> {
     })?)
 }
 
+/// A line drawing's size when `--size` is not given.
+const DRAWING_SIZE: (u32, u32) = (1024, 1024);
+
 /// The drawing settings the line-output flags ask for.
 pub fn draw_options(out: &LineOutputArgs) -> DrawOptions {
     DrawOptions {
@@ -99,8 +118,8 @@ pub fn draw_options(out: &LineOutputArgs) -> DrawOptions {
             LineView::Perspective => View::Perspective,
             LineView::Overlay => View::Overlay,
         },
-        width: out.size.0,
-        height: out.size.1,
+        width: out.size.unwrap_or(DRAWING_SIZE).0,
+        height: out.size.unwrap_or(DRAWING_SIZE).1,
         ..Default::default()
     }
 }

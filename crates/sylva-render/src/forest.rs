@@ -39,10 +39,7 @@ impl ForestOnGpu {
             .planting
             .variants
             .iter()
-            .map(|v| {
-                let s = &forest.species[v.species];
-                (s.bark_color, s.leaf_color)
-            })
+            .map(|v| forest.species[v.species].colours())
             .collect();
         Self {
             trees: forest

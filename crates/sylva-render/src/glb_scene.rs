@@ -173,7 +173,16 @@ fn read_mesh(
 /// shows it. A node whose transform is more than a move, a turn about the vertical and a
 /// uniform scale gets its own transformed copy of the mesh.
 pub fn read_glb_scene(path: &Path) -> Result<GlbScene, GlbError> {
-    let bytes = read_bounded(path)?;
+    glb_scene_of(read_bounded(path)?, path)
+}
+
+/// [`read_glb_scene`] for a GLB in memory (one Sylva just made); `name` stands for its path in
+/// messages.
+pub fn glb_scene_from_bytes(bytes: Vec<u8>, name: &str) -> Result<GlbScene, GlbError> {
+    glb_scene_of(bytes, Path::new(name))
+}
+
+fn glb_scene_of(bytes: Vec<u8>, path: &Path) -> Result<GlbScene, GlbError> {
     // The reader subtracts the 12-byte header from the length a GLB declares without checking
     // it (gltf 1.4.1): a length under 20 (header and one chunk header) must not reach it.
     if let Some(declared) = bytes.strip_prefix(b"glTF").and_then(|b| b.get(4..8)) {

@@ -19,4 +19,4 @@ mod worker;
 pub use editor::edit;
 pub use forest::fly_through;
 pub use growth::watch_growth;
-pub use model::look_at;
+pub use model::{look_at, look_at_scene};

@@ -14,8 +14,20 @@ use sylva_render::{Renderer, View};
 
 /// Opens the window (blocks until it is closed).
 pub fn look_at(path: &Path, self_test: Option<PathBuf>) -> Result<()> {
-    let model = read_glb_scene(path)?;
-    let title = format!("Sylva: {}", path.display());
+    look_at_scene(
+        read_glb_scene(path)?,
+        &path.display().to_string(),
+        self_test,
+    )
+}
+
+/// Opens the window on a model already read (a tree Sylva just grew, as a GLB scene).
+pub fn look_at_scene(
+    model: sylva_render::glb_scene::GlbScene,
+    name: &str,
+    self_test: Option<PathBuf>,
+) -> Result<()> {
+    let title = format!("Sylva: {name}");
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title(title)

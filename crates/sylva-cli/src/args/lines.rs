@@ -9,7 +9,9 @@ use std::path::PathBuf;
 #[derive(Args, Debug)]
 pub struct LineOutputArgs {
     /// Output file, by extension: .vec (Nagel's P/L vector file), .svg or .png (a line drawing),
-    /// .glb or .obj (a mesh); for `lobes` also .tree. Repeat to write several.
+    /// .glb or .obj (a mesh); for `lobes` also .tree, and there .png is a rendered picture
+    /// (lit and shadowed, beside a 1.8 m person) while .svg stays a line drawing. Repeat to
+    /// write several.
     #[arg(
         short,
         long = "output",
@@ -23,9 +25,10 @@ pub struct LineOutputArgs {
     #[arg(long, value_enum, default_value_t = LineView::Front, help_heading = "Output")]
     pub view: LineView,
 
-    /// Size of .svg and .png drawings in pixels.
-    #[arg(long, value_name = "WxH", default_value = "1024x1024", value_parser = drawing_size, help_heading = "Output")]
-    pub size: (u32, u32),
+    /// Size of .svg and .png drawings in pixels [default: 1024x1024; a rendered picture
+    /// 1024x768].
+    #[arg(long, value_name = "WxH", value_parser = drawing_size, help_heading = "Output")]
+    pub size: Option<(u32, u32)>,
 }
 
 /// The size of a line drawing: pictures of lines may be larger than rendered ones.

@@ -353,8 +353,9 @@ pub struct ForestArgs {
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Built-in species or species file to start from; a forest file to fly through; or a .glb
-    /// to look at (any model Sylva wrote: fractal, whisk, lobes, grown, generated).
+    /// Built-in species or species file to start from; a lobe species to look at (black_oak,
+    /// weeping_cherry, lobes:balsam_fir); a forest file to fly through; or a .glb to look at
+    /// (any model Sylva wrote: fractal, whisk, lobes, grown, generated).
     #[arg(default_value = "quaking_aspen")]
     pub species: String,
 

@@ -1,5 +1,6 @@
 //! `sylva bench --forest` and `--throughput`: what range degradation saves when drawing a tree
-//! and a forest, and how fast unique trees grow.
+//! and a forest, what a stand of Fields' firs costs with and without leaves, and how fast
+//! unique trees grow.
 
 use crate::shared::{grow_for_range, headless, with_progress};
 use anyhow::{Context, Result};
@@ -75,6 +76,7 @@ pub fn bench_forest(runs: u32) -> Result<()> {
             .map(drop)
     })?;
     println!("empty frame (ground, shadow pass, read-back): {base:.1} ms");
+    fir_stand(&renderer, runs, base)?;
 
     let params = sylva::species::builtin("black_tupelo").context("built-in species")?;
     let skeleton = sylva::generate(&params, &GenerateOptions::default())?;
@@ -119,6 +121,53 @@ pub fn bench_forest(runs: u32) -> Result<()> {
     Ok(())
 }
 
+/// Fields' forests (section 4.1): a stand of 100 lobe balsam firs, drawn with and without their
+/// leaves, at full detail and with range degradation, against the empty frame of this run.
+fn fir_stand(renderer: &Renderer, runs: u32, empty_ms: f64) -> Result<()> {
+    let spec = ForestSpec {
+        species: vec![format!("{}balsam_fir", sylva::forest::LOBES_PREFIX)],
+        count: 100,
+        area: [60.0, 60.0],
+        seed: 2,
+        variants: 4,
+        quality: 0.5,
+    };
+    let forest = ForestOnGpu::upload(renderer, &grow_for_range(&spec)?);
+    let mut scene = forest.scene();
+    println!();
+    println!(
+        "100 Balsam Firs (Fields' lobe species, 4 variants at quality 0.5, 15 m tall) on 60x60 m, \
+         {} triangles placed, seen whole from 70 m; x empty = frame / empty frame",
+        grouped(forest.triangles_placed)
+    );
+    let target = Vec3::new(0.0, 0.0, 6.0);
+    let view = View::look_at(target + Camera::direction(30.0, 12.0) * 70.0, target, FOV);
+    println!(
+        "{:>12} {:>13} {:>9} {:>8}",
+        "", "primitives", "frame ms", "x empty"
+    );
+    for (use_lod, leaves, label) in [
+        (false, true, "full, leaves"),
+        (false, false, "full, bare"),
+        (true, true, "LOD, leaves"),
+        (true, false, "LOD, bare"),
+    ] {
+        scene.use_lod = use_lod;
+        scene.show_leaves = leaves;
+        let mut stats = Default::default();
+        let ms = fastest_ms(runs, || {
+            stats = renderer.render(&scene, &view, SIZE.0, SIZE.1)?.stats;
+            Ok::<_, sylva_render::RenderError>(())
+        })?;
+        println!(
+            "{label:>12} {:>13} {ms:>9.1} {:>8.1}",
+            grouped(stats.primitives()),
+            ms / empty_ms
+        );
+    }
+    Ok(())
+}
+
 /// Grows `n` unique trees of the appendix species (quality 0.5, as `sylva forest`), each
 /// stored for range and then released, on every core.
 pub fn bench_throughput(n: u32) -> Result<()> {
@@ -141,8 +190,8 @@ pub fn bench_throughput(n: u32) -> Result<()> {
         sylva::forest::grow(
             &spec,
             species,
-            |params, skeleton| {
-                let options = MeshOptions::for_species(params, spec.quality);
+            |species, skeleton| {
+                let options = species.mesh_options(spec.quality);
                 (LodTree::build(skeleton, &options).triangle_count(), 0)
             },
             tick,

@@ -127,6 +127,83 @@ fn lobes_fit_a_point_cloud() {
         (lobe[1] - 3.2).abs() < 0.15 && (lobe[3] - 1.2).abs() < 0.15,
         "{saved}"
     );
+    // --fit-lobes K: K lobes, whatever the crown's shape would choose.
+    let run = sylva(&[
+        "lobes",
+        "black_oak",
+        "--points",
+        cloud.to_str().unwrap(),
+        "--fit-lobes",
+        "3",
+        "-o",
+        tree.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains(": 3 lobes"),
+        "{}",
+        text(&run.stdout)
+    );
+    let saved = std::fs::read_to_string(&tree).unwrap();
+    assert_eq!(
+        saved
+            .split("#LEAF LOBES")
+            .nth(1)
+            .unwrap()
+            .trim()
+            .lines()
+            .count(),
+        3
+    );
+}
+
+#[test]
+fn lobes_renders_pictures_and_keeps_line_drawings_as_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let (png, svg) = (scratch(d, "cherry.png"), scratch(d, "cherry.svg"));
+    let run = sylva(&["lobes", "weeping_cherry", "-o", &png, "-o", &svg]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(text(&run.stdout).contains("rendered, 1024x768"));
+    // Rendered: sky, ground, shadow and the cherry's pink blossoms, not black lines on white.
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!((img.width(), img.height()), (1024, 768));
+    let share = |f: &dyn Fn(&[u8; 3]) -> bool| {
+        img.pixels().filter(|p| f(&p.0)).count() as f32 / (1024.0 * 768.0)
+    };
+    let pink = share(&|p| p[0] > 170 && p[0] as i32 - p[1] as i32 > 25 && p[2] > 120);
+    let white = share(&|p| p.iter().all(|&c| c > 245));
+    assert!(pink > 0.01, "pink blossoms: {pink}");
+    assert!(white < 0.05, "a line drawing's white page: {white}");
+    let drawing = std::fs::read_to_string(&svg).unwrap();
+    assert!(drawing.starts_with("<svg") || drawing.contains("<svg"));
+    // Other sizes and views; an overlay is a line drawing only.
+    let side = scratch(d, "side.png");
+    let run = sylva(&[
+        "lobes",
+        "balsam_fir",
+        "--view",
+        "side",
+        "--size",
+        "320x480",
+        "-o",
+        &side,
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_eq!(png_size(std::path::Path::new(&side)), (320, 480));
+    let bad = tempfile::tempdir().unwrap();
+    refuses(
+        &[
+            "lobes",
+            "balsam_fir",
+            "--view",
+            "overlay",
+            "-o",
+            &scratch(bad.path(), "o.png"),
+        ],
+        &["overlay", ".svg"],
+        bad.path(),
+    );
 }
 
 #[test]

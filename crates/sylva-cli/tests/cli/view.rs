@@ -267,4 +267,24 @@ fn model_viewer_shows_a_lobe_tree_glb_from_two_sides() {
         widths[1]
     );
     println!("model viewer screenshots: {}", dir.display());
+    // A lobe species by name: grown at its natural size and shown in the same window. The fir
+    // is a narrow spire: its crown is far taller on screen than it is wide.
+    let fir = dir.join("fir");
+    std::fs::create_dir_all(&fir).unwrap();
+    let report = x.self_test(&["view", "lobes:balsam_fir"], &fir, "model-viewer.json");
+    assert!(report["triangles"].as_u64().unwrap() > 100_000, "{report}");
+    let img = image::open(fir.join("model-viewer-1.png"))
+        .unwrap()
+        .to_rgb8();
+    let dark_green = |p: &image::Rgb<u8>| p[1] as f32 > p[0] as f32 * 1.3 && p[1] > p[2];
+    let (mut lo, mut hi) = ((u32::MAX, u32::MAX), (0, 0));
+    for (x, y, p) in img.enumerate_pixels() {
+        if dark_green(p) {
+            lo = (lo.0.min(x), lo.1.min(y));
+            hi = (hi.0.max(x), hi.1.max(y));
+        }
+    }
+    assert!(hi.0 > lo.0, "no needles on screen");
+    let (w, h) = (hi.0 - lo.0, hi.1 - lo.1);
+    assert!(h as f32 > 2.0 * w as f32, "fir crown {w} x {h} px");
 }

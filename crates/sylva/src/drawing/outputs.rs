@@ -98,6 +98,8 @@ pub enum Meshable<'a> {
     Skeleton(&'a Skeleton),
     /// Built only if a mesh is asked for (the fractal streams its lines without one).
     Build(&'a dyn Fn() -> Skeleton),
+    /// Already meshed by the caller (who drew a picture of it too).
+    Mesh(&'a TreeMesh),
     /// Nothing to mesh (a vector file has no radii); callers refuse mesh outputs first.
     Nothing,
 }
@@ -131,6 +133,7 @@ pub fn write_outputs(
             }
             LineFormat::Glb | LineFormat::Obj => {
                 let mesh = match (&mut meshed, &mesh) {
+                    (_, Meshable::Mesh(m)) => *m,
                     (Some(m), _) => &*m,
                     (slot, Meshable::Skeleton(s)) => slot.insert(mesh_tree(s, &look.options)),
                     (slot, Meshable::Build(build)) => {

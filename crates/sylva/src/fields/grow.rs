@@ -2,8 +2,10 @@
 //! control points, leaves. The steps live in `pipeline` (the grower) and `leaves`; this module
 //! only sequences them, so that neither of those imports the other.
 
-use super::pipeline::{Branch, Grower, Kind, LobeTree, Placement, group, set_widths};
+use super::lobe::LobeShape;
+use super::pipeline::{Branch, Grower, Kind, LobeTree, Placement, group};
 use super::rules::TreeRules;
+use super::widths::set_widths;
 use crate::error::GenerateError;
 use crate::rng::StreamKey;
 use glam::Vec3;
@@ -15,11 +17,12 @@ pub fn grow(
     seed: u64,
     placement: &Placement,
 ) -> Result<LobeTree, GenerateError> {
-    let taper = rules.leaf_taper as f32;
+    let shape = LobeShape::of(rules);
     let key = StreamKey::from_seed(seed);
     let mut g = Grower {
         rules,
-        taper,
+        shape,
+        width_scale: rules.width_scale(placement.height(shape)),
         branches: Vec::new(),
         random: key.child(4).stream(),
     };
@@ -38,10 +41,10 @@ pub fn grow(
     let mut lobe_trunk = Vec::with_capacity(placement.lobes.len());
     for lobe in &placement.lobes {
         let inside = |b: &Branch| {
-            let (a, e) = (b.points[0], b.points[1]);
+            let (a, e) = (b.points[0], tip(b));
             let len = a.distance(e);
             let dir = (e - a).try_normalize()?;
-            lobe.chord(a, dir, len).map(|(t0, t1)| t1 - t0)
+            lobe.chord(a, dir, len, shape).map(|(t0, t1)| t1 - t0)
         };
         let existing = g
             .branches
@@ -55,32 +58,32 @@ pub fn grow(
             Some(i) => i,
             None => {
                 // The nearest trunk end grows a trunk toward the lobe's centre, entering at
-                // the near surface and going MaxTrunkHeightPercent of the diameter through.
+                // the near surface and going MaxTrunkHeightPercent of its chord through.
                 let from = g
                     .branches
                     .iter()
                     .enumerate()
                     .min_by(|x, y| {
-                        let dx = x.1.points[1].distance(lobe.centre);
-                        let dy = y.1.points[1].distance(lobe.centre);
+                        let dx = tip(x.1).distance(lobe.centre);
+                        let dy = tip(y.1).distance(lobe.centre);
                         dx.total_cmp(&dy)
                     })
-                    .map(|(i, b)| (Some(i), b.points[1]))
+                    .map(|(i, b)| (Some(i), tip(b)))
                     .unwrap_or((None, Vec3::new(lobe.centre.x, lobe.centre.y, 0.0)));
                 let dir = (lobe.centre - from.1).try_normalize().unwrap_or(Vec3::Z);
-                let entry = if from.1.distance(lobe.centre) > lobe.radius {
-                    lobe.centre - dir * lobe.radius
-                } else {
-                    from.1
-                };
-                let through = 2.0 * lobe.radius * rules.max_trunk_height_percent as f32;
+                let far = from.1.distance(lobe.centre) + 2.0 * lobe.half_height(shape);
+                let (t0, t1) = lobe.chord(from.1, dir, far, shape).unwrap_or((0.0, far));
+                let entry = from.1 + dir * t0;
+                let through = (t1 - t0) * rules.max_trunk_height_percent as f32;
                 let end = entry + dir * through.max(1e-3 * lobe.radius);
                 g.push(Branch {
                     parent: from.0,
                     kind: Kind::Trunk,
                     level: 0,
-                    points: vec![from.1, end],
-                    widths: vec![0.0; 2],
+                    // In NumSegmentsInBranch straight pieces, so that its width can narrow
+                    // past each limb it carries (see `set_widths`).
+                    points: straight(from.1, end, rules.num_segments_in_branch),
+                    widths: vec![0.0; rules.num_segments_in_branch.max(1) as usize + 1],
                     lobe: None,
                     target: None,
                 })?
@@ -96,21 +99,21 @@ pub fn grow(
         let points = lobe.surface_points(
             rules.num_branch_control_points_on_lobe as usize,
             rules.create_branch_control_points,
-            taper,
+            shape,
             &mut random,
         );
         let mut random = key.child(3).child(li as u64).stream();
         leaf_points.push(lobe.surface_points(
             rules.num_leaf_points_on_lobe as usize,
             rules.create_leaf_control_points,
-            taper,
+            shape,
             &mut random,
         ));
         let trunk = &g.branches[lobe_trunk[li]];
-        let (a, e) = (trunk.points[0], trunk.points[1]);
+        let (a, e) = (trunk.points[0], tip(trunk));
         let len = a.distance(e);
         let d = (e - a).try_normalize().unwrap_or(Vec3::Z);
-        let range = lobe.chord(a, d, len).unwrap_or((len, len));
+        let range = lobe.chord(a, d, len, shape).unwrap_or((len, len));
         let per_group = (rules.num_branches_off_split.0 as usize)
             .saturating_pow(rules.branch_iterations.saturating_sub(1))
             .max(1);
@@ -133,7 +136,7 @@ pub fn grow(
         }
         control_points.push(points);
     }
-    set_widths(rules, &mut g.branches);
+    set_widths(rules, g.width_scale, &mut g.branches);
     // Stage 5: leaves.
     let mut leaves = Vec::new();
     let mut leaf_random = key.child(5).stream();
@@ -141,7 +144,7 @@ pub fn grow(
         rules,
         &placement.lobes,
         &leaf_points,
-        taper,
+        shape,
         &mut g,
         &mut leaves,
         &mut leaf_random,
@@ -153,6 +156,17 @@ pub fn grow(
         branches: g.branches,
         leaves,
         tessellation: rules.tessellation,
-        taper,
+        shape,
     })
+}
+
+/// `pieces` equal straight pieces from `a` to `b`, as their `pieces + 1` ends.
+fn straight(a: Vec3, b: Vec3, pieces: u32) -> Vec<Vec3> {
+    let n = pieces.max(1);
+    (0..=n).map(|i| a.lerp(b, i as f32 / n as f32)).collect()
+}
+
+/// Where a stem ends.
+fn tip(b: &Branch) -> Vec3 {
+    *b.points.last().unwrap_or(&Vec3::ZERO)
 }

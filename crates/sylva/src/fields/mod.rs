@@ -10,6 +10,7 @@ pub mod pipeline;
 pub mod points;
 pub mod rules;
 pub mod tree_file;
+mod widths;
 
 pub use grow::grow;
 pub use lobe::Lobe;
@@ -17,5 +18,10 @@ pub use pipeline::{LobeTree, Placement, TrunkPiece, auto_placement, placement_fo
 pub use rules::{TreeRules, builtin, from_toml};
 pub use tree_file::TreeFile;
 
+/// Bark colour of every lobe species (sRGB 0..1): the paper's rules give none.
+pub const BARK_COLOR: [f32; 3] = [0.36, 0.28, 0.22];
+
+#[cfg(test)]
+mod form_tests;
 #[cfg(test)]
 mod tests;

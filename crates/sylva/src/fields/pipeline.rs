@@ -10,8 +10,8 @@
 //! angle and bends toward its target (a quadratic curve), cut into `NumSegmentsInBranch` pieces
 //! whose ends wander by `SegmentOffset` and are kept inside the lobe.
 
-use super::lobe::Lobe;
-use super::rules::TreeRules;
+use super::lobe::{Lobe, LobeShape};
+use super::rules::{Crown, TreeRules};
 use crate::error::{GenerateError, ParamsError};
 use crate::rng::{Random, StreamKey};
 use crate::skeleton::{Leaf, Skeleton, StemId};
@@ -83,8 +83,8 @@ pub struct LobeTree {
     pub leaves: Vec<Leaf>,
     /// Sides of every stem's cylinder (the Tessellation rule).
     pub tessellation: u32,
-    /// LeafTaper, which shapes the lobes.
-    pub taper: f32,
+    /// The species' lobe shape (LeafTaper and stretch).
+    pub shape: LobeShape,
 }
 
 /// Most stems and leaves a lobe tree may have.
@@ -101,6 +101,15 @@ pub(super) fn rotate_away(dir: Vec3, angle: f32, azimuth: f32) -> Vec3 {
 }
 
 impl Placement {
+    /// Height of the highest lobe's top: the tree's height as placed.
+    pub fn height(&self, shape: LobeShape) -> f32 {
+        self.lobes
+            .iter()
+            .map(|l| l.centre.z + l.half_height(shape))
+            .chain(self.trunks.iter().map(|t| t.end.z.max(t.start.z)))
+            .fold(0.0, f32::max)
+    }
+
     /// The same trunk and lobes `s` times as large (about the ground point under the trunk).
     pub fn scaled(&self, s: f32) -> Placement {
         let mut scaled = self.clone();
@@ -117,26 +126,77 @@ impl Placement {
 }
 
 /// Stages 1 and 2 done automatically (the paper's button L): the trunk iterations from the
-/// ground and one lobe above them, sized by the rules' layout.
+/// ground and the lobes above them. A species that gives its mature crown gets that crown,
+/// filled with its number of lobes; otherwise one lobe of the layout's radius (the paper's).
 pub fn auto_placement(rules: &TreeRules, seed: u64) -> Placement {
-    let r = rules.layout.lobe_radius as f32;
     let base = rules.layout.crown_base as f32;
-    let lobe = Lobe {
-        centre: Vec3::new(0.0, 0.0, base + r),
-        radius: r,
+    let lobes = match &rules.layout.crown {
+        Some(crown) => crown_lobes(crown, base, LobeShape::of(rules), seed),
+        None => {
+            let r = rules.layout.lobe_radius as f32;
+            vec![Lobe {
+                centre: Vec3::new(0.0, 0.0, base + r),
+                radius: r,
+            }]
+        }
     };
-    Placement {
-        trunks: trunk_iterations(rules, seed, (0.9 * base).max(0.1 * r)),
-        lobes: vec![lobe],
+    placement_for_lobes(rules, seed, lobes)
+}
+
+/// Lobes that fill a mature crown from `base` to its height and across its width, as a user
+/// would place them: one crowning the top and the rest round the sides, alternately low (their
+/// bottoms on the crown base) and halfway up, each turned and sized a little differently per
+/// seed, so the outline is irregular. A crown of one lobe is that lobe, stretched to fit.
+fn crown_lobes(crown: &Crown, base: f32, shape: LobeShape, seed: u64) -> Vec<Lobe> {
+    let (height, half_width) = (crown.height as f32, 0.5 * crown.width as f32);
+    if crown.lobes <= 1 {
+        let radius = half_width / shape.widest();
+        return vec![Lobe {
+            centre: Vec3::new(0.0, 0.0, base + radius * shape.stretch),
+            radius,
+        }];
     }
+    let mut random = StreamKey::from_seed(seed).child(6).stream();
+    let size = |random: &mut Random| 0.5 * half_width * (1.0 + random.var(0.1) as f32);
+    let r = size(&mut random).min(0.5 * (height - base));
+    let nudge = 0.1 * half_width;
+    let mut lobes = vec![Lobe {
+        centre: Vec3::new(
+            random.var(nudge as f64) as f32,
+            random.var(nudge as f64) as f32,
+            height - r,
+        ),
+        radius: r,
+    }];
+    let around = crown.lobes as usize - 1;
+    let turn = random.unit() as f32 * TAU;
+    for i in 0..around {
+        let r = size(&mut random).min(0.5 * (height - base));
+        let bearing = turn + TAU * (i as f32 + random.var(0.15) as f32) / around as f32;
+        let out = (half_width - r * shape.widest()).max(0.0) + random.var(nudge as f64) as f32;
+        let z = if i % 2 == 0 {
+            base + r
+        } else {
+            0.5 * (base + height) + random.var(0.5 * nudge as f64) as f32
+        };
+        lobes.push(Lobe {
+            centre: Vec3::new(out * bearing.cos(), out * bearing.sin(), z.max(base + r)),
+            radius: r,
+        });
+    }
+    // Bottom up: stage 3 connects each lobe to the nearest trunk end made so far, so the low
+    // lobes' limbs leave the trunk and the higher ones fork from them, as an oak's limbs do.
+    lobes.sort_by(|a, b| a.centre.z.total_cmp(&b.centre.z));
+    lobes
 }
 
 /// Stage 1 for lobes the user placed: trunk iterations reaching 90% of the way to the lowest
 /// lobe's bottom.
 pub fn placement_for_lobes(rules: &TreeRules, seed: u64, lobes: Vec<Lobe>) -> Placement {
+    let shape = LobeShape::of(rules);
     let lowest = lobes
         .iter()
-        .map(|l| l.centre.z - l.radius)
+        .map(|l| l.centre.z - l.half_height(shape))
         .fold(f32::MAX, f32::min)
         .max(0.0);
     let least = lobes.iter().map(|l| l.radius).fold(f32::MAX, f32::min);
@@ -237,7 +297,9 @@ fn split_around(points: &[Vec3], from: Vec3, axis: Vec3, parts: usize) -> Vec<Ve
 
 pub(super) struct Grower<'a> {
     pub(super) rules: &'a TreeRules,
-    pub(super) taper: f32,
+    pub(super) shape: LobeShape,
+    /// What the width rules are multiplied by for this tree (see `set_widths`).
+    pub(super) width_scale: f32,
     pub(super) branches: Vec<Branch>,
     pub(super) random: Random,
 }
@@ -283,7 +345,7 @@ impl Grower<'_> {
                 }
                 let p = curve + walk[i] - drift * t;
                 match lobe {
-                    Some(l) if l.outside(curve, self.taper) <= 0.0 => l.clamp_inside(p, self.taper),
+                    Some(l) if l.outside(curve, self.shape) <= 0.0 => l.clamp_inside(p, self.shape),
                     _ => p,
                 }
             })
@@ -375,13 +437,20 @@ impl Grower<'_> {
         let end = start + (centre - start) * share;
         let index = self.branch(parent, d, start, end, angle, level, lobe_index, lobe, None)?;
         let (n, v) = self.rules.num_branches_off_split;
-        let parts = (n as f64 + self.random.var(v as f64 + 0.999))
-            .floor()
-            .max(1.0) as usize;
+        // N ± V: a whole number from -V to V added (rounding toward zero keeps V = 0 exact; the
+        // oak's "2" once came out as 1 half the time).
+        let parts = (n as f64 + self.random.var(v as f64 + 0.999).trunc()).max(1.0) as usize;
         let dir = (end - start).try_normalize().unwrap_or(d);
-        let half = (self.rules.subsequent_angle as f32 / 2.0).to_radians();
         let len = start.distance(end);
         for sub in split_around(&points, end, dir, parts) {
+            // Section 4.1.1 reads the oak's render as children "rotated 45 degrees apart": the
+            // children of a split stand BranchAngle apart, half of it each side of their
+            // parent, while the appendix gives SubsequentAngle 15. Sylva follows the render
+            // and lets SubsequentAngle vary each child's half by up to half of it, so the
+            // pairs are not all alike.
+            let half = (0.5 * self.rules.branch_angle as f32
+                + 0.5 * self.random.var(self.rules.subsequent_angle) as f32)
+                .to_radians();
             // Later generations start at their parent's end (rule 5).
             self.grow(
                 index,
@@ -395,68 +464,6 @@ impl Grower<'_> {
             )?;
         }
         Ok(())
-    }
-}
-
-/// Widths: the trunk tapers from `TrunkStartWidth` at the ground by `TrunkTaperPercent` over
-/// its longest path; each limb (a first branch and all it carries) from `BranchStartWidth` (no
-/// wider than the trunk where it starts) by `BranchTaperPercent` over its longest path; twigs
-/// from `TwigStartWidth`. Nothing is thinner than `MinBranchWidth`.
-pub(super) fn set_widths(rules: &TreeRules, branches: &mut [Branch]) {
-    let n = branches.len();
-    // Path length from the root of each branch's run (trunk: ground; limb: first branch base).
-    let mut base = vec![0.0f32; n];
-    let mut root = vec![0usize; n];
-    for i in 0..n {
-        let b = &branches[i];
-        let parent = b.parent.filter(|&p| branches[p].kind == b.kind);
-        match parent {
-            Some(p) => {
-                base[i] = base[p] + length(&branches[p].points);
-                root[i] = root[p];
-            }
-            None => root[i] = i,
-        }
-    }
-    let mut longest = vec![0.0f32; n];
-    for i in 0..n {
-        let end = base[i] + length(&branches[i].points);
-        longest[root[i]] = longest[root[i]].max(end);
-    }
-    let min = rules.min_branch_width as f32;
-    for i in 0..n {
-        let (start, taper) = match branches[i].kind {
-            Kind::Trunk => (
-                rules.trunk_start_width as f32,
-                rules.trunk_taper_percent as f32,
-            ),
-            Kind::Branch => (
-                rules.branch_start_width as f32,
-                rules.branch_taper_percent as f32,
-            ),
-            Kind::Twig => (
-                rules.twig_start_width as f32,
-                rules.branch_taper_percent as f32,
-            ),
-        };
-        // A limb is never wider than what it grows from.
-        let start = match branches[root[i]].parent {
-            Some(p) if branches[i].kind != Kind::Trunk => {
-                let w = &branches[p].widths;
-                start.min(w.iter().copied().fold(f32::MAX, f32::min).max(min) * 2.0)
-            }
-            _ => start,
-        };
-        let total = longest[root[i]].max(1e-6);
-        let mut along = base[i];
-        let points = branches[i].points.clone();
-        let widths = &mut branches[i].widths;
-        for (k, w) in widths.iter_mut().enumerate() {
-            if k > 0 {
-                along += points[k].distance(points[k - 1]);
-            }
-            *w = (start * (1.0 - (1.0 - taper) * along / total)).max(min);
-        }
     }
 }
 

@@ -11,6 +11,9 @@ pub enum PointSpread {
     Uniform,
     /// A golden-angle spiral: evenly spaced, no clumps or gaps.
     Even,
+    /// Rings of three at evenly spaced heights, each ring turned half a step from the one below:
+    /// the whorls of a conifer (the paper leaves "some other algorithm" open).
+    Whorls,
 }
 
 /// How a species puts leaves on its branches (rule 23, `CreateLeaves`).
@@ -46,10 +49,12 @@ pub const LEAF_LOOKS: [LeafLook; 6] = [
         aspect: 0.6,
     },
     LeafLook {
+        // A needled shoot seen whole: a conifer's two-ranked needles make a flat spray, drawn
+        // with the pinnate outline.
         name: "needles",
         shape: LeafShape::Palm,
         color: [0.13, 0.30, 0.16],
-        aspect: 0.12,
+        aspect: 0.3,
     },
     LeafLook {
         name: "cherry-blossom",
@@ -80,12 +85,47 @@ pub const LEAF_LOOKS: [LeafLook; 6] = [
 /// Where automatic placement puts the tree, in metres (Sylva's, not among the 25 rules).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Layout {
-    /// Radius of the one lobe automatic placement creates (the paper: 1).
+    /// Radius of the one lobe automatic placement creates when the file gives no [`Crown`]
+    /// (the paper's button L: one lobe of radius 1).
     pub lobe_radius: f64,
-    /// Height of the lobe's bottom above the ground.
+    /// Height of the crown's bottom (the lowest lobe's) above the ground.
     pub crown_base: f64,
     /// Length of a leaf.
     pub leaf_size: f64,
+    /// The mature tree's size, when the species gives it: automatic placement then fills this
+    /// crown with lobes, and the width rules are scaled to its trunk.
+    pub crown: Option<Crown>,
+}
+
+/// A mature tree's size, as a rules file's `[layout]` gives it (with its source in a comment).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Crown {
+    /// Height of the tree's top above the ground.
+    pub height: f64,
+    /// Width of the crown.
+    pub width: f64,
+    /// Width of the trunk at the ground. The paper's width rules were drawn for a lobe of radius
+    /// 1; every width rule is scaled by `trunk_width / TrunkStartWidth` to match (in
+    /// proportion for a tree of another height, see [`TreeRules::width_scale`]).
+    pub trunk_width: f64,
+    /// How many lobes automatic placement puts in the crown.
+    pub lobes: u32,
+}
+
+impl TreeRules {
+    /// The factor every width rule is multiplied by for a tree `height` metres tall: 1 at the
+    /// paper's own scale; for a species that gives its mature crown, the natural trunk over
+    /// `TrunkStartWidth`, in proportion to the tree's height against the mature one's (a
+    /// scanned sapling or the appendix's 5 m cherry gets a trunk to match its size).
+    pub fn width_scale(&self, height: f32) -> f32 {
+        match &self.layout.crown {
+            Some(c) if self.trunk_start_width > 0.0 => {
+                let natural = c.trunk_width / self.trunk_start_width;
+                (natural * (height as f64 / c.height).clamp(0.01, 100.0)) as f32
+            }
+            _ => 1.0,
+        }
+    }
 }
 
 /// The 25 rules of Fields' section 3.2. Angles in degrees, widths and lengths in metres.
@@ -341,9 +381,10 @@ pub fn from_toml(text: &str, source_name: &str) -> Result<TreeRules, ParamsError
         match text_of(key)? {
             "uniform" => Ok(PointSpread::Uniform),
             "even" => Ok(PointSpread::Even),
+            "whorls" => Ok(PointSpread::Whorls),
             s => Err(syntax(
                 key,
-                format!("`{key}` is \"{s}\", expected \"uniform\" or \"even\""),
+                format!("`{key}` is \"{s}\", expected \"uniform\", \"even\" or \"whorls\""),
             )),
         }
     };
@@ -443,21 +484,69 @@ pub fn from_toml(text: &str, source_name: &str) -> Result<TreeRules, ParamsError
             Err(ParamsError::OutOfRange {
                 name: key.into(),
                 value: v,
-                allowed: format!("{lo}..{hi} metres"),
+                allowed: format!("{lo}..{hi}{}", if key == "lobes" { "" } else { " metres" }),
                 source_name: Some(place(key)),
             })
         }
     };
+    const LAYOUT_KEYS: [&str; 7] = [
+        "lobe_radius",
+        "crown_base",
+        "leaf_size",
+        "height",
+        "crown_width",
+        "trunk_width",
+        "lobes",
+    ];
     if let Some(t) = layout_table
-        && let Some(key) = t
-            .keys()
-            .find(|k| !["lobe_radius", "crown_base", "leaf_size"].contains(&k.as_str()))
+        && let Some(key) = t.keys().find(|k| !LAYOUT_KEYS.contains(&k.as_str()))
     {
         return Err(syntax(
             key,
-            format!("unknown `{key}` in [layout]: expected lobe_radius, crown_base, leaf_size"),
+            format!(
+                "unknown `{key}` in [layout]: expected {}",
+                LAYOUT_KEYS.join(", ")
+            ),
         ));
     }
+    let has = |key: &str| layout_table.is_some_and(|t| t.contains_key(key));
+    let crown_keys = ["height", "crown_width", "trunk_width", "lobes"];
+    let crown = if crown_keys.iter().any(|k| has(k)) {
+        if let Some(missing) = crown_keys[..3].iter().find(|k| !has(k)) {
+            return Err(syntax(
+                missing,
+                format!(
+                    "[layout] gives part of a mature crown but not `{missing}`: give height, \
+                     crown_width and trunk_width together (lobes is optional)"
+                ),
+            ));
+        }
+        if has("lobe_radius") {
+            return Err(syntax(
+                "lobe_radius",
+                "[layout] gives both lobe_radius and a crown (height, crown_width): the crown \
+                 sets the lobes' size, so leave lobe_radius out"
+                    .into(),
+            ));
+        }
+        let lobes = layout_value("lobes", 1.0, 1.0, 32.0)?;
+        if lobes.fract() != 0.0 {
+            return Err(ParamsError::OutOfRange {
+                name: "lobes".into(),
+                value: lobes,
+                allowed: "a whole number 1..32".into(),
+                source_name: Some(place("lobes")),
+            });
+        }
+        Some(Crown {
+            height: layout_value("height", 0.0, 0.5, 150.0)?,
+            width: layout_value("crown_width", 0.0, 0.1, 100.0)?,
+            trunk_width: layout_value("trunk_width", 0.0, 0.01, 10.0)?,
+            lobes: lobes as u32,
+        })
+    } else {
+        None
+    };
     let text_or = |key: &str, default: &str| match rules.get(key) {
         Some(toml::Value::String(s)) => s.clone(),
         _ => default.to_string(),
@@ -494,7 +583,21 @@ pub fn from_toml(text: &str, source_name: &str) -> Result<TreeRules, ParamsError
             lobe_radius: layout_value("lobe_radius", 1.0, 0.01, 100.0)?,
             crown_base: layout_value("crown_base", 1.0, 0.0, 200.0)?,
             leaf_size: layout_value("leaf_size", 0.05, 0.001, 2.0)?,
+            crown,
         },
     };
+    if let Some(c) = &rules.layout.crown
+        && c.height <= rules.layout.crown_base + 0.1
+    {
+        return Err(ParamsError::OutOfRange {
+            name: "height".into(),
+            value: c.height,
+            allowed: format!(
+                "more than crown_base ({} m) + 0.1 m: the crown lies between them",
+                rules.layout.crown_base
+            ),
+            source_name: Some(place("height")),
+        });
+    }
     Ok(rules)
 }

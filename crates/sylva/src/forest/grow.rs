@@ -2,11 +2,11 @@
 //! the order does not matter), turned into whatever the caller stores per tree (a mesh, a tree
 //! stored for range) under a memory budget, and written as one GLB.
 
-use super::{ForestError, ForestSpec, Planting, plant};
+use super::{ForestError, ForestSpec, ForestSpecies, Planting, plant};
 use crate::export::{Instance, Materials, to_glb_scene};
 use crate::lod::LodTree;
-use crate::mesh::{MeshOptions, TreeMesh, mesh_tree};
-use crate::{ExportError, GenerateOptions, Skeleton, TreeParams};
+use crate::mesh::{TreeMesh, mesh_tree};
+use crate::{ExportError, Skeleton};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -18,7 +18,7 @@ pub const MAX_FOREST_BYTES: usize = 3_500_000_000;
 /// A planted forest with its variants grown into `T`s (meshes, or trees stored for range).
 pub struct Forest<T> {
     /// The species of the spec, loaded, in its order.
-    pub species: Vec<TreeParams>,
+    pub species: Vec<ForestSpecies>,
     /// Where every copy stands.
     pub planting: Planting,
     /// One `T` per variant, in the planting's order.
@@ -28,18 +28,12 @@ pub struct Forest<T> {
 }
 
 impl ForestSpec {
-    /// Loads and checks every species the spec names (built-in names or species files).
-    pub fn load_species(&self) -> Result<Vec<TreeParams>, ForestError> {
+    /// Loads and checks every species the spec names (Weber-Penn or lobe species, built in or
+    /// from files; see [`ForestSpecies::load`]).
+    pub fn load_species(&self) -> Result<Vec<ForestSpecies>, ForestError> {
         self.species
             .iter()
-            .map(|name| {
-                let params = crate::species::load(name)?;
-                params.validate().map_err(|cause| ForestError::Species {
-                    name: name.clone(),
-                    cause,
-                })?;
-                Ok(params)
-            })
+            .map(|name| ForestSpecies::load(name))
             .collect()
     }
 }
@@ -50,8 +44,8 @@ impl ForestSpec {
 /// [`ForestError::Budget`] when the trees would hold more than [`MAX_FOREST_BYTES`].
 pub fn grow<T: Send>(
     spec: &ForestSpec,
-    species: Vec<TreeParams>,
-    build: impl Fn(&TreeParams, &Skeleton) -> (T, usize) + Sync + Send,
+    species: Vec<ForestSpecies>,
+    build: impl Fn(&ForestSpecies, &Skeleton) -> (T, usize) + Sync + Send,
     on_tree: &(dyn Fn() + Sync),
 ) -> Result<Forest<T>, ForestError> {
     spec.validate().map_err(ForestError::Spec)?;
@@ -79,20 +73,14 @@ pub fn grow<T: Send>(
             if held.load(Ordering::Relaxed) > MAX_FOREST_BYTES {
                 return Err(over_budget());
             }
-            let params = &species[v.species];
-            let options = GenerateOptions {
-                seed: v.seed,
-                quality: spec.quality,
-                ..Default::default()
-            };
-            crate::generate_into(params, &options, skeleton).map_err(|cause| {
-                ForestError::Grow {
-                    name: params.name.clone(),
+            let s = &species[v.species];
+            s.grow_into(v.seed, spec.quality, skeleton)
+                .map_err(|cause| ForestError::Grow {
+                    name: s.name().to_string(),
                     seed: v.seed,
                     cause,
-                }
-            })?;
-            let (made, bytes) = build(params, skeleton);
+                })?;
+            let (made, bytes) = build(s, skeleton);
             if held.fetch_add(bytes, Ordering::Relaxed) + bytes > MAX_FOREST_BYTES {
                 return Err(over_budget());
             }
@@ -113,15 +101,15 @@ pub fn grow<T: Send>(
 /// spec's quality.
 pub fn grow_meshes(
     spec: &ForestSpec,
-    species: Vec<TreeParams>,
+    species: Vec<ForestSpecies>,
     on_tree: &(dyn Fn() + Sync),
 ) -> Result<Forest<TreeMesh>, ForestError> {
     let quality = spec.quality;
     grow(
         spec,
         species,
-        |params, skeleton| {
-            let mesh = mesh_tree(skeleton, &MeshOptions::for_species(params, quality));
+        |s, skeleton| {
+            let mesh = mesh_tree(skeleton, &s.mesh_options(quality));
             // Position, normal and texture coordinate per vertex, and the triangles, in a GLB.
             let bytes = mesh.vertex_count() * 32 + mesh.triangle_count() * 12;
             (mesh, bytes)
@@ -134,15 +122,15 @@ pub fn grow_meshes(
 /// variant built into a [`LodTree`] at the spec's quality.
 pub fn grow_lod(
     spec: &ForestSpec,
-    species: Vec<TreeParams>,
+    species: Vec<ForestSpecies>,
     on_tree: &(dyn Fn() + Sync),
 ) -> Result<Forest<LodTree>, ForestError> {
     let quality = spec.quality;
     grow(
         spec,
         species,
-        |params, skeleton| {
-            let tree = LodTree::build(skeleton, &MeshOptions::for_species(params, quality));
+        |s, skeleton| {
+            let tree = LodTree::build(skeleton, &s.mesh_options(quality));
             let bytes = tree.heap_bytes();
             (tree, bytes)
         },
@@ -160,8 +148,8 @@ impl Forest<TreeMesh> {
             .zip(&self.grown)
             .map(|(v, m)| {
                 let s = &self.species[v.species];
-                let materials = Materials::from_srgb(s.bark_color, s.leaf_color);
-                (s.name.as_str(), m, materials)
+                let (bark, leaves) = s.colours();
+                (s.name(), m, Materials::from_srgb(bark, leaves))
             })
             .collect();
         let instances: Vec<Instance> = self

@@ -18,9 +18,11 @@
 
 mod file;
 mod grow;
+mod species;
 
 pub use file::is_forest_file;
 pub use grow::{Forest, MAX_FOREST_BYTES, grow, grow_lod, grow_meshes};
+pub use species::{ForestSpecies, LOBES_PREFIX};
 
 use crate::rng::StreamKey;
 use serde::Deserialize;
@@ -85,7 +87,8 @@ pub const MAX_SIDE: f32 = 100_000.0;
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ForestSpec {
-    /// Species: built-in names or species files.
+    /// Species: built-in names or species files, Weber-Penn or lobe species (`lobes:NAME`
+    /// where both models have one by that name; see [`ForestSpecies::load`]).
     pub species: Vec<String>,
     /// Number of trees.
     #[serde(default = "default_count")]
