@@ -4,9 +4,10 @@
 //! The paper leaves leaf placement to each species. Sylva's three styles fill the outer part of
 //! each lobe, not only its skin: an oak's clusters sit on sprays all along the branches and
 //! twigs that run through the lobe's outer half toward its leaf points; a fir's shoots line its
-//! branches and the branchlets they carry; a weeping cherry's blossoms hang on strands falling
-//! along the lobe's surface. How many leaves a lobe gets follows from its surface: laid flat,
-//! they would cover seven tenths of it ([`LEAF_COVER`]).
+//! branches, the branchlets they carry and short branchlets between the whorls; a weeping
+//! cherry's blossoms hang on strands falling along the lobe's surface. How many leaves a lobe
+//! gets follows from its surface: laid flat, they would cover seven tenths of it
+//! ([`LEAF_COVER`]).
 
 use super::lobe::{Lobe, LobeShape};
 use super::pipeline::{Branch, Grower, Kind, MAX_LEAVES, length, rotate_away};
@@ -80,6 +81,18 @@ struct Planter<'a> {
 
 impl Planter<'_> {
     fn put(&mut self, at: Vec3, dir: Vec3, stem: usize, depth: f32) -> Result<(), GenerateError> {
+        self.put_facing(at, dir, Vec3::Z, stem, depth)
+    }
+
+    /// A leaf whose face turns as near to `up` as its blade allows.
+    fn put_facing(
+        &mut self,
+        at: Vec3,
+        dir: Vec3,
+        up: Vec3,
+        stem: usize,
+        depth: f32,
+    ) -> Result<(), GenerateError> {
         if self.leaves.len() >= MAX_LEAVES {
             return Err(GenerateError::Params(ParamsError::Combination(format!(
                 "the tree would have more than {MAX_LEAVES} leaves; raise leaf_size in [layout] \
@@ -88,7 +101,7 @@ impl Planter<'_> {
         }
         self.leaves.push(Leaf {
             position: at,
-            orientation: frame(dir, Vec3::Z),
+            orientation: frame(dir, up),
             length: self.size,
             width: self.size * self.aspect,
             shape: self.look,
@@ -336,9 +349,10 @@ fn spray(
     Ok(())
 }
 
-/// A fir's foliage: every branch carries shoots in two flat ranks along its outer part, and
-/// pairs of branchlets, angled forward, that carry shoots of their own (Abies branches are
-/// flat, pinnately branched sprays).
+/// A fir's foliage: every branch carries shoots in two ranks and a rising row along its whole
+/// length, and branchlets, alternating and angled forward, that carry shoots of their own
+/// (Abies branches are flat, pinnately branched sprays); short internodal branchlets fill the
+/// trunk between the whorls.
 fn needles(
     g: &mut Grower,
     planter: &mut Planter,
@@ -367,13 +381,19 @@ fn needles(
                 let at = w[0] + dir * (next - along);
                 let depth = lobe.map_or(0.0, |l| l.depth(at, shape).max(0.0));
                 for side in [-1.0f32, 1.0] {
-                    // Forward and out to one side, tilted up or down: a fir's sprays are flat
-                    // near the tips, but a branch carries them at every angle, so the crown
-                    // looks dense from the side too.
+                    // Forward and out to one side, tilted up or down and rolled about their
+                    // own axis: a fir's sprays are flat near the tips, but a branch carries
+                    // them at every angle, so the crown looks dense from the side too.
                     let out =
                         (dir * 0.55 + flat * side + Vec3::Z * random.var(0.7) as f32).normalize();
-                    planter.put(at, out, stem, depth)?;
+                    let roll = Quat::from_axis_angle(out, 1.3 * random.var(1.0) as f32);
+                    planter.put_facing(at, out, roll * Vec3::Z, stem, depth)?;
                 }
+                // And one rising from the top of the stem, face to the side: seen end-on, a
+                // branch pointing at the viewer is hidden by these, not only flanked by the
+                // two ranks (Abies shoots turn up toward the light).
+                let out = (dir * 0.5 + Vec3::Z * 0.8 + flat * random.var(0.5) as f32).normalize();
+                planter.put_facing(at, out, flat, stem, depth)?;
                 next += 0.25 * size;
             }
             along += piece;
@@ -399,10 +419,40 @@ fn needles(
                 planter.put(at, rotate_away(dir, 1.0, turn), i, 0.0)?;
             }
         }
+        // Internodal branchlets: Abies grows short branches between its whorls as well. The
+        // paper's 55 control points give a whorl every 0.7 m of a 15 m fir, and without these
+        // the trunk shows through every gap between the tiers, which a fir's crown never does.
+        let total = length(&points);
+        let mut s = 0.5 * size;
+        while s < total {
+            let at = point_at(&points, s);
+            let up = (point_at(&points, s + 0.1) - at)
+                .try_normalize()
+                .unwrap_or(Vec3::Z);
+            s += 0.8 * size * (1.0 + random.var(0.3) as f32);
+            for (li, lobe) in lobes.iter().enumerate() {
+                let reach = lobe.reach(at.z - lobe.centre.z, shape);
+                if lobe.outside(at, shape) > 0.0 || reach <= 2.5 * size {
+                    continue;
+                }
+                // Out at the whorl branches' 20 degrees above the perpendicular, a golden turn
+                // from the last, 40-70% as long as the crown reaches there.
+                let turn = s / size * 2.4;
+                let way = rotate_away(up, 70f32.to_radians(), turn);
+                let len = reach * (0.4 + 0.3 * random.unit() as f32);
+                let tip = lobe.clamp_inside(at + way * len, shape);
+                if tip.distance(at) >= size {
+                    let mut t = twig(i, level, vec![at, tip]);
+                    t.lobe = Some(li);
+                    let index = g.push(t)?;
+                    shoots(g, planter, index, &[at, tip], 0.05, random)?;
+                }
+            }
+        }
     }
     for i in firsts {
         let points = g.branches[i].points.clone();
-        shoots(g, planter, i, &points, 0.1, random)?;
+        shoots(g, planter, i, &points, 0.0, random)?;
         // Branchlets, alternately left and right and shorter toward the branch's tip.
         let total = length(&points);
         let gap = 0.25 * size;
