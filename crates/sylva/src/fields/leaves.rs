@@ -400,6 +400,23 @@ fn needles(
         }
         Ok(())
     };
+    // A straight branchlet of `(parent, lobe)` from `at` to `tip`, lined with shoots from `from`
+    // of its length; none shorter than a shoot.
+    let branchlet = |g: &mut Grower,
+                     planter: &mut Planter,
+                     (parent, lobe): (usize, Option<usize>),
+                     (at, tip): (Vec3, Vec3),
+                     from: f32,
+                     random: &mut Random|
+     -> Result<(), GenerateError> {
+        if tip.distance(at) < size {
+            return Ok(());
+        }
+        let mut t = twig(parent, level, vec![at, tip]);
+        t.lobe = lobe;
+        let index = g.push(t)?;
+        shoots(g, planter, index, &[at, tip], from, random)
+    };
     let firsts: Vec<usize> = (0..g.branches.len())
         .filter(|&i| g.branches[i].kind == Kind::Branch)
         .collect();
@@ -441,12 +458,7 @@ fn needles(
                 let way = rotate_away(up, 70f32.to_radians(), turn);
                 let len = reach * (0.4 + 0.3 * random.unit() as f32);
                 let tip = lobe.clamp_inside(at + way * len, shape);
-                if tip.distance(at) >= size {
-                    let mut t = twig(i, level, vec![at, tip]);
-                    t.lobe = Some(li);
-                    let index = g.push(t)?;
-                    shoots(g, planter, index, &[at, tip], 0.05, random)?;
-                }
+                branchlet(g, planter, (i, Some(li)), (at, tip), 0.05, random)?;
             }
         }
     }
@@ -471,12 +483,8 @@ fn needles(
             if let Some(l) = g.branches[i].lobe {
                 tip = lobes[l].clamp_inside(tip, shape);
             }
-            if tip.distance(at) >= size {
-                let mut t = twig(i, level, vec![at, tip]);
-                t.lobe = g.branches[i].lobe;
-                let index = g.push(t)?;
-                shoots(g, planter, index, &[at, tip], 0.25, random)?;
-            }
+            let lobe = g.branches[i].lobe;
+            branchlet(g, planter, (i, lobe), (at, tip), 0.25, random)?;
             side = -side;
             s += gap * (1.0 + random.var(0.2) as f32);
         }

@@ -4,6 +4,7 @@
 //! leaves that fill them.
 
 mod grow;
+mod layout;
 mod leaves;
 pub mod lobe;
 pub mod pipeline;
