@@ -150,5 +150,23 @@ pub(super) fn read(
             source_name: Some(place("height")),
         });
     }
+    // One lobe is stretched to the crown's proportions, within LobeShape::of's 0.2..20: a crown
+    // 0.2 to 10 times as deep as wide stays inside it for any taper (widest 1 to 2 radii out).
+    if let Some(c) = layout.crown.as_ref().filter(|c| c.lobes == 1)
+        && !(0.2..=10.0).contains(&((c.height - layout.crown_base) / c.width))
+    {
+        let (base, w) = (layout.crown_base, c.width);
+        return Err(ParamsError::OutOfRange {
+            name: "height".into(),
+            value: c.height,
+            allowed: format!(
+                "{:.2} to {:.2} m for a one-lobe crown: from crown_base ({base} m), 0.2 to 10 \
+                 times as deep as crown_width ({w} m); give more lobes for other shapes",
+                base + 0.2 * w,
+                base + 10.0 * w
+            ),
+            source_name: Some(place("height")),
+        });
+    }
     Ok(layout)
 }

@@ -151,6 +151,12 @@ fn bad_rules_files_name_the_rule_and_line() {
             "height",
             "more than crown_base",
         ),
+        (
+            text.replace("lobes = 6", "lobes = 1")
+                .replace("crown_width = 16", "crown_width = 1.5"),
+            "height",
+            "times as deep as crown_width",
+        ),
     ];
     for (t, rule, place) in cases {
         let e = from_toml(&t, "oak.toml").unwrap_err().to_string();
