@@ -1,6 +1,7 @@
 //! Sylva's `[layout]` table in a rules file, beside the paper's 25 rules: where automatic
 //! placement puts the tree and, for a built-in species, the mature tree's size with its source.
 
+use super::values::{as_number, within};
 use crate::error::ParamsError;
 
 /// Where automatic placement puts the tree, in metres (Sylva's, not among the 25 rules).
@@ -52,26 +53,11 @@ pub(super) fn read(
         let Some(v) = layout_table.and_then(|t| t.get(key)) else {
             return Ok(default);
         };
-        let v = match v {
-            toml::Value::Integer(i) => *i as f64,
-            toml::Value::Float(f) => *f,
-            other => {
-                return Err(syntax(
-                    key,
-                    format!("`{key}` is {other}, expected a number"),
-                ));
-            }
+        let Some(v) = as_number(v) else {
+            return Err(syntax(key, format!("`{key}` is {v}, expected a number")));
         };
-        if v.is_finite() && (lo..=hi).contains(&v) {
-            Ok(v)
-        } else {
-            Err(ParamsError::OutOfRange {
-                name: key.into(),
-                value: v,
-                allowed: format!("{lo}..{hi}{}", if key == "lobes" { "" } else { " metres" }),
-                source_name: Some(place(key)),
-            })
-        }
+        let unit = if key == "lobes" { "" } else { " metres" };
+        within(key, v, (lo, hi), &format!("{lo}..{hi}{unit}"), place(key))
     };
     const LAYOUT_KEYS: [&str; 7] = [
         "lobe_radius",

@@ -11,6 +11,7 @@ pub mod pipeline;
 pub mod points;
 pub mod rules;
 pub mod tree_file;
+mod values;
 mod widths;
 
 pub use grow::grow;

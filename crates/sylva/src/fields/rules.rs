@@ -3,6 +3,7 @@
 
 use super::layout;
 pub use super::layout::{Crown, Layout};
+use super::values::{as_number, within};
 use crate::error::ParamsError;
 use crate::skeleton::LeafShape;
 
@@ -309,26 +310,14 @@ pub fn from_toml(text: &str, source_name: &str) -> Result<TreeRules, ParamsError
             .ok_or_else(|| syntax("[rules]", format!("rule `{key}` is missing")))
     };
     let number = |key: &str, lo: f64, hi: f64, allowed: &str| -> Result<f64, ParamsError> {
-        let v = match get(key)? {
-            toml::Value::Integer(i) => *i as f64,
-            toml::Value::Float(f) => *f,
-            other => {
-                return Err(syntax(
-                    key,
-                    format!("`{key}` is {other}, expected a number ({allowed})"),
-                ));
-            }
+        let v = get(key)?;
+        let Some(v) = as_number(v) else {
+            return Err(syntax(
+                key,
+                format!("`{key}` is {v}, expected a number ({allowed})"),
+            ));
         };
-        if v.is_finite() && (lo..=hi).contains(&v) {
-            Ok(v)
-        } else {
-            Err(ParamsError::OutOfRange {
-                name: key.into(),
-                value: v,
-                allowed: allowed.into(),
-                source_name: Some(place(key)),
-            })
-        }
+        within(key, v, (lo, hi), allowed, place(key))
     };
     let count = |key: &str, lo: u32, hi: u32| -> Result<u32, ParamsError> {
         let allowed = format!("a whole number {lo}..{hi}");
