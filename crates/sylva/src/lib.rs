@@ -63,6 +63,7 @@ pub mod preview;
 pub mod rng;
 pub mod skeleton;
 pub mod species;
+pub mod street;
 pub mod weber_penn;
 pub mod whole;
 

@@ -1,0 +1,229 @@
+//! The grown crown as the benefit models see it: its leaf and bark surfaces, the ground it
+//! covers, and its leaf area density on a grid that sunlight crosses.
+
+use crate::Skeleton;
+use crate::mesh::leaf_template;
+use crate::skeleton::{Leaf, LeafShape};
+use glam::{DVec3, Vec3};
+use std::sync::OnceLock;
+
+/// One side of a leaf, m² (its template's area, computed once per shape, times its size).
+pub fn leaf_area(l: &Leaf) -> f64 {
+    static AREAS: OnceLock<[f32; 9]> = OnceLock::new();
+    let areas = AREAS.get_or_init(|| LeafShape::ALL.map(|s| leaf_template(s).area()));
+    let i = LeafShape::ALL
+        .iter()
+        .position(|&s| s == l.shape)
+        .unwrap_or(0);
+    (areas[i] * l.length * l.width) as f64
+}
+
+/// A leaf's centre, where its area is counted.
+pub fn leaf_centre(l: &Leaf) -> Vec3 {
+    l.position + l.orientation * Vec3::new(0.0, 0.0, l.length * 0.5)
+}
+
+/// Grid cell edge, m: fine enough for a 3 m sapling's crown, coarse enough that a ray crosses a
+/// 20 m crown in a few dozen steps.
+pub const CELL: f64 = 0.5;
+/// Most cells along one axis (a 150 m crown at 0.5 m); larger crowns take larger cells.
+const MAX_CELLS: usize = 300;
+/// Leaf projection coefficient for randomly (spherically) oriented leaves: the share of leaf
+/// area a beam sees per unit path (Ross 1981, "The Radiation Regime and Architecture of Plant
+/// Stands"; Monsi & Saeki 1953's Beer-Lambert law for canopies).
+pub const G: f64 = 0.5;
+
+/// Every leaf as its centre and area, m² (leaves of no area or off the map left out).
+pub fn leaves_of(skeleton: &Skeleton) -> Vec<(Vec3, f64)> {
+    skeleton
+        .leaves
+        .iter()
+        .map(|l| (leaf_centre(l), leaf_area(l)))
+        .filter(|(c, a)| c.is_finite() && a.is_finite() && *a > 0.0)
+        .collect()
+}
+
+/// Leaf area density on a grid, and the crown's surfaces.
+#[derive(Clone, Debug)]
+pub struct Crown {
+    /// One-sided leaf area, m².
+    pub leaf_area: f64,
+    /// Bark as a stem area: every segment's silhouette (diameter times length), one side like
+    /// leaf area, as canopy hydrology counts stem area index, m².
+    pub bark_area: f64,
+    /// Ground the leaves cover seen from above, m².
+    pub projection: f64,
+    origin: DVec3,
+    cell: f64,
+    dims: [usize; 3],
+    /// Leaf area per cell volume, m²/m³.
+    density: Vec<f32>,
+}
+
+impl Crown {
+    /// Measures a grown tree.
+    pub fn of(skeleton: &Skeleton) -> Crown {
+        Crown::with_leaves(skeleton, &leaves_of(skeleton))
+    }
+
+    /// Measures a grown tree whose leaves [`leaves_of`] has listed.
+    pub fn with_leaves(skeleton: &Skeleton, leaves: &[(Vec3, f64)]) -> Crown {
+        let mut bark_area = 0.0f64;
+        for stem in &skeleton.stems {
+            let s = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
+            for w in s.windows(2) {
+                let len = w[0].position.distance(w[1].position) as f64;
+                bark_area += (w[0].radius + w[1].radius) as f64 * len;
+            }
+        }
+        let leaf_area = leaves.iter().map(|l| l.1).sum();
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for &(c, _) in leaves {
+            lo = lo.min(c);
+            hi = hi.max(c);
+        }
+        if leaves.is_empty() {
+            return Crown {
+                leaf_area: 0.0,
+                bark_area,
+                projection: 0.0,
+                origin: DVec3::ZERO,
+                cell: CELL,
+                dims: [0; 3],
+                density: Vec::new(),
+            };
+        }
+        let span = (hi - lo).as_dvec3();
+        let cell = CELL.max(span.max_element() / MAX_CELLS as f64 * 1.0001);
+        let dims = [0, 1, 2].map(|k| (span[k] / cell).floor() as usize + 1);
+        let origin = lo.as_dvec3();
+        let mut area = vec![0.0f64; dims[0] * dims[1] * dims[2]];
+        let mut covered = vec![false; dims[0] * dims[1]];
+        for (c, a) in leaves {
+            let i = [0, 1, 2].map(|k| {
+                (((c[k] as f64 - origin[k]) / cell).floor().max(0.0) as usize).min(dims[k] - 1)
+            });
+            area[(i[2] * dims[1] + i[1]) * dims[0] + i[0]] += a;
+            covered[i[1] * dims[0] + i[0]] = true;
+        }
+        let volume = cell * cell * cell;
+        Crown {
+            leaf_area,
+            bark_area,
+            projection: covered.iter().filter(|&&c| c).count() as f64 * cell * cell,
+            origin,
+            cell,
+            dims,
+            density: area.iter().map(|a| (a / volume) as f32).collect(),
+        }
+    }
+
+    /// Share of a beam from `from` along unit `dir` that passes the leaves (Beer-Lambert:
+    /// `exp(-G * leaf area crossed per unit cross-section)`).
+    pub fn transmittance(&self, from: DVec3, dir: DVec3) -> f64 {
+        if self.density.is_empty() {
+            return 1.0;
+        }
+        let size = DVec3::new(
+            self.dims[0] as f64,
+            self.dims[1] as f64,
+            self.dims[2] as f64,
+        ) * self.cell;
+        // Clip the ray to the grid's box (slabs).
+        let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+        for k in 0..3 {
+            let o = from[k] - self.origin[k];
+            if dir[k].abs() < 1e-12 {
+                if o < 0.0 || o > size[k] {
+                    return 1.0;
+                }
+                continue;
+            }
+            let (a, b) = ((0.0 - o) / dir[k], (size[k] - o) / dir[k]);
+            t0 = t0.max(a.min(b));
+            t1 = t1.min(a.max(b));
+        }
+        if t0 >= t1 {
+            return 1.0;
+        }
+        // Steps of at most 0.75 cell, evened out over the path so that it is summed whole:
+        // each cell is sampled once or twice.
+        let n = ((t1 - t0) / (self.cell * 0.75)).ceil().max(1.0);
+        let step = (t1 - t0) / n;
+        let mut optical = 0.0f64;
+        for j in 0..n as usize {
+            let p = from + dir * (t0 + (j as f64 + 0.5) * step) - self.origin;
+            let i = [0, 1, 2].map(|k| ((p[k] / self.cell).max(0.0) as usize).min(self.dims[k] - 1));
+            optical += self.density[(i[2] * self.dims[1] + i[1]) * self.dims[0] + i[0]] as f64;
+        }
+        (-G * optical * step).exp()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::skeleton::StemId;
+    use glam::Quat;
+
+    /// A 2 m cube of leaves, `per_cell` m² of leaf in each 0.5 m cell, above z = 3.
+    fn cube(per_cell: f32) -> Skeleton {
+        let mut s = Skeleton::default();
+        let t = leaf_template(LeafShape::Square).area();
+        let side = (per_cell / t).sqrt();
+        for i in 0..4 {
+            for j in 0..4 {
+                for k in 0..4 {
+                    let centre = Vec3::new(-1.0, -1.0, 3.0)
+                        + Vec3::new(i as f32, j as f32, k as f32) * 0.5
+                        + 0.25;
+                    s.leaves.push(Leaf {
+                        position: centre - Vec3::new(0.0, 0.0, side * 0.5),
+                        orientation: Quat::IDENTITY,
+                        length: side,
+                        width: side,
+                        shape: LeafShape::Square,
+                        stem: StemId(0),
+                        light: 1.0,
+                    });
+                }
+            }
+        }
+        s
+    }
+
+    #[test]
+    fn beer_lambert_through_a_uniform_cube() {
+        // 0.25 m² per 0.125 m³ cell: density 2 m²/m³. Leaves sit at cell centres, so the grid
+        // spans 1.5 m (centre to centre) plus one cell: a vertical ray crosses 4 cells, 2 m.
+        let crown = Crown::of(&cube(0.25));
+        assert!(
+            (crown.leaf_area - 64.0 * 0.25).abs() < 1e-3,
+            "{}",
+            crown.leaf_area
+        );
+        assert!(
+            (crown.projection - 4.0).abs() < 1e-9,
+            "{}",
+            crown.projection
+        );
+        let t = crown.transmittance(DVec3::new(0.1, 0.1, 0.0), DVec3::Z);
+        let expected = (-G * 2.0 * 2.0f64).exp();
+        assert!((t - expected).abs() < 1e-3, "{t} vs {expected}");
+        // A ray that passes beside the crown is not dimmed.
+        assert_eq!(
+            crown.transmittance(DVec3::new(5.0, 0.0, 0.0), DVec3::Z),
+            1.0
+        );
+        // A denser crown lets less through.
+        let dense = Crown::of(&cube(0.5));
+        assert!(dense.transmittance(DVec3::new(0.1, 0.1, 0.0), DVec3::Z) < t);
+    }
+
+    #[test]
+    fn a_leafless_tree_passes_all_light() {
+        let crown = Crown::of(&Skeleton::default());
+        assert_eq!(crown.transmittance(DVec3::ZERO, DVec3::Z), 1.0);
+        assert_eq!(crown.leaf_area, 0.0);
+    }
+}

@@ -1,0 +1,261 @@
+//! One year's account of a street tree: what it gave, what it cost, and what it ran into.
+//!
+//! ```
+//! use sylva::growth::{Database, measure};
+//! use sylva::growth::report::Cohort;
+//! use sylva::street::Assessor;
+//! let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+//! let mut assessor = Assessor::new(&plane, None, None, None);
+//! let mut cohort = Cohort::new(vec![plane], 0);
+//! let skeleton = cohort.advance_to(10.0).remove(0);
+//! let year = assessor.year(10.0, &measure(&skeleton), &skeleton);
+//! assert!(year.co2_stored_kg.unwrap() > 0.0);
+//! assert!(year.interception_m3.unwrap() > 0.0);
+//! assert!(year.energy.is_none()); // no site, no façade to shade
+//! ```
+
+use super::StreetError;
+use super::carbon::{BiomassGroup, co2_stored_kg};
+use super::climate::{Climate, climate, interception_m3};
+use super::conflicts::{Conflict, conflicts_with};
+use super::crown::{Crown, leaves_of};
+use super::prices::{Costs, Prices, YearCosts};
+use super::shade::{Energy, energy};
+use super::site::Site;
+use crate::Skeleton;
+use crate::growth::{Dimensions, Measured};
+
+/// A year's benefits in dollars; `None` where a model or a price is missing.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Money {
+    /// CO2 taken up this year.
+    pub carbon: Option<f64>,
+    /// Stormwater held back.
+    pub stormwater: Option<f64>,
+    /// Air conditioning saved.
+    pub cooling: Option<f64>,
+    /// Heating penalty (negative or zero).
+    pub heating: Option<f64>,
+}
+
+impl Money {
+    /// Sum of what is known.
+    pub fn total(&self) -> f64 {
+        [self.carbon, self.stormwater, self.cooling, self.heating]
+            .iter()
+            .flatten()
+            .sum()
+    }
+}
+
+/// One year of one tree.
+#[derive(Clone, Debug, PartialEq)]
+pub struct YearAccount {
+    /// Age, years since planting.
+    pub age: f64,
+    /// The grown trunk diameter, cm.
+    pub dbh_cm: f64,
+    /// Leaf area, bark area and crown projection of the grown tree, m².
+    pub surfaces: (f64, f64, f64),
+    /// CO2 held in the tree, kg.
+    pub co2_stored_kg: Option<f64>,
+    /// CO2 taken up this year, kg.
+    pub co2_sequestered_kg: Option<f64>,
+    /// Rain held back this year, m³.
+    pub interception_m3: Option<f64>,
+    /// Shade on the façade and its energy effects.
+    pub energy: Option<Energy>,
+    /// The benefits in dollars.
+    pub money: Money,
+    /// The costs in dollars, where a cost table was given.
+    pub costs: Option<YearCosts>,
+    /// Conflicts with the site this year.
+    pub conflicts: Vec<Conflict>,
+}
+
+impl YearAccount {
+    /// Benefits less costs of what is computed, dollars.
+    pub fn net(&self) -> f64 {
+        self.money.total() - self.costs.map_or(0.0, |c| c.total())
+    }
+}
+
+/// Keeps a tree's account from year to year.
+pub struct Assessor {
+    measured: Measured,
+    group: Option<BiomassGroup>,
+    evergreen: bool,
+    climate: Option<&'static Climate>,
+    site: Option<Site>,
+    prices: Option<Prices>,
+    costs: Option<Costs>,
+    last: Option<(f64, f64)>,
+    missing: Vec<String>,
+}
+
+impl Assessor {
+    /// An account for a species: `prices` default to the region's built-in ones; without a
+    /// site there is no façade to shade and no conflict; without costs none are charged.
+    pub fn new(
+        m: &Measured,
+        site: Option<Site>,
+        prices: Option<Prices>,
+        costs: Option<Costs>,
+    ) -> Assessor {
+        let region = &m.region.code;
+        let group = BiomassGroup::of(&m.species.scientific);
+        let climate = climate(region);
+        let prices = prices.or_else(|| Prices::builtin(region));
+        let mut missing = Vec::new();
+        if group.is_none() {
+            missing.push(format!(
+                "carbon: {} ({}) has no species group in Jenkins et al. (2003)",
+                m.species.code, m.species.scientific
+            ));
+        }
+        if climate.and_then(|c| c.rain).is_none() {
+            missing.push(format!(
+                "rainfall interception: no sourced rainfall for {} ({})",
+                region, m.region.city
+            ));
+        }
+        if site.as_ref().and_then(|s| s.facade.as_ref()).is_none() {
+            missing.push("energy: no façade to shade (give --site with a [facade])".into());
+        }
+        match &prices {
+            None => missing.push(format!(
+                "money: no built-in prices for {region} (give --prices)"
+            )),
+            Some(p) if p.electricity_per_kwh.is_none() => missing.push(format!(
+                "money for electricity: no usable built-in price for {region} (give --prices)"
+            )),
+            _ => {}
+        }
+        if costs.is_none() {
+            missing.push("costs: none are built in (give --costs costs.toml)".into());
+        }
+        missing.push(
+            "air pollutant uptake: not computed (no citable regional deposition velocities and \
+             concentrations)"
+                .into(),
+        );
+        missing.push("aesthetics and property value: not computed".into());
+        Assessor {
+            measured: m.clone(),
+            group,
+            evergreen: m.species.tree_type.get(1..2) == Some("E"),
+            climate,
+            site,
+            prices,
+            costs,
+            last: None,
+            missing,
+        }
+    }
+
+    /// The benefits and costs not computed for this species, each with its reason.
+    pub fn missing(&self) -> &[String] {
+        &self.missing
+    }
+
+    /// An error naming what is missing for a species whose every model was asked for (the
+    /// carbon model needs a biomass group).
+    pub fn require_carbon(&self) -> Result<(), StreetError> {
+        if self.group.is_some() {
+            return Ok(());
+        }
+        Err(StreetError::Missing(format!(
+            "{} ({}): no biomass group: Jenkins et al. (2003) place no species of the genus \
+             `{}`; allowed: hardwood genera and the conifers Abies, Calocedrus, \
+             Chamaecyparis, Cupressus, Juniperus, Larix, Picea, Pinus, Platycladus, \
+             Pseudotsuga, Sequoia, Thuja, Tsuga (docs/benefits.md)",
+            self.measured.species.code,
+            self.measured.species.scientific,
+            self.measured
+                .species
+                .scientific
+                .split_whitespace()
+                .next()
+                .unwrap_or("")
+        )))
+    }
+
+    /// The site, if any.
+    pub fn site(&self) -> Option<&Site> {
+        self.site.as_ref()
+    }
+
+    /// Whether a cost table was given.
+    pub fn has_costs(&self) -> bool {
+        self.costs.is_some()
+    }
+
+    /// The account of the year that ends at `age`, for the tree grown to `dims` and
+    /// `skeleton`. Call in rising order of age.
+    pub fn year(&mut self, age: f64, dims: &Dimensions, skeleton: &Skeleton) -> YearAccount {
+        let leaves = leaves_of(skeleton);
+        let crown = Crown::with_leaves(skeleton, &leaves);
+        let dbh = dims.dbh;
+        let stored = self.group.map(|g| co2_stored_kg(g, dbh));
+        let sequestered = stored.map(|now| {
+            let g = self.group.expect("stored implies a group");
+            match self.last {
+                Some((a, before)) if age > a => (now - before) / (age - a),
+                _ => {
+                    // The first year of a run: last year's DBH from the measured growth, in
+                    // proportion, so that a grown tree slightly off the curve is not penalised.
+                    let m = &self.measured;
+                    let previous = (age - 1.0).max(m.ages.0);
+                    let ratio = if m.dbh(age) > 0.0 {
+                        m.dbh(previous) / m.dbh(age)
+                    } else {
+                        0.0
+                    };
+                    now - co2_stored_kg(g, dbh * ratio.min(1.0))
+                }
+            }
+        });
+        if let Some(now) = stored {
+            self.last = Some((age, now));
+        }
+        let interception = self
+            .climate
+            .and_then(|c| c.rain)
+            .map(|r| interception_m3(&r, crown.leaf_area + crown.bark_area, crown.projection));
+        let facade = self.site.as_ref().and_then(|s| s.facade.as_ref());
+        let energy = match (facade, self.climate) {
+            (Some(f), Some(c)) => Some(energy(&crown, f, c.latitude, self.evergreen)),
+            _ => None,
+        };
+        let p = self.prices.as_ref();
+        let price = |amount: Option<f64>, per: Option<f64>| amount.zip(per).map(|(a, p)| a * p);
+        let money = Money {
+            carbon: price(sequestered, p.and_then(|p| p.co2_per_kg)),
+            stormwater: price(interception, p.and_then(|p| p.stormwater_per_m3)),
+            cooling: price(
+                energy.map(|e| e.cooling_kwh),
+                p.and_then(|p| p.electricity_per_kwh),
+            ),
+            heating: price(
+                energy.map(|e| -e.heating_penalty_kbtu),
+                p.and_then(|p| p.natural_gas_per_kbtu),
+            ),
+        };
+        YearAccount {
+            age,
+            dbh_cm: dbh,
+            surfaces: (crown.leaf_area, crown.bark_area, crown.projection),
+            co2_stored_kg: stored,
+            co2_sequestered_kg: sequestered,
+            interception_m3: interception,
+            energy,
+            money,
+            costs: self.costs.as_ref().map(|c| c.year(age, dbh)),
+            conflicts: self
+                .site
+                .as_ref()
+                .map(|s| conflicts_with(skeleton, &leaves, s))
+                .unwrap_or_default(),
+        }
+    }
+}

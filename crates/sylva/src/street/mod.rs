@@ -1,0 +1,78 @@
+//! What a street tree gives, costs and runs into, year by year (Linsen et al. 2005's benefit
+//! and cost bars; Rudnick et al. 2007's conflicts with the street).
+//!
+//! Every figure is driven by the grown tree itself, read from its [`Skeleton`](crate::Skeleton)
+//! and its measured dimensions, never by a table of typical trees:
+//!
+//! - [`carbon`]: CO2 stored and taken up, from the grown DBH by Jenkins et al. (2003).
+//! - [`climate`]: each region's latitude and rain; rainfall interception by leaf and bark
+//!   storage.
+//! - [`sun`] and [`shade`]: the sun's clear-day path and the crown's shadow on the site's
+//!   façade ([`crown`] holds the crown's leaf area density), turned into cooling saved and an
+//!   evergreen's winter heating penalty.
+//! - [`prices`]: what each unit is worth and what a tree costs, built in or from TOML.
+//! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it.
+//! - [`ledger`]: one year's account of all of these; [`rank`]: a region's species side by
+//!   side over the years; [`wires`]: the wire model against the database's own records;
+//!   [`picture`]: the site drawn with the tree and its conflicts.
+//!
+//! A benefit without a sourced model or input is reported as missing, with the reason, never
+//! as zero. `docs/benefits.md` gives every formula and source.
+
+pub mod carbon;
+pub mod climate;
+pub mod conflicts;
+pub mod crown;
+pub mod ledger;
+pub mod picture;
+pub mod prices;
+pub mod rank;
+pub mod shade;
+pub mod site;
+pub mod sun;
+pub mod table;
+pub mod wires;
+
+pub use conflicts::{Conflict, Kind, Part};
+pub use ledger::{Assessor, Money, YearAccount};
+pub use prices::{Costs, Prices};
+pub use site::Site;
+
+/// What can go wrong reading a site, prices or costs, or assessing a species.
+#[derive(Debug, thiserror::Error)]
+pub enum StreetError {
+    /// A file that cannot be read.
+    #[error("{path}: {message}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why.
+        message: String,
+    },
+    /// A file that does not parse, or has a key missing or unknown.
+    #[error("{file}: {message}")]
+    Syntax {
+        /// The file.
+        file: String,
+        /// What is wrong (the parser names the key).
+        message: String,
+    },
+    /// A value outside what the key allows.
+    #[error("{file}: `{key}` is {value}, expected {allowed}")]
+    Value {
+        /// The file.
+        file: String,
+        /// The key, with its table (`wire.height`).
+        key: String,
+        /// The value given.
+        value: f64,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// A species whose benefits were asked for but a model lacks an input.
+    #[error("{0}")]
+    Missing(String),
+    /// Growth data that cannot be found or read.
+    #[error(transparent)]
+    Growth(#[from] crate::growth::GrowthError),
+}
