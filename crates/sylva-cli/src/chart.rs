@@ -7,6 +7,7 @@ use plotters::prelude::*;
 use sylva::growth::Measured;
 use sylva::growth::Targets;
 use sylva::growth::report::{AgeRecord, CHARTED};
+use sylva::street::YearAccount;
 use sylva_render::{FrameStats, Picture};
 
 /// Makes the bundled font plotters' "sans-serif", once.
@@ -73,13 +74,155 @@ pub fn growth_chart(m: &Measured, history: &[AgeRecord]) -> Result<Picture> {
         }
         root.present()?;
     }
-    Ok(Picture {
-        width: w,
-        height: h,
+    Ok(rgb_picture(&buffer, w, h))
+}
+
+/// Linsen et al.'s (2005) yearly bars: benefits stacked above zero (CO2, stormwater, cooling),
+/// costs and an evergreen's heating penalty below, and the net as a line.
+pub fn benefit_chart(
+    m: &Measured,
+    accounts: &[YearAccount],
+    missing: &[String],
+) -> Result<Picture> {
+    register_font();
+    let (w, h) = (1500u32, 900u32);
+    let mut buffer = vec![255u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (plot, notes) = root.split_vertically(h - 30 - 22 * missing.len().min(6) as u32);
+        let ups = |a: &YearAccount| {
+            let v = &a.money;
+            [v.carbon, v.stormwater, v.cooling].map(|x| x.unwrap_or(0.0).max(0.0))
+        };
+        let downs = |a: &YearAccount| {
+            let c = a.costs.unwrap_or_default();
+            [
+                -a.money.heating.unwrap_or(0.0).min(0.0),
+                c.planting,
+                c.pruning,
+                c.removal,
+                c.sidewalk,
+                c.cleanup,
+            ]
+        };
+        let top = accounts
+            .iter()
+            .map(|a| ups(a).iter().sum::<f64>())
+            .fold(1.0f64, f64::max)
+            * 1.1;
+        let bottom = accounts
+            .iter()
+            .map(|a| downs(a).iter().sum::<f64>())
+            .fold(0.0f64, f64::max)
+            * 1.1;
+        let a0 = accounts.first().map_or(0.0, |a| a.age) - 0.5;
+        let a1 = accounts.last().map_or(1.0, |a| a.age) + 0.5;
+        let mut chart = ChartBuilder::on(&plot)
+            .caption(
+                format!(
+                    "{} in {}: yearly benefits (up) and costs (down), dollars",
+                    m.label(),
+                    m.region.code
+                ),
+                ("sans-serif", 26),
+            )
+            .margin(16)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(a0..a1, -bottom.max(top * 0.05)..top)?;
+        chart
+            .configure_mesh()
+            .x_desc("age (years)")
+            .y_desc("$ per year")
+            .label_style(("sans-serif", 16))
+            .draw()?;
+        let up_colours = [
+            RGBColor(60, 130, 60),
+            RGBColor(60, 110, 190),
+            RGBColor(230, 170, 40),
+        ];
+        let up_names = ["CO2 taken up", "stormwater held", "cooling saved"];
+        let down_colours = [
+            RGBColor(150, 90, 160),
+            RGBColor(120, 80, 50),
+            RGBColor(190, 100, 60),
+            RGBColor(200, 60, 60),
+            RGBColor(110, 110, 110),
+            RGBColor(170, 150, 120),
+        ];
+        let down_names = [
+            "heating penalty",
+            "planting",
+            "pruning",
+            "removal",
+            "sidewalk repair",
+            "clean-up",
+        ];
+        for (k, (colour, name)) in up_colours.into_iter().zip(up_names).enumerate() {
+            let bars = accounts.iter().map(|a| {
+                let v = ups(a);
+                let below: f64 = v[..k].iter().sum();
+                Rectangle::new(
+                    [(a.age - 0.35, below), (a.age + 0.35, below + v[k])],
+                    colour.filled(),
+                )
+            });
+            chart.draw_series(bars)?.label(name).legend(move |(x, y)| {
+                Rectangle::new([(x, y - 6), (x + 14, y + 6)], colour.filled())
+            });
+        }
+        for (k, (colour, name)) in down_colours.into_iter().zip(down_names).enumerate() {
+            if accounts.iter().all(|a| downs(a)[k] == 0.0) {
+                continue;
+            }
+            let bars = accounts.iter().map(|a| {
+                let v = downs(a);
+                let above: f64 = v[..k].iter().sum();
+                Rectangle::new(
+                    [(a.age - 0.35, -above), (a.age + 0.35, -above - v[k])],
+                    colour.filled(),
+                )
+            });
+            chart.draw_series(bars)?.label(name).legend(move |(x, y)| {
+                Rectangle::new([(x, y - 6), (x + 14, y + 6)], colour.filled())
+            });
+        }
+        chart
+            .draw_series(LineSeries::new(
+                accounts.iter().map(|a| (a.age, a.net())),
+                BLACK.stroke_width(3),
+            ))?
+            .label("net")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 14, y)], BLACK.stroke_width(3)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 16))
+            .draw()?;
+        for (i, line) in missing.iter().take(6).enumerate() {
+            notes.draw_text(
+                &format!("not counted: {line}"),
+                &("sans-serif", 17).into_font().color(&RGBColor(90, 90, 90)),
+                (70, 6 + 22 * i as i32),
+            )?;
+        }
+        root.present()?;
+    }
+    Ok(rgb_picture(&buffer, w, h))
+}
+
+/// plotters' RGB buffer as a picture.
+fn rgb_picture(buffer: &[u8], width: u32, height: u32) -> Picture {
+    Picture {
+        width,
+        height,
         rgba: buffer
             .chunks(3)
             .flat_map(|p| [p[0], p[1], p[2], 255])
             .collect(),
         stats: FrameStats::default(),
-    })
+    }
 }

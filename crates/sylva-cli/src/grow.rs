@@ -9,6 +9,9 @@ use sylva::export::{Materials, to_glb, write_atomically};
 use sylva::growth::report::{self, AgeRecord, Cohort, age_label, run_ages};
 use sylva::growth::{Database, Measured};
 use sylva::mesh::mesh_tree;
+use sylva::street::rank::first_conflicts;
+use sylva::street::{Assessor, Kind, YearAccount, picture::site_picture, table};
+use sylva_render::Picture;
 use sylva_render::caption::with_caption;
 use sylva_render::street::{comparison_picture, tree_picture};
 
@@ -30,6 +33,18 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         .collect::<Result<_, _>>()?;
     let first = &species[0];
     let ages = run_ages(first, args.from, args.to, args.step).map_err(anyhow::Error::msg)?;
+    // Every input is read and checked before anything is written.
+    let (site, prices, costs) = crate::rank::load_street(&args.street)?;
+    let mut assessors: Vec<Assessor> = species
+        .iter()
+        .map(|m| Assessor::new(m, site.clone(), prices.clone(), costs.clone()))
+        .collect();
+    if args.street.prices.is_some() || args.street.costs.is_some() {
+        // Money was asked for: every benefit model must be there.
+        for a in &assessors {
+            a.require_carbon()?;
+        }
+    }
     if args.view {
         return sylva_viewer::watch_growth(species, ages, args.seed, args.self_test.clone());
     }
@@ -62,14 +77,50 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     let mut cohort = Cohort::new(species, args.seed);
     // One frame for every age and species: the tallest and widest they reach.
     let extent = cohort.extent(&ages);
+    let mut accounts: Vec<Vec<YearAccount>> = cohort.species.iter().map(|_| Vec::new()).collect();
+    let mut seen: Vec<Vec<Kind>> = cohort.species.iter().map(|_| Vec::new()).collect();
     for &age in &ages {
         let skeletons = cohort.advance_to(age);
         let mut meshes = Vec::new();
         for (i, skeleton) in skeletons.iter().enumerate() {
             let m = &cohort.species[i];
             let grown = cohort.history[i].last().context("an age was recorded")?;
+            let account = assessors[i].year(age, &grown.model, skeleton);
             let mesh = mesh_tree(skeleton, &report::MESH);
             let stem = format!("{}-age-{}", m.species.code, age_label(age));
+            // The site at the year each kind of conflict first happens, marked.
+            let new: Vec<_> = account
+                .conflicts
+                .iter()
+                .filter(|c| !seen[i].contains(&c.kind))
+                .copied()
+                .collect();
+            seen[i].extend(new.iter().map(|c| c.kind));
+            if let (Some(site), false, false) = (&site, new.is_empty(), args.no_pictures) {
+                let kinds: Vec<Kind> = new.iter().map(|c| c.kind).collect();
+                let (w, h, rgba) = site_picture(skeleton, site, &kinds, (width, height));
+                let picture = Picture {
+                    width: w,
+                    height: h,
+                    rgba,
+                    stats: Default::default(),
+                };
+                let said: Vec<String> = new.iter().map(|c| c.describe()).collect();
+                let lines = [
+                    format!(
+                        "{}, age {}: first {}",
+                        m.label(),
+                        age_label(age),
+                        said.join(", ")
+                    ),
+                    "red: what is in the way; red outline: the zone entered this year; shaded: \
+                     clear heights; circles: wire and lamp clearances; a 1.8 m person"
+                        .to_string(),
+                ];
+                let picture = with_caption(&picture, &lines, 18.0);
+                let name = format!("{}-site-age-{}.png", m.species.code, age_label(age));
+                save_picture(&output.join(name), &picture)?;
+            }
             let (bark, leaves) = m.colours();
             let glb = to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))?;
             write_atomically(&output.join(format!("{stem}.glb")), &glb)?;
@@ -88,19 +139,29 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 save_picture(&output.join(format!("{stem}.png")), &picture)?;
             }
             if args.json {
-                println!("{}", record_json(m, grown));
+                let mut record = record_json(m, grown);
+                record["street"] = table::json(&account);
+                println!("{record}");
             } else {
+                let conflicts = if new.is_empty() {
+                    String::new()
+                } else {
+                    let said: Vec<String> = new.iter().map(|c| c.describe()).collect();
+                    format!("  new conflicts: {}", said.join(", "))
+                };
                 println!(
-                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments",
+                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments  net ${:.0}/yr{conflicts}",
                     m.label(),
                     age_label(age),
                     model.height,
                     model.crown_diameter,
                     model.dbh,
                     model.leaf_area,
-                    cohort.growers[i].segment_count()
+                    cohort.growers[i].segment_count(),
+                    account.net()
                 );
             }
+            accounts[i].push(account);
             meshes.push(mesh);
         }
         if cohort.species.len() > 1
@@ -111,11 +172,13 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 .species
                 .iter()
                 .zip(&cohort.history)
-                .map(|(m, h)| {
+                .zip(&accounts)
+                .map(|((m, h), a)| {
                     format!(
-                        "{} {:.1} m",
+                        "{} {:.1} m, net ${:.0}/yr",
                         m.species.common,
-                        h.last().map_or(0.0, |g| g.model.height)
+                        h.last().map_or(0.0, |g| g.model.height),
+                        a.last().map_or(0.0, |a| a.net())
                     )
                 })
                 .collect();
@@ -125,16 +188,35 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             save_picture(&output.join(name), &picture)?;
         }
     }
-    for (m, h) in cohort.species.iter().zip(&cohort.history) {
+    for (i, (m, h)) in cohort.species.iter().zip(&cohort.history).enumerate() {
         let code = &m.species.code;
-        write_atomically(
-            &output.join(format!("{code}.csv")),
-            report::csv(h).as_bytes(),
-        )?;
+        let csv = table::join_csv(&report::csv(h), &accounts[i]);
+        write_atomically(&output.join(format!("{code}.csv")), csv.as_bytes())?;
         let chart = crate::chart::growth_chart(m, h)?;
         save_picture(&output.join(format!("{code}-chart.png")), &chart)?;
+        let missing = assessors[i].missing();
+        let bars = crate::chart::benefit_chart(m, &accounts[i], missing)?;
+        save_picture(&output.join(format!("{code}-benefits.png")), &bars)?;
         if args.json {
             continue;
+        }
+        if site.is_some() {
+            let first: Vec<String> = first_conflicts(&accounts[i])
+                .iter()
+                .map(|(age, c)| format!("at {}: {}", age_label(*age), c.describe()))
+                .collect();
+            println!(
+                "{}: first conflicts: {}",
+                m.label(),
+                if first.is_empty() {
+                    "none".to_string()
+                } else {
+                    first.join(", ")
+                }
+            );
+        }
+        for note in missing {
+            println!("{}: not counted: {note}", m.species.code);
         }
         let worst = report::worst_errors(h);
         println!(

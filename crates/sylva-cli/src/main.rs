@@ -11,12 +11,14 @@ mod fractal;
 mod generate;
 mod grow;
 mod lobes;
+mod rank;
 mod render;
 mod shared;
 mod species;
 mod stick;
 mod view;
 mod whisk;
+mod wires;
 
 use args::{Cli, Command};
 use clap::Parser;
@@ -42,6 +44,8 @@ fn main() {
         Command::View(args) => view::run(&args),
         Command::Forest(args) => forest::run(&args),
         Command::Grow(args) => grow::run(&args),
+        Command::Rank(args) => rank::run(&args),
+        Command::Wires(args) => wires::run(&args),
         Command::Fractal(args) => fractal::run(&args),
         Command::Whisk(args) => whisk::run(&args),
         Command::Stick(args) => stick::run(&args),

@@ -334,3 +334,60 @@ pub fn growth_steps(runs: u32) -> Result<Vec<GrowthStepTimes>, GrowthError> {
     }
     Ok(rows)
 }
+
+/// The street a tree's benefits and conflicts are timed on: a 1.2 m strip, shops 3.1 m back
+/// facing south with awnings and a sign, lines over the strip, a lamp (the repository's
+/// `sites/narrow-under-wires.toml`, compiled in so the benchmark runs anywhere).
+pub const BENCH_SITE: &str = "[street]\ncurb = -0.6\nsidewalk = [0.6, 2.1]\n\
+roadway_clearance = 4.3\nsidewalk_clearance = 2.4\n[facade]\nsetback = 3.1\nheight = 7.0\n\
+width = 12.0\nfaces = 180.0\nwindow_share = 0.4\n[[awning]]\nbottom = 2.6\ntop = 3.1\n\
+reach = 1.2\nalong = [-3.0, 3.0]\n[[sign]]\nbottom = 3.4\ntop = 4.2\nreach = 0.9\n\
+along = [2.0, 3.0]\n[[wire]]\nheight = 8.5\noffset = -0.3\nclearance = 3.0\n[[light]]\n\
+x = 7.0\ny = -0.7\nheight = 6.0\nclearance = 1.0\n";
+
+/// A street tree grown yearly and accounted each year: the growth's time beside the
+/// account's (benefits, shade on the façade, conflicts).
+#[derive(Clone, Copy, Debug)]
+pub struct StreetTimes {
+    /// Years grown.
+    pub years: usize,
+    /// Growing the tree year by year and measuring it, as `sylva grow` does, s.
+    pub growth_s: f64,
+    /// Every year's account, s.
+    pub account_s: f64,
+}
+
+/// Grows `code` of `region` yearly from its first whole age to `years` on [`BENCH_SITE`] and
+/// times the growth and the accounts apart.
+pub fn street_times(
+    region: &str,
+    code: &str,
+    years: f64,
+) -> Result<StreetTimes, crate::street::StreetError> {
+    use crate::growth::report::Cohort;
+    use crate::street::{Assessor, Site};
+    let measured = Database::builtin().find(region, code)?;
+    let site = Site::parse(BENCH_SITE, "the benchmark's site")?;
+    let mut assessor = Assessor::new(&measured, Some(site), None, None);
+    let mut cohort = Cohort::new(vec![measured.clone()], 0);
+    let (mut growth_s, mut account_s) = (0.0, 0.0);
+    let ages = crate::street::rank::ages(&measured, years);
+    for &age in &ages {
+        let t = Instant::now();
+        let skeleton = cohort.advance_to(age).remove(0);
+        growth_s += t.elapsed().as_secs_f64();
+        let dims = cohort.history[0]
+            .last()
+            .map(|r| r.model)
+            .unwrap_or_default();
+        let t = Instant::now();
+        let account = assessor.year(age, &dims, &skeleton);
+        account_s += t.elapsed().as_secs_f64();
+        std::hint::black_box(account);
+    }
+    Ok(StreetTimes {
+        years: ages.len(),
+        growth_s,
+        account_s,
+    })
+}

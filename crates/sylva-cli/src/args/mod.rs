@@ -29,6 +29,12 @@ pub enum Command {
     /// Grow a street tree from the USDA Urban Tree Database year by year: a GLB and a picture
     /// per age, modelled against measured dimensions (CSV and charts), species side by side.
     Grow(GrowArgs),
+    /// Rank a region's street tree species by net benefit over the years (grown in parallel on
+    /// one site), with the year each first runs into the street.
+    Rank(RankArgs),
+    /// Check the site's wire model against the Urban Tree Database's own records of wire
+    /// conflicts (table TS3), per region.
+    Wires(WiresArgs),
     /// Open the interactive editor: every parameter live, orbit camera, wind, load/save/export;
     /// or fly through a forest file, or look at a .glb.
     View(ViewArgs),
@@ -300,6 +306,9 @@ pub struct GrowArgs {
     #[arg(long, value_name = "DIR", hide = true, requires = "view")]
     pub self_test: Option<PathBuf>,
 
+    #[command(flatten)]
+    pub street: StreetArgs,
+
     /// Output folder (created if missing).
     #[arg(short, long, value_name = "DIR", required_unless_present = "view")]
     pub output: Option<PathBuf>,
@@ -433,6 +442,11 @@ pub struct BenchArgs {
     #[arg(long)]
     pub growth: bool,
 
+    /// Also time a street tree's yearly accounts (benefits, shade, conflicts) against its
+    /// growth.
+    #[arg(long)]
+    pub street: bool,
+
     /// Also grow this many unique trees of the appendix species in parallel (stored for
     /// range, then released) and report trees per second.
     #[arg(long, value_name = "N")]
@@ -454,4 +468,66 @@ pub fn parse_size(text: &str, max: u32) -> Result<(u32, u32), String> {
             })
     };
     Ok((parse(w)?, parse(h)?))
+}
+
+/// Where a street tree stands and what its benefits are worth: flags shared by `grow` and
+/// `rank`.
+#[derive(Args, Debug, Clone, Default)]
+pub struct StreetArgs {
+    /// A planting site (site.toml: street, façade, awnings, signs, wires, lights, sight
+    /// triangle): the façade's shade is turned into energy, and every year's conflicts are
+    /// reported.
+    #[arg(long, value_name = "SITE.toml")]
+    pub site: Option<PathBuf>,
+
+    /// Prices of the benefits (source, year, electricity_per_kwh, natural_gas_per_kbtu,
+    /// stormwater_per_m3, co2_per_kg) instead of i-Tree's regional defaults.
+    #[arg(long, value_name = "PRICES.toml")]
+    pub prices: Option<PathBuf>,
+
+    /// Costs of planting and keeping a tree (planting, establishment, pruning by size class
+    /// and cycle, removal, sidewalk repair, clean-up); none are built in.
+    #[arg(long, value_name = "COSTS.toml")]
+    pub costs: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct RankArgs {
+    /// Climate region of the database.
+    #[arg(long, default_value = "InlVal")]
+    pub region: String,
+
+    /// Years each species is grown (or as long as its data reach).
+    #[arg(long, default_value_t = 40.0)]
+    pub years: f64,
+
+    /// Random seed: the same seed grows the same trees.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+
+    #[command(flatten)]
+    pub street: StreetArgs,
+
+    /// A folder holding the database's CSV tables instead of the built-in copy.
+    #[arg(long, value_name = "DIR")]
+    pub database: Option<PathBuf>,
+
+    /// Print one JSON object per species instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct WiresArgs {
+    /// The database's raw tree table, TS3_Raw_tree_data.csv (or the folder holding it).
+    #[arg(value_name = "TS3.csv|DIR")]
+    pub table: PathBuf,
+
+    /// Height of the line the model checks against, m.
+    #[arg(long, default_value_t = 8.5)]
+    pub height: f64,
+
+    /// Clearance the utility requires around it, m.
+    #[arg(long, default_value_t = 1.5)]
+    pub clearance: f64,
 }

@@ -80,6 +80,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         // each size: ten tries of them cost nothing and steady the figure on a shared machine.
         growth::bench_growth(runs.max(10))?;
     }
+    if args.street {
+        growth::bench_street()?;
+    }
     Ok(())
 }
 

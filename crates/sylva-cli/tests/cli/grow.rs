@@ -41,12 +41,13 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 4, "{csv}");
     assert!(lines[0].starts_with("age,height_model_m,height_measured_m"));
-    assert!(lines[0].ends_with("pipe_exponent,live_branches,shed_branches"));
+    assert!(lines[0].contains("pipe_exponent,live_branches,shed_branches,co2_stored_kg"));
+    assert!(lines[0].ends_with("net_usd,conflicts"));
     // Modelled height within 5% of the equation at every age written; the form's columns
     // hold a share, counts, and an empty cell only where there is nothing to measure.
     for line in &lines[1..] {
         let cells: Vec<&str> = line.split(',').collect();
-        assert_eq!(cells.len(), 17, "{line}");
+        assert_eq!(cells.len(), 34, "{line}");
         let v: Vec<f64> = cells[..11].iter().map(|x| x.parse().unwrap()).collect();
         assert!((v[1] / v[2] - 1.0).abs() < 0.05, "{line}");
         let share: f64 = cells[11].parse().unwrap();

@@ -9,6 +9,7 @@ mod grow;
 mod lobes;
 mod nagel;
 mod render;
+mod street;
 mod view;
 
 pub fn sylva(args: &[&str]) -> Output {

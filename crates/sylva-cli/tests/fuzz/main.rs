@@ -238,6 +238,38 @@ fn family(name: &'static str, seeds: &Seeds, rng: &mut Rng, n: usize) -> Vec<Cas
                         species, region, "--from", "--to", "--step", "from", "to", "step",
                     ])
             }
+            "street-toml" => {
+                // A site, a prices or a costs file, mutated, under a short run of a plane.
+                let (flag, file, body) = match rng.below(3) {
+                    0 => {
+                        let site = *rng.pick(&[
+                            "sites/narrow-under-wires.toml",
+                            "sites/boulevard.toml",
+                            "sites/facade-3m.toml",
+                        ]);
+                        ("--site", "s.toml", read(&repo(site)))
+                    }
+                    1 => ("--prices", "p.toml", PRICES.as_bytes().to_vec()),
+                    _ => ("--costs", "c.toml", COSTS.as_bytes().to_vec()),
+                };
+                let body = mutate(rng, &body);
+                Case::new(
+                    name,
+                    &[
+                        "grow",
+                        "PLAC",
+                        "--from",
+                        "3",
+                        "--to",
+                        "4",
+                        "--no-pictures",
+                        "-o",
+                        "out",
+                    ],
+                )
+                .with_args(&[flag, file])
+                .file(file, body)
+            }
             "damaged-glb" => {
                 let body = damage(rng, &seeds.glb);
                 let mut case = Case::new(
@@ -319,7 +351,7 @@ impl Case {
     }
 }
 
-const FAMILIES: [&str; 11] = [
+const FAMILIES: [&str; 12] = [
     "species-toml",
     "set-values",
     "arbaro-xml",
@@ -330,8 +362,17 @@ const FAMILIES: [&str; 11] = [
     "fractal-flags",
     "forest-toml",
     "grow-flags",
+    "street-toml",
     "damaged-glb",
 ];
+
+/// Seeds for the street family (test figures, not a city's).
+const PRICES: &str = "source = \"test\"\nyear = 2024\nelectricity_per_kwh = 0.3\n\
+natural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\n";
+const COSTS: &str = "source = \"test\"\nyear = 2024\nplanting = 200.0\n\
+establishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.0\n\
+removal_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n\
+[[pruning]]\nup_to_dbh_cm = 15.0\nprice = 30.0\ncycle_years = 3\n";
 
 #[test]
 fn no_input_makes_sylva_panic_hang_or_leave_a_partial_file() {

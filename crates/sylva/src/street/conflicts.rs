@@ -105,6 +105,23 @@ pub struct Conflict {
     pub heights: (f64, f64),
 }
 
+impl Conflict {
+    /// For people: `wire (trunk, 19% of leaf area, 5.6-11.2 m)`.
+    pub fn describe(&self) -> String {
+        if self.kind == Kind::TrunkFlare {
+            return "trunk flare (at the curb or sidewalk edge)".into();
+        }
+        format!(
+            "{} ({}, {:.1}% of leaf area, {:.1}-{:.1} m up)",
+            self.kind.name().replace('_', " "),
+            self.part.name(),
+            self.leaf_share * 100.0,
+            self.heights.0,
+            self.heights.1
+        )
+    }
+}
+
 /// A fixture's zone, in the tree's frame, in `f32` like the skeleton.
 #[derive(Clone, Copy, Debug)]
 enum Shape {

@@ -8,16 +8,14 @@ use super::site::Site;
 use crate::Skeleton;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
-/// Draws the site and the tree, `size` pixels, as PNG bytes. `marked` kinds have their zones
-/// outlined in red.
-pub fn site_picture(
-    skeleton: &Skeleton,
-    site: &Site,
-    marked: &[Kind],
-    size: (u32, u32),
-) -> Result<Vec<u8>, String> {
+/// An opaque picture: width, height, and 4 bytes (RGBA) per pixel.
+pub type Rgba = (u32, u32, Vec<u8>);
+
+/// Draws the site and the tree, `size` pixels (each side 64 to 8192). `marked` kinds have
+/// their zones outlined in red.
+pub fn site_picture(skeleton: &Skeleton, site: &Site, marked: &[Kind], size: (u32, u32)) -> Rgba {
     let (w, h) = (size.0.clamp(64, 8192), size.1.clamp(64, 8192));
-    let mut pixmap = Pixmap::new(w, h).ok_or("picture size")?;
+    let mut pixmap = Pixmap::new(w, h).expect("64 to 8192 pixels a side is a valid size");
     pixmap.fill(Color::from_rgba8(246, 246, 242, 255));
     // The frame: y across, z up.
     let s = &site.street;
@@ -304,5 +302,6 @@ pub fn site_picture(
         let r = flare_radius(skeleton);
         outline(&mut pixmap, -r, 0.0, r, 0.5, &red);
     }
-    pixmap.encode_png().map_err(|e| e.to_string())
+    // Every pixel is opaque (the background is), so premultiplied is straight RGBA.
+    (w, h, pixmap.take())
 }

@@ -1,0 +1,152 @@
+//! `sylva rank`: a region's species grown side by side on one site and listed by net benefit
+//! over the years, with the year each first runs into the street.
+
+use crate::args::{RankArgs, StreetArgs};
+use crate::shared::with_progress;
+use anyhow::{Result, bail};
+use sylva::growth::{Database, Measured};
+use sylva::street::rank::{first_conflicts, rank};
+use sylva::street::{Costs, Kind, Prices, Site};
+
+/// The site, prices and costs the flags name, each read and checked.
+pub fn load_street(args: &StreetArgs) -> Result<(Option<Site>, Option<Prices>, Option<Costs>)> {
+    let site = args.site.as_deref().map(Site::load).transpose()?;
+    let prices = args.prices.as_deref().map(Prices::load).transpose()?;
+    let costs = args.costs.as_deref().map(Costs::load).transpose()?;
+    Ok((site, prices, costs))
+}
+
+pub fn run(args: &RankArgs) -> Result<()> {
+    if !(1.0..=sylva::growth::report::MAX_AGE).contains(&args.years) {
+        bail!(
+            "--years {}: expected 1 to {} years",
+            args.years,
+            sylva::growth::report::MAX_AGE
+        );
+    }
+    let (site, prices, costs) = load_street(&args.street)?;
+    let owned;
+    let db = match &args.database {
+        Some(dir) => {
+            owned = Database::from_dir(dir)?;
+            &owned
+        }
+        None => Database::builtin(),
+    };
+    let species: Vec<Measured> = db
+        .growable(&args.region)
+        .iter()
+        .map(|s| db.find(&args.region, &s.code))
+        .collect::<Result<_, _>>()?;
+    if species.is_empty() {
+        let known: Vec<&str> = db.regions().iter().map(|r| r.code.as_str()).collect();
+        bail!(
+            "--region {}: no such region with growable species; regions: {}",
+            args.region,
+            known.join(", ")
+        );
+    }
+    let count = species.len();
+    let ranked = with_progress(count, |tick| {
+        rank(
+            species,
+            args.years,
+            args.seed,
+            site.as_ref(),
+            prices.as_ref(),
+            costs.as_ref(),
+            &|_| tick(),
+        )
+    });
+    if args.json {
+        for r in &ranked {
+            let first: Vec<serde_json::Value> = first_conflicts(&r.accounts)
+                .iter()
+                .map(|(age, c)| {
+                    serde_json::json!({"kind": c.kind.name(), "age": age, "part": c.part.name(),
+                        "leaf_share": (c.leaf_share * 1e3).round() / 1e3})
+                })
+                .collect();
+            println!(
+                "{}",
+                serde_json::json!({
+                    "species": r.species.species.code,
+                    "name": r.species.species.common,
+                    "years": r.last_age(),
+                    "benefits_usd": (r.benefits() * 100.0).round() / 100.0,
+                    "costs_usd": costs.as_ref().map(|_| (r.costs() * 100.0).round() / 100.0),
+                    "net_usd": (r.net() * 100.0).round() / 100.0,
+                    "first_conflicts": first,
+                    "not_computed": r.missing,
+                })
+            );
+        }
+        return Ok(());
+    }
+    let place = &ranked[0].species.region;
+    println!(
+        "{} species of {} ({}), grown yearly to {} years{}; dollars summed over the years, \
+         undiscounted",
+        ranked.len(),
+        place.name,
+        place.city,
+        args.years,
+        args.street
+            .site
+            .as_ref()
+            .map(|p| format!(" on {}", p.display()))
+            .unwrap_or_default()
+    );
+    println!(
+        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>10}  {:<22} first conflict with a fixture",
+        "rank", "species", "years", "benefits", "costs", "net", "clearance pruning from"
+    );
+    for (i, r) in ranked.iter().enumerate() {
+        // Growing into the clear heights over roadway and sidewalk is met by raising the
+        // crown; fixtures (wall, awnings, signs, lines, lamps, sight lines, curb) are not.
+        let first = first_conflicts(&r.accounts);
+        let earliest = |clearance: bool| {
+            first
+                .iter()
+                .filter(|(_, c)| matches!(c.kind, Kind::Roadway | Kind::Sidewalk) == clearance)
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .map(|(age, c)| format!("{} at {age:.0}", c.kind.name()))
+                .unwrap_or_else(|| {
+                    if site.is_some() {
+                        "none".into()
+                    } else {
+                        "(no --site)".into()
+                    }
+                })
+        };
+        let (pruning, conflict) = (earliest(true), earliest(false));
+        let carbon_missing = if r.accounts.iter().any(|a| a.co2_stored_kg.is_none()) {
+            "  (carbon not computed)"
+        } else {
+            ""
+        };
+        println!(
+            "  {:<4} {:<34} {:>5.0} {:>10.0} {:>10} {:>10.0}  {pruning:<22} {conflict}{carbon_missing}",
+            i + 1,
+            r.species.label(),
+            r.last_age(),
+            r.benefits(),
+            if costs.is_some() {
+                format!("{:.0}", r.costs())
+            } else {
+                "-".into()
+            },
+            r.net()
+        );
+    }
+    // What every species lacks alike, said once.
+    let common: Vec<&String> = ranked[0]
+        .missing
+        .iter()
+        .filter(|m| ranked.iter().all(|r| r.missing.contains(m)))
+        .collect();
+    for m in common {
+        println!("not counted: {m}");
+    }
+    Ok(())
+}

@@ -1,0 +1,286 @@
+//! `sylva grow --site/--prices/--costs`, `sylva rank` and `sylva wires`: what a street tree
+//! gives, costs and runs into.
+
+use crate::*;
+
+fn repo(path: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(path)
+}
+
+/// Test figures only (not a city's): every key a costs file must have.
+const COSTS: &str = "source = \"test figures\"\nyear = 2024\nplanting = 200.0\n\
+establishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.0\n\
+removal_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n\
+[[pruning]]\nup_to_dbh_cm = 15.0\nprice = 30.0\ncycle_years = 3\n[[pruning]]\n\
+up_to_dbh_cm = 200.0\nprice = 300.0\ncycle_years = 5\n";
+
+fn column<'a>(header: &csv::StringRecord, row: &'a csv::StringRecord, name: &str) -> &'a str {
+    let i = header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"));
+    &row[i]
+}
+
+#[test]
+fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
+    let dir = tempfile::tempdir().unwrap();
+    let costs = dir.path().join("costs.toml");
+    std::fs::write(&costs, COSTS).unwrap();
+    let out = dir.path().join("out");
+    let site = repo("sites/narrow-under-wires.toml");
+    let run = sylva(&[
+        "grow",
+        "PLAC",
+        "--from",
+        "1",
+        "--to",
+        "8",
+        "--site",
+        site.to_str().unwrap(),
+        "--costs",
+        costs.to_str().unwrap(),
+        "--size",
+        "300x300",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let said = text(&run.stdout);
+    assert!(said.contains("first conflicts: at"), "{said}");
+    assert!(said.contains("not counted: air pollutant uptake"), "{said}");
+    let mut reader = csv::Reader::from_path(out.join("PLAC.csv")).unwrap();
+    let header = reader.headers().unwrap().clone();
+    let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.unwrap()).collect();
+    assert_eq!(rows.len(), 8);
+    let number = |row: &csv::StringRecord, name: &str| -> f64 {
+        column(&header, row, name)
+            .parse()
+            .unwrap_or_else(|_| panic!("{name}: {row:?}"))
+    };
+    let mut stored = 0.0;
+    for row in &rows {
+        let now = number(row, "co2_stored_kg");
+        assert!(now > stored, "CO2 stored rises: {row:?}");
+        stored = now;
+        assert!(number(row, "co2_sequestered_kg") > 0.0);
+        assert!(number(row, "interception_m3") > 0.0);
+        assert!(number(row, "cooling_kwh") >= 0.0);
+        // A deciduous plane keeps no winter shade: no heating penalty.
+        assert_eq!(number(row, "heating_penalty_kbtu"), 0.0);
+        let costs: f64 = ["planting", "pruning", "removal", "sidewalk", "cleanup"]
+            .iter()
+            .map(|c| number(row, &format!("cost_{c}_usd")))
+            .sum();
+        let benefits: f64 = ["carbon", "stormwater", "cooling", "heating"]
+            .iter()
+            .map(|b| number(row, &format!("value_{b}_usd")))
+            .sum();
+        assert!(
+            (number(row, "net_usd") - (benefits - costs)).abs() < 0.03,
+            "{row:?}"
+        );
+    }
+    // Planting and establishment are charged while the tree establishes, then stop.
+    assert_eq!(number(&rows[0], "cost_planting_usd"), 250.0);
+    assert_eq!(number(&rows[7], "cost_planting_usd"), 0.0);
+    // Cooling grows with the crown.
+    assert!(number(&rows[7], "cooling_kwh") > number(&rows[1], "cooling_kwh"));
+    // By age 8 the leader is inside the wires' clearance.
+    assert!(
+        column(&header, &rows[7], "conflicts").contains("wire:"),
+        "{:?}",
+        rows[7]
+    );
+    // The site is drawn at each year a kind of conflict first happens, with red in it.
+    let pictures: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.starts_with("PLAC-site-age-"))
+        .collect();
+    assert!(!pictures.is_empty());
+    for name in &pictures {
+        let p = image::open(out.join(name)).unwrap().to_rgb8();
+        let red = p
+            .pixels()
+            .filter(|c| c[0] > 180 && c[1] < 80 && c[2] < 80)
+            .count();
+        assert!(red > 50, "{name}: {red} red pixels");
+    }
+    let bars = image::open(out.join("PLAC-benefits.png")).unwrap();
+    assert_eq!((bars.width(), bars.height()), (1500, 900));
+    // --json carries the same account.
+    let run = sylva(&[
+        "grow",
+        "PLAC",
+        "--from",
+        "8",
+        "--to",
+        "8",
+        "--site",
+        site.to_str().unwrap(),
+        "--no-pictures",
+        "--json",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let record: serde_json::Value = serde_json::from_str(text(&run.stdout).trim()).unwrap();
+    let street = &record["street"];
+    assert!(street["co2_stored_kg"].as_f64().unwrap() > 0.0);
+    assert!(
+        street["cost_usd"].is_null(),
+        "no --costs: no costs, not zero"
+    );
+    assert!(
+        street["conflicts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|c| c["kind"] == "wire")
+    );
+}
+
+#[test]
+fn bad_sites_prices_and_costs_are_refused_before_anything_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = std::fs::read_to_string(repo("sites/narrow-under-wires.toml")).unwrap();
+    let cases: Vec<(String, &str, Vec<&str>)> = vec![
+        (good.replace("height = 8.5", "height = -1.0"), "--site", vec!["wire.height", "above the ground"]),
+        (good.replace("bottom = 2.6", "bottom = -2.6"), "--site", vec!["awning.bottom"]),
+        (good.replace("height = 7.0\nwidth", "height = -7.0\nwidth"), "--site", vec!["facade.height"]),
+        (
+            format!("{good}\n[[light]]\nx = 7.1\ny = -0.4\nheight = 6.0\nclearance = 1.0\n"),
+            "--site",
+            vec!["light", "apart"],
+        ),
+        (good.replace("clearance = 3.0", "clearance = 3.0\nvoltage = 12"), "--site", vec!["voltage"]),
+        (
+            "source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nco2_per_kg = 0.05\n".into(),
+            "--prices",
+            vec!["stormwater_per_m3"],
+        ),
+        (COSTS.replace("cleanup_per_year = 3.0\n", ""), "--costs", vec!["cleanup_per_year"]),
+    ];
+    for (i, (body, flag, needles)) in cases.iter().enumerate() {
+        let file = dir.path().join(format!("bad-{i}.toml"));
+        std::fs::write(&file, body).unwrap();
+        let out = dir.path().join(format!("out-{i}"));
+        let run = sylva(&[
+            "grow",
+            "PLAC",
+            "--to",
+            "3",
+            flag,
+            file.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let err = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{flag} case {i}: {err}");
+        assert!(err.contains(&format!("bad-{i}.toml")), "case {i}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "case {i}: `{n}` not in {err}");
+        }
+        assert!(!out.exists(), "case {i}: nothing written");
+    }
+    // Money asked for a palm: Jenkins et al. have no group for palms.
+    let prices = dir.path().join("prices.toml");
+    std::fs::write(
+        &prices,
+        "source = \"test\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\n",
+    )
+    .unwrap();
+    let out = dir.path().join("palm");
+    let run = sylva(&[
+        "grow",
+        "WARO",
+        "--region",
+        "CenFla",
+        "--prices",
+        prices.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("biomass group") && err.contains("Washingtonia"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
+    let site = repo("sites/boulevard.toml");
+    let run = sylva(&[
+        "rank",
+        "--region",
+        "InlVal",
+        "--years",
+        "4",
+        "--site",
+        site.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let rows: Vec<serde_json::Value> = text(&run.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(
+        rows.len(),
+        22,
+        "every growable species of the Inland Valleys"
+    );
+    let nets: Vec<f64> = rows
+        .iter()
+        .map(|r| r["net_usd"].as_f64().unwrap())
+        .collect();
+    assert!(
+        nets.windows(2).all(|w| w[0] >= w[1]),
+        "best first: {nets:?}"
+    );
+    let ginkgo = rows.iter().find(|r| r["species"] == "GIBI").unwrap();
+    assert!(
+        ginkgo["not_computed"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|m| m.as_str().unwrap().starts_with("carbon")),
+        "{ginkgo}"
+    );
+    assert!(
+        rows.iter()
+            .any(|r| !r["first_conflicts"].as_array().unwrap().is_empty())
+    );
+    let run = sylva(&["rank", "--region", "Atlantis", "--years", "4"]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(
+        text(&run.stderr).contains("InlVal"),
+        "{}",
+        text(&run.stderr)
+    );
+}
+
+#[test]
+fn wires_quotes_the_agreement_with_the_databases_records() {
+    let table =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/urban-tree-database");
+    if !table.join("TS3_Raw_tree_data.csv").exists() {
+        eprintln!("skipped: no TS3 beside the clone");
+        return;
+    }
+    let run = sylva(&["wires", table.to_str().unwrap()]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let said = text(&run.stdout);
+    for region in ["GulfCo", "NoEast", "MidWst"] {
+        assert!(said.contains(region), "{said}");
+    }
+    assert!(said.contains("agreement"), "{said}");
+    let run = sylva(&["wires", "/nonexistent/TS3.csv"]);
+    assert_eq!(run.status.code(), Some(1));
+}
