@@ -6,7 +6,8 @@
 # Covers every built-in species at seeds 0-2 (GLB), OBJ + MTL, previews and renders, LOD
 # chains, a forest, grown street trees (GLB, PNG, CSV, charts, comparison sheets), Nagel's
 # fractal, whisk and stick trees (GLB, SVG, PNG, P/L vector files), line drawings of every view,
-# Fields' three species (GLB, .tree, PNG) and an Arbaro file. Pictures are drawn on the CPU
+# Fields' three species (GLB, .tree, PNG), a street tree on a site (accounts, benefit bars,
+# site pictures), a region's rank, and an Arbaro file. Pictures are drawn on the CPU
 # rasteriser, the one backend whose bytes do not depend on the machine's driver.
 set -euo pipefail
 sylva=$(realpath "${1:-target/release/sylva}")
@@ -30,6 +31,8 @@ q render quaking_aspen --size 320x240 --turntable 4 -o aspen-turntable.png
 q forest --species quaking_aspen,hazel,black_tupelo --count 40 --area 60x60 -o forest.glb
 q render forest.glb --size 480x270 -o forest.png
 q grow PLAC --from 10 --to 20 --step 10 --compare MAGR,CESI4 --size 300x300 -o grown
+q grow PLAC --from 1 --to 8 --site "$repo/sites/narrow-under-wires.toml" --size 300x300 -o street
+"$sylva" rank --region InlVal --years 4 --site "$repo/sites/boulevard.toml" --json > rank.jsonl
 q fractal --depth 10 --leaves --vary-angle 8 -o fractal.glb -o fractal.svg -o fractal.png -o fractal.vec
 q whisk --profile "$repo/profiles/conifer.csv" --density 4 --rings 6 --spokes 8 -o whisk.glb -o whisk.svg
 q whisk --profile "$repo/profiles/vase.svg" -o vase.glb -o vase.png

@@ -90,7 +90,22 @@ pub fn benefit_chart(
     {
         let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
         root.fill(&WHITE)?;
-        let (plot, notes) = root.split_vertically(h - 30 - 22 * missing.len().min(6) as u32);
+        // What was not counted, wrapped to the chart's width, at most eight lines.
+        let mut lines: Vec<String> = Vec::new();
+        for note in missing {
+            let mut line = String::from("not counted:");
+            for word in note.split(' ') {
+                if line.len() + word.len() > 150 {
+                    lines.push(std::mem::take(&mut line));
+                    line.push_str("    ");
+                }
+                line.push(' ');
+                line.push_str(word);
+            }
+            lines.push(line);
+        }
+        lines.truncate(8);
+        let (plot, notes) = root.split_vertically(h - 30 - 22 * lines.len() as u32);
         let ups = |a: &YearAccount| {
             let v = &a.money;
             [v.carbon, v.stormwater, v.cooling].map(|x| x.unwrap_or(0.0).max(0.0))
@@ -104,6 +119,7 @@ pub fn benefit_chart(
                 c.removal,
                 c.sidewalk,
                 c.cleanup,
+                c.average,
             ]
         };
         let top = accounts
@@ -150,6 +166,7 @@ pub fn benefit_chart(
             RGBColor(200, 60, 60),
             RGBColor(110, 110, 110),
             RGBColor(170, 150, 120),
+            RGBColor(200, 120, 120),
         ];
         let down_names = [
             "heating penalty",
@@ -158,8 +175,12 @@ pub fn benefit_chart(
             "removal",
             "sidewalk repair",
             "clean-up",
+            "costs (programme average)",
         ];
         for (k, (colour, name)) in up_colours.into_iter().zip(up_names).enumerate() {
+            if accounts.iter().all(|a| ups(a)[k] == 0.0) {
+                continue;
+            }
             let bars = accounts.iter().map(|a| {
                 let v = ups(a);
                 let below: f64 = v[..k].iter().sum();
@@ -202,9 +223,9 @@ pub fn benefit_chart(
             .border_style(BLACK)
             .label_font(("sans-serif", 16))
             .draw()?;
-        for (i, line) in missing.iter().take(6).enumerate() {
+        for (i, line) in lines.iter().enumerate() {
             notes.draw_text(
-                &format!("not counted: {line}"),
+                line,
                 &("sans-serif", 17).into_font().color(&RGBColor(90, 90, 90)),
                 (70, 6 + 22 * i as i32),
             )?;

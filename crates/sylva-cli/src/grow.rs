@@ -3,11 +3,11 @@
 //! against measured dimensions, and species side by side; or watched growing in a window.
 
 use crate::args::{GrowArgs, parse_size};
-use crate::shared::{headless, save_picture};
+use crate::shared::{database, headless, load_street, save_picture};
 use anyhow::{Context, Result, bail};
 use sylva::export::{Materials, to_glb, write_atomically};
+use sylva::growth::Measured;
 use sylva::growth::report::{self, AgeRecord, Cohort, age_label, run_ages};
-use sylva::growth::{Database, Measured};
 use sylva::mesh::mesh_tree;
 use sylva::street::rank::first_conflicts;
 use sylva::street::{Assessor, Kind, YearAccount, picture::site_picture, table};
@@ -17,14 +17,7 @@ use sylva_render::street::{comparison_picture, tree_picture};
 
 pub fn run(args: &GrowArgs) -> Result<()> {
     let (width, height) = parse_size(&args.size, 8192).map_err(anyhow::Error::msg)?;
-    let owned;
-    let db = match &args.database {
-        Some(dir) => {
-            owned = Database::from_dir(dir)?;
-            &owned
-        }
-        None => Database::builtin(),
-    };
+    let db = database(args.database.as_ref())?;
     let mut names = vec![args.species.clone()];
     names.extend(args.compare.iter().cloned());
     let species: Vec<Measured> = names
@@ -34,7 +27,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     let first = &species[0];
     let ages = run_ages(first, args.from, args.to, args.step).map_err(anyhow::Error::msg)?;
     // Every input is read and checked before anything is written.
-    let (site, prices, costs) = crate::rank::load_street(&args.street)?;
+    let (site, prices, costs) = load_street(&args.street)?;
     let mut assessors: Vec<Assessor> = species
         .iter()
         .map(|m| Assessor::new(m, site.clone(), prices.clone(), costs.clone()))
@@ -201,7 +194,9 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             continue;
         }
         if site.is_some() {
-            let first: Vec<String> = first_conflicts(&accounts[i])
+            let mut first = first_conflicts(&accounts[i]);
+            first.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let first: Vec<String> = first
                 .iter()
                 .map(|(age, c)| format!("at {}: {}", age_label(*age), c.describe()))
                 .collect();

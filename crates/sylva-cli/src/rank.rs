@@ -1,20 +1,12 @@
 //! `sylva rank`: a region's species grown side by side on one site and listed by net benefit
 //! over the years, with the year each first runs into the street.
 
-use crate::args::{RankArgs, StreetArgs};
-use crate::shared::with_progress;
+use crate::args::RankArgs;
+use crate::shared::{database, load_street, with_progress};
 use anyhow::{Result, bail};
-use sylva::growth::{Database, Measured};
+use sylva::growth::Measured;
+use sylva::street::Kind;
 use sylva::street::rank::{first_conflicts, rank};
-use sylva::street::{Costs, Kind, Prices, Site};
-
-/// The site, prices and costs the flags name, each read and checked.
-pub fn load_street(args: &StreetArgs) -> Result<(Option<Site>, Option<Prices>, Option<Costs>)> {
-    let site = args.site.as_deref().map(Site::load).transpose()?;
-    let prices = args.prices.as_deref().map(Prices::load).transpose()?;
-    let costs = args.costs.as_deref().map(Costs::load).transpose()?;
-    Ok((site, prices, costs))
-}
 
 pub fn run(args: &RankArgs) -> Result<()> {
     if !(1.0..=sylva::growth::report::MAX_AGE).contains(&args.years) {
@@ -25,14 +17,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
         );
     }
     let (site, prices, costs) = load_street(&args.street)?;
-    let owned;
-    let db = match &args.database {
-        Some(dir) => {
-            owned = Database::from_dir(dir)?;
-            &owned
-        }
-        None => Database::builtin(),
-    };
+    let db = database(args.database.as_ref())?;
     let species: Vec<Measured> = db
         .growable(&args.region)
         .iter()
@@ -74,7 +59,8 @@ pub fn run(args: &RankArgs) -> Result<()> {
                     "name": r.species.species.common,
                     "years": r.last_age(),
                     "benefits_usd": (r.benefits() * 100.0).round() / 100.0,
-                    "costs_usd": costs.as_ref().map(|_| (r.costs() * 100.0).round() / 100.0),
+                    "costs_usd": r.accounts.iter().any(|a| a.costs.is_some())
+                        .then(|| (r.costs() * 100.0).round() / 100.0),
                     "net_usd": (r.net() * 100.0).round() / 100.0,
                     "first_conflicts": first,
                     "not_computed": r.missing,
@@ -131,7 +117,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
             r.species.label(),
             r.last_age(),
             r.benefits(),
-            if costs.is_some() {
+            if r.accounts.iter().any(|a| a.costs.is_some()) {
                 format!("{:.0}", r.costs())
             } else {
                 "-".into()

@@ -1,16 +1,20 @@
 //! What the subcommands share: a species loaded with its `--set` overrides, the headless
 //! renderer with its notices, pictures written as PNG, forests grown with a progress bar,
-//! line-drawable trees written by extension. Imports no subcommand, so that none of them
+//! line-drawable trees written by extension, the growth database and a street's site, prices
+//! and costs. Imports no subcommand, so that none of them
 //! imports another through it.
 
-use crate::args::{LineOutputArgs, LineView, RibArgs};
+use crate::args::{LineOutputArgs, LineView, RibArgs, StreetArgs};
 use anyhow::{Context, Result, bail};
-use std::path::Path;
+use std::borrow::Cow;
+use std::path::{Path, PathBuf};
 use sylva::drawing::{DrawOptions, MeshLook, Meshable, Planned, View, write_outputs};
 use sylva::export::write_atomically;
 use sylva::forest::{Forest, ForestSpec, ForestSpecies};
+use sylva::growth::Database;
 use sylva::lod::LodTree;
 use sylva::nagel::WhiskParams;
+use sylva::street::{Costs, Prices, Site};
 use sylva::{Skeleton, TreeParams};
 use sylva_render::{Picture, Renderer};
 
@@ -190,4 +194,20 @@ pub fn finish_ribbed(
         stats.crown_width
     );
     write_skeleton(planned, out, skeleton, name, &MeshLook::default())
+}
+
+/// The growth database: `--database DIR` or the built-in copy.
+pub fn database(dir: Option<&PathBuf>) -> Result<Cow<'static, Database>> {
+    Ok(match dir {
+        Some(dir) => Cow::Owned(Database::from_dir(dir)?),
+        None => Cow::Borrowed(Database::builtin()),
+    })
+}
+
+/// The site, prices and costs the flags name, each read and checked.
+pub fn load_street(args: &StreetArgs) -> Result<(Option<Site>, Option<Prices>, Option<Costs>)> {
+    let site = args.site.as_deref().map(Site::load).transpose()?;
+    let prices = args.prices.as_deref().map(Prices::load).transpose()?;
+    let costs = args.costs.as_deref().map(Costs::load).transpose()?;
+    Ok((site, prices, costs))
 }

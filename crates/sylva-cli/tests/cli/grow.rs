@@ -47,7 +47,7 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
     // hold a share, counts, and an empty cell only where there is nothing to measure.
     for line in &lines[1..] {
         let cells: Vec<&str> = line.split(',').collect();
-        assert_eq!(cells.len(), 34, "{line}");
+        assert_eq!(cells.len(), 35, "{line}");
         let v: Vec<f64> = cells[..11].iter().map(|x| x.parse().unwrap()).collect();
         assert!((v[1] / v[2] - 1.0).abs() < 0.05, "{line}");
         let share: f64 = cells[11].parse().unwrap();

@@ -70,10 +70,12 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         assert!(number(row, "cooling_kwh") >= 0.0);
         // A deciduous plane keeps no winter shade: no heating penalty.
         assert_eq!(number(row, "heating_penalty_kbtu"), 0.0);
-        let costs: f64 = ["planting", "pruning", "removal", "sidewalk", "cleanup"]
-            .iter()
-            .map(|c| number(row, &format!("cost_{c}_usd")))
-            .sum();
+        let costs: f64 = [
+            "planting", "pruning", "removal", "sidewalk", "cleanup", "average",
+        ]
+        .iter()
+        .map(|c| number(row, &format!("cost_{c}_usd")))
+        .sum();
         let benefits: f64 = ["carbon", "stormwater", "cooling", "heating"]
             .iter()
             .map(|b| number(row, &format!("value_{b}_usd")))
@@ -83,6 +85,8 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
             "{row:?}"
         );
     }
+    // Itemised costs replace the built-in average.
+    assert_eq!(number(&rows[0], "cost_average_usd"), 0.0);
     // Planting and establishment are charged while the tree establishes, then stop.
     assert_eq!(number(&rows[0], "cost_planting_usd"), 250.0);
     assert_eq!(number(&rows[7], "cost_planting_usd"), 0.0);
@@ -109,8 +113,19 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
             .count();
         assert!(red > 50, "{name}: {red} red pixels");
     }
-    let bars = image::open(out.join("PLAC-benefits.png")).unwrap();
-    assert_eq!((bars.width(), bars.height()), (1500, 900));
+    let bars = image::open(out.join("PLAC-benefits.png"))
+        .unwrap()
+        .to_rgb8();
+    assert_eq!(bars.dimensions(), (1500, 900));
+    // Benefit bars up (cooling's amber, stormwater's blue), cost bars down (planting's brown).
+    let count = |rgb: [u8; 3]| bars.pixels().filter(|p| p.0 == rgb).count();
+    for (what, rgb) in [
+        ("cooling", [230, 170, 40]),
+        ("stormwater", [60, 110, 190]),
+        ("planting", [120, 80, 50]),
+    ] {
+        assert!(count(rgb) > 500, "{what}: {} pixels", count(rgb));
+    }
     // --json carries the same account.
     let run = sylva(&[
         "grow",
@@ -130,10 +145,9 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
     let record: serde_json::Value = serde_json::from_str(text(&run.stdout).trim()).unwrap();
     let street = &record["street"];
     assert!(street["co2_stored_kg"].as_f64().unwrap() > 0.0);
-    assert!(
-        street["cost_usd"].is_null(),
-        "no --costs: no costs, not zero"
-    );
+    // No --costs: Modesto's published programme average per tree, nothing itemised.
+    assert_eq!(street["cost_usd"]["average"], 28.77);
+    assert_eq!(street["cost_usd"]["pruning"], 0.0);
     assert!(
         street["conflicts"]
             .as_array()

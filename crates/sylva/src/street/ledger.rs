@@ -18,8 +18,9 @@ use super::StreetError;
 use super::carbon::{BiomassGroup, co2_stored_kg};
 use super::climate::{Climate, climate, interception_m3};
 use super::conflicts::{Conflict, conflicts_with};
+use super::costs::{Costs, YearCosts};
 use super::crown::{Crown, leaves_of};
-use super::prices::{Costs, Prices, YearCosts};
+use super::prices::Prices;
 use super::shade::{Energy, energy};
 use super::site::Site;
 use crate::Skeleton;
@@ -106,6 +107,7 @@ impl Assessor {
         let group = BiomassGroup::of(&m.species.scientific);
         let climate = climate(region);
         let prices = prices.or_else(|| Prices::builtin(region));
+        let costs = costs.or_else(|| Costs::builtin(region));
         let mut missing = Vec::new();
         if group.is_none() {
             missing.push(format!(
@@ -131,8 +133,16 @@ impl Assessor {
             )),
             _ => {}
         }
-        if costs.is_none() {
-            missing.push("costs: none are built in (give --costs costs.toml)".into());
+        match &costs {
+            None => missing.push(format!(
+                "costs: none are built in for {region} (give --costs costs.toml)"
+            )),
+            Some(Costs::Average(a)) => missing.push(format!(
+                "itemised costs: not built in; each year is charged {}: ${:.2} a tree, not \
+                 sized by the tree (give --costs for a city's items)",
+                a.source, a.per_tree_per_year
+            )),
+            Some(Costs::Itemised(_)) => {}
         }
         missing.push(
             "air pollutant uptake: not computed (no citable regional deposition velocities and \

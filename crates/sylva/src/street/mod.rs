@@ -10,7 +10,8 @@
 //! - [`sun`] and [`shade`]: the sun's clear-day path and the crown's shadow on the site's
 //!   façade ([`crown`] holds the crown's leaf area density), turned into cooling saved and an
 //!   evergreen's winter heating penalty.
-//! - [`prices`]: what each unit is worth and what a tree costs, built in or from TOML.
+//! - [`prices`] and [`costs`]: what each unit is worth and what a tree costs, built in or
+//!   from TOML.
 //! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it.
 //! - [`ledger`]: one year's account of all of these; [`rank`]: a region's species side by
 //!   side over the years; [`wires`]: the wire model against the database's own records;
@@ -22,6 +23,7 @@
 pub mod carbon;
 pub mod climate;
 pub mod conflicts;
+pub mod costs;
 pub mod crown;
 pub mod ledger;
 pub mod picture;
@@ -34,8 +36,9 @@ pub mod table;
 pub mod wires;
 
 pub use conflicts::{Conflict, Kind, Part};
+pub use costs::Costs;
 pub use ledger::{Assessor, Money, YearAccount};
-pub use prices::{Costs, Prices};
+pub use prices::Prices;
 pub use site::Site;
 
 /// What can go wrong reading a site, prices or costs, or assessing a species.

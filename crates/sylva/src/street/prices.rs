@@ -1,5 +1,5 @@
-//! What a unit of each benefit is worth, and what a tree costs to keep: built-in regional
-//! prices with their source, or a user's TOML files.
+//! What a unit of each benefit is worth: built-in regional prices with their source, or a
+//! user's TOML file.
 //!
 //! The built-in prices are i-Tree Streets' regional defaults, which come from the regional
 //! Community Tree Guides of the USDA Forest Service's Center for Urban Forest Research (for the
@@ -8,9 +8,7 @@
 //! `treemap/species/codes.py`, `ITREE_REGIONS`) and converted here to metric units. They are
 //! in the dollars of each guide's year, which is why `--prices` exists.
 //!
-//! No cost table is built in: the guides' cost tables could not be read for this release, and
-//! a cost that cannot be sourced is left out rather than guessed. `--costs costs.toml` brings a
-//! city's own (see docs/benefits.md for the file).
+//! Costs are in `costs.rs`.
 
 use super::StreetError;
 use serde::Deserialize;
@@ -113,146 +111,7 @@ impl Prices {
     }
 }
 
-/// Pruning price of one size class.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Pruning {
-    /// The class holds trees up to this DBH, cm.
-    pub up_to_dbh_cm: f64,
-    /// Price of one pruning, $.
-    pub price: f64,
-    /// Years between prunings.
-    pub cycle_years: f64,
-}
-
-/// What a tree costs to plant and keep, dollars.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Costs {
-    /// Where the costs come from.
-    pub source: String,
-    /// The year of the dollars.
-    pub year: u32,
-    /// Buying and planting, once, in the first year.
-    pub planting: f64,
-    /// Watering and care per year while the tree establishes.
-    pub establishment_per_year: f64,
-    /// How many years establishment lasts.
-    pub establishment_years: f64,
-    /// Pruning by size class, smallest first.
-    pub pruning: Vec<Pruning>,
-    /// Removal and stump grinding, $ per cm of DBH.
-    pub removal_per_cm_dbh: f64,
-    /// Chance a year that the tree must come out (storm, decline): the yearly removal cost is
-    /// this chance times the removal price.
-    pub removal_chance_per_year: f64,
-    /// Sidewalk and curb repair charged to the tree per year.
-    pub sidewalk_repair_per_year: f64,
-    /// Leaf, litter and storm clean-up per year.
-    pub cleanup_per_year: f64,
-}
-
-/// One year's costs of one tree, dollars.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct YearCosts {
-    /// Planting and establishment.
-    pub planting: f64,
-    /// Pruning.
-    pub pruning: f64,
-    /// Expected removal.
-    pub removal: f64,
-    /// Sidewalk repair.
-    pub sidewalk: f64,
-    /// Clean-up.
-    pub cleanup: f64,
-}
-
-impl YearCosts {
-    /// All of them.
-    pub fn total(&self) -> f64 {
-        self.planting + self.pruning + self.removal + self.sidewalk + self.cleanup
-    }
-}
-
-impl Costs {
-    /// Reads and checks a costs file.
-    pub fn load(path: &Path) -> Result<Costs, StreetError> {
-        let file = path.display().to_string();
-        let costs: Costs = parse(&read(path)?, &file)?;
-        for (key, v) in [
-            ("planting", costs.planting),
-            ("establishment_per_year", costs.establishment_per_year),
-            ("establishment_years", costs.establishment_years),
-            ("removal_per_cm_dbh", costs.removal_per_cm_dbh),
-            ("sidewalk_repair_per_year", costs.sidewalk_repair_per_year),
-            ("cleanup_per_year", costs.cleanup_per_year),
-        ] {
-            non_negative(&file, key, v)?;
-        }
-        if !(0.0..=1.0).contains(&costs.removal_chance_per_year) {
-            return Err(value(
-                &file,
-                "removal_chance_per_year",
-                costs.removal_chance_per_year,
-                "a chance, 0 to 1",
-            ));
-        }
-        if costs.pruning.is_empty() {
-            return Err(value(
-                &file,
-                "pruning",
-                0.0,
-                "at least one [[pruning]] class",
-            ));
-        }
-        let mut last = 0.0;
-        for p in &costs.pruning {
-            non_negative(&file, "pruning.price", p.price)?;
-            if !(p.cycle_years >= 1.0 && p.cycle_years <= 100.0) {
-                return Err(value(
-                    &file,
-                    "pruning.cycle_years",
-                    p.cycle_years,
-                    "1 to 100 years",
-                ));
-            }
-            if !(p.up_to_dbh_cm > last && p.up_to_dbh_cm.is_finite()) {
-                return Err(value(
-                    &file,
-                    "pruning.up_to_dbh_cm",
-                    p.up_to_dbh_cm,
-                    "classes in rising order of DBH, cm",
-                ));
-            }
-            last = p.up_to_dbh_cm;
-        }
-        Ok(costs)
-    }
-
-    /// The costs of the year that ends at `age`, for a tree of `dbh_cm`.
-    pub fn year(&self, age: f64, dbh_cm: f64) -> YearCosts {
-        let planting = if age <= 1.0 { self.planting } else { 0.0 }
-            + if age <= self.establishment_years {
-                self.establishment_per_year
-            } else {
-                0.0
-            };
-        let class = self
-            .pruning
-            .iter()
-            .find(|p| dbh_cm <= p.up_to_dbh_cm)
-            .or(self.pruning.last());
-        YearCosts {
-            planting,
-            pruning: class.map_or(0.0, |p| p.price / p.cycle_years),
-            removal: self.removal_chance_per_year * self.removal_per_cm_dbh * dbh_cm,
-            sidewalk: self.sidewalk_repair_per_year,
-            cleanup: self.cleanup_per_year,
-        }
-    }
-}
-
-fn read(path: &Path) -> Result<String, StreetError> {
+pub(super) fn read(path: &Path) -> Result<String, StreetError> {
     std::fs::read_to_string(path).map_err(|e| StreetError::Io {
         path: path.display().to_string(),
         message: e.to_string(),
@@ -273,7 +132,7 @@ pub(super) fn parse<T: serde::de::DeserializeOwned>(
     })
 }
 
-fn value(file: &str, key: &str, v: f64, allowed: &str) -> StreetError {
+pub(super) fn value(file: &str, key: &str, v: f64, allowed: &str) -> StreetError {
     StreetError::Value {
         file: file.to_string(),
         key: key.to_string(),
@@ -282,7 +141,7 @@ fn value(file: &str, key: &str, v: f64, allowed: &str) -> StreetError {
     }
 }
 
-fn non_negative(file: &str, key: &str, v: f64) -> Result<(), StreetError> {
+pub(super) fn non_negative(file: &str, key: &str, v: f64) -> Result<(), StreetError> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
@@ -306,7 +165,7 @@ mod tests {
     }
 
     #[test]
-    fn files_missing_a_price_or_with_bad_costs_are_errors() {
+    fn a_prices_file_missing_a_price_or_with_a_bad_one_is_an_error() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("prices.toml");
         std::fs::write(&path, "source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\n").unwrap();
@@ -316,27 +175,6 @@ mod tests {
         let e = Prices::load(&path).unwrap_err().to_string();
         assert!(
             e.contains("electricity_per_kwh") && e.contains(">= 0"),
-            "{e}"
-        );
-        let costs = dir.path().join("costs.toml");
-        let good = "source = \"test\"\nyear = 2024\nplanting = 200.0\nestablishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.0\nremoval_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n[[pruning]]\nup_to_dbh_cm = 15.0\nprice = 30.0\ncycle_years = 3\n[[pruning]]\nup_to_dbh_cm = 200.0\nprice = 300.0\ncycle_years = 5\n";
-        std::fs::write(&costs, good).unwrap();
-        let c = Costs::load(&costs).unwrap();
-        let y = c.year(1.0, 2.0);
-        assert_eq!(y.planting, 250.0);
-        assert_eq!(y.pruning, 10.0);
-        let y = c.year(20.0, 40.0);
-        assert_eq!(y.planting, 0.0);
-        assert_eq!(y.pruning, 60.0);
-        assert!((y.removal - 8.0).abs() < 1e-12);
-        assert!((y.total() - (60.0 + 8.0 + 4.0 + 3.0)).abs() < 1e-12);
-        std::fs::write(&costs, good.replace("cycle_years = 5", "cycle_years = 0")).unwrap();
-        let e = Costs::load(&costs).unwrap_err().to_string();
-        assert!(e.contains("pruning.cycle_years"), "{e}");
-        std::fs::write(&costs, good.replace("cleanup_per_year = 3.0\n", "")).unwrap();
-        let e = Costs::load(&costs).unwrap_err().to_string();
-        assert!(
-            e.contains("costs.toml") && e.contains("cleanup_per_year"),
             "{e}"
         );
     }

@@ -2,8 +2,9 @@
 //! and costs summed over the years, and the first year it runs into the street.
 
 use super::conflicts::{Conflict, Kind};
+use super::costs::Costs;
 use super::ledger::{Assessor, YearAccount};
-use super::prices::{Costs, Prices};
+use super::prices::Prices;
 use super::site::Site;
 use crate::growth::Measured;
 use crate::growth::report::Cohort;

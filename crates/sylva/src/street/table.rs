@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 pub const HEADER: &str = "co2_stored_kg,co2_sequestered_kg,interception_m3,cooling_kwh,\
 heating_penalty_kbtu,facade_shaded_m2h,value_carbon_usd,value_stormwater_usd,\
 value_cooling_usd,value_heating_usd,cost_planting_usd,cost_pruning_usd,cost_removal_usd,\
-cost_sidewalk_usd,cost_cleanup_usd,net_usd,conflicts";
+cost_sidewalk_usd,cost_cleanup_usd,cost_average_usd,net_usd,conflicts";
 
 fn cell(v: Option<f64>, digits: usize) -> String {
     v.map_or(String::new(), |v| format!("{v:.digits$}"))
@@ -52,6 +52,7 @@ pub fn row(a: &YearAccount) -> String {
         cell(c.map(|c| c.removal), 2),
         cell(c.map(|c| c.sidewalk), 2),
         cell(c.map(|c| c.cleanup), 2),
+        cell(c.map(|c| c.average), 2),
         format!("{:.2}", a.net()),
         conflicts_cell(&a.conflicts),
     ]
@@ -68,7 +69,7 @@ pub fn join_csv(growth_csv: &str, accounts: &[YearAccount]) -> String {
             _ => accounts
                 .get(i - 1)
                 .map(row)
-                .unwrap_or_else(|| ",".repeat(16)),
+                .unwrap_or_else(|| ",".repeat(17)),
         };
         // Writing into a String cannot fail.
         let _ = writeln!(out, "{line},{extra}");
@@ -99,6 +100,7 @@ pub fn json(a: &YearAccount) -> serde_json::Value {
             "removal": (c.removal * 100.0).round() / 100.0,
             "sidewalk": (c.sidewalk * 100.0).round() / 100.0,
             "cleanup": (c.cleanup * 100.0).round() / 100.0,
+            "average": (c.average * 100.0).round() / 100.0,
         })),
         "net_usd": (a.net() * 100.0).round() / 100.0,
         "conflicts": a.conflicts.iter().map(|c| serde_json::json!({
@@ -138,13 +140,14 @@ mod tests {
         let text = join_csv(&csv(&cohort.history[0]), &accounts);
         let mut reader = csv::Reader::from_reader(text.as_bytes());
         let header = reader.headers().unwrap().clone();
-        assert_eq!(header.len(), 17 + 17);
+        assert_eq!(header.len(), 17 + 18);
         let rows: Vec<_> = reader.records().map(|r| r.unwrap()).collect();
         assert_eq!(rows.len(), 2);
         let col = |name: &str| header.iter().position(|h| h == name).unwrap();
-        // No façade: energy cells are empty, not zero; no costs given: empty.
+        // No façade: energy cells are empty, not zero; Modesto's average cost is charged.
         assert_eq!(&rows[0][col("cooling_kwh")], "");
-        assert_eq!(&rows[0][col("cost_pruning_usd")], "");
+        assert_eq!(&rows[0][col("cost_pruning_usd")], "0.00");
+        assert_eq!(&rows[0][col("cost_average_usd")], "28.77");
         let stored: f64 = rows[1][col("co2_stored_kg")].parse().unwrap();
         assert!((stored - accounts[1].co2_stored_kg.unwrap()).abs() < 0.1);
         // The low wire is hit by the leader.
