@@ -91,7 +91,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             seen[i].extend(new.iter().map(|c| c.kind));
             if let (Some(site), false, false) = (&site, new.is_empty(), args.no_pictures) {
                 let kinds: Vec<Kind> = new.iter().map(|c| c.kind).collect();
-                let (w, h, rgba) = site_picture(skeleton, site, &kinds, (width, height));
+                let (w, h, rgba) = site_picture(skeleton, site, &kinds, (width * 2, height));
                 let picture = Picture {
                     width: w,
                     height: h,
@@ -106,8 +106,10 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                         age_label(age),
                         said.join(", ")
                     ),
-                    "red: what is in the way; red outline: the zone entered this year; shaded: \
-                     clear heights; circles: wire and lamp clearances; a 1.8 m person"
+                    "left: across the street; right: from above (bar: 5 m); a 1.8 m person"
+                        .to_string(),
+                    "red: in the way; red outline: the zone entered this year; shaded: clear \
+                     heights; circles and bands: wire and lamp clearances"
                         .to_string(),
                 ];
                 let picture = with_caption(&picture, &lines, 18.0);
