@@ -13,6 +13,7 @@ mod grow;
 mod lobes;
 mod rank;
 mod render;
+mod serve;
 mod shared;
 mod species;
 mod stick;
@@ -46,6 +47,7 @@ fn main() {
         Command::Grow(args) => grow::run(&args),
         Command::Rank(args) => rank::run(&args),
         Command::Wires(args) => wires::run(&args),
+        Command::Serve(args) => serve::run(&args),
         Command::Fractal(args) => fractal::run(&args),
         Command::Whisk(args) => whisk::run(&args),
         Command::Stick(args) => stick::run(&args),

@@ -35,6 +35,10 @@ pub enum Command {
     /// Check the site's wire model against the Urban Tree Database's own records of wire
     /// conflicts (table TS3), per region.
     Wires(WiresArgs),
+    /// A local web page on which planners compare street trees growing side by side over the
+    /// years: 3-D trees, growth charts, benefits, costs, conflicts and downloads, with the
+    /// JSON API under it.
+    Serve(ServeArgs),
     /// Open the interactive editor: every parameter live, orbit camera, wind, load/save/export;
     /// or fly through a forest file, or look at a .glb.
     View(ViewArgs),
@@ -515,6 +519,26 @@ pub struct RankArgs {
     /// Print one JSON object per species instead of the table.
     #[arg(long)]
     pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct ServeArgs {
+    /// Port to listen on (0: any free one).
+    #[arg(long, default_value_t = 8080)]
+    pub port: u16,
+
+    /// Address to listen on: this computer only unless told otherwise (0.0.0.0: every
+    /// network the computer is on).
+    #[arg(long, default_value = "127.0.0.1")]
+    pub host: String,
+
+    /// Open the page in the default browser.
+    #[arg(long)]
+    pub open: bool,
+
+    /// Most memory kept for grown trees, MiB (the oldest used go first).
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(64..=65536))]
+    pub cache_mib: u64,
 }
 
 #[derive(Args, Debug)]

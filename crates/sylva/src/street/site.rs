@@ -42,11 +42,11 @@
 //! ```
 
 use super::StreetError;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The street around the tree.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Street {
     /// y of the curb face, m (negative: between the tree and the roadway).
@@ -60,7 +60,7 @@ pub struct Street {
 }
 
 /// The building's street wall.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Facade {
     /// y of the wall, m.
@@ -76,7 +76,7 @@ pub struct Facade {
 }
 
 /// An awning or a sign: a box on the wall.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct WallBox {
     /// Underside height, m.
@@ -90,7 +90,7 @@ pub struct WallBox {
 }
 
 /// An overhead line along the street.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Wire {
     /// Height of the line, m.
@@ -102,7 +102,7 @@ pub struct Wire {
 }
 
 /// A street light's lamp.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Light {
     /// Position along the street, m.
@@ -116,7 +116,7 @@ pub struct Light {
 }
 
 /// A sight triangle at a corner or signal: nothing between `low` and `high` inside it.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SightTriangle {
     /// Its three corners, (x, y), m.
@@ -128,7 +128,7 @@ pub struct SightTriangle {
 }
 
 /// A whole site.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Site {
     /// The street.

@@ -1,0 +1,394 @@
+// The page: a region, up to four species, a site and an age; the trees drawn side by side at
+// that age, their growth charts, the year's table, benefit and cost bars, the site's
+// conflicts, and downloads. Everything comes from the JSON API under /api/.
+//
+// Timings the browser test reads are kept in `window.sylva`: when the first trees were drawn
+// (ms since navigation started) and, for each age drawn, how long after the slider stopped.
+
+import * as THREE from '/vendor/three.min.js';
+import { Street } from '/scene.js';
+import { QUANTITIES, lineChart, barChart } from '/charts.js';
+
+const COLOURS = ['#2f7d4f', '#c0612b', '#3b6fb6', '#8e4fa8'];
+// Detail levels of /api/tree.glb: 0 every twig and leaf; each next level about half the
+// triangles, leaf area kept (Weber & Penn's degradation). The page starts at 2 and moves one
+// level at a time to keep a frame within FRAME_MS: a GPU draws the whole trees, a computer
+// drawing WebGL on its CPU a thinner crown that still turns smoothly.
+const DETAIL_NAMES = ['every twig and leaf', 'half the twigs and leaves', 'a quarter of the twigs and leaves', 'an eighth of the twigs and leaves'];
+const FRAME_MS = [25, 120];
+let detail = 2;
+const MAX_SPECIES = 4;
+const $ = (id) => document.getElementById(id);
+
+const timing = { firstTreeMs: null, ageDraws: [], requests: 0, tables: 0, shownAge: null };
+window.sylva = timing;
+
+const state = {
+  regions: [], species: [], sites: [],
+  region: 'InlVal', site: 'narrow', chosen: [], age: 20,
+  growth: new Map(),   // code -> growth JSON (all ages)
+};
+const street = new Street($('scene'));
+window.sylvaStreet = street;
+const loader = new THREE.GLTFLoader();
+const glbs = new Map();  // url -> Promise of a glTF scene (the last 40 kept)
+
+async function getJson(url) {
+  timing.requests++;
+  for (;;) {
+    const r = await fetch(url);
+    if (r.status === 503) { await new Promise((ok) => setTimeout(ok, 1000)); continue; }
+    const body = await r.json();
+    if (!r.ok) throw new Error(body.error || r.statusText);
+    return body;
+  }
+}
+
+function query(extra) {
+  const p = new URLSearchParams({ region: state.region, ...extra });
+  return p.toString();
+}
+
+function status(text) { $('status').textContent = text || ''; }
+
+// ---- choosing -------------------------------------------------------------------------
+
+async function chooseRegion(code, keep) {
+  state.region = code;
+  state.species = await getJson(`/api/species?${query({})}`);
+  const known = new Set(state.species.map((s) => s.code));
+  state.chosen = (keep || state.chosen).filter((c) => known.has(c));
+  if (state.chosen.length === 0) state.chosen = state.species.slice(0, 2).map((s) => s.code);
+  state.growth.clear();
+  await refresh();
+}
+
+function renderChips() {
+  const box = $('chosen');
+  box.textContent = '';
+  state.chosen.forEach((code, i) => {
+    const s = state.species.find((x) => x.code === code);
+    const chip = document.createElement('span');
+    chip.className = 'chip';
+    chip.style.background = COLOURS[i];
+    chip.title = `${s.scientific} (${s.code}), data for ages ${s.ages[0]} to ${s.ages[1]}`;
+    chip.append(s.common);
+    const x = document.createElement('button');
+    x.type = 'button';
+    x.textContent = '×';
+    x.setAttribute('aria-label', `Remove ${s.common}`);
+    x.onclick = () => { state.chosen.splice(i, 1); refresh(); };
+    chip.append(x);
+    box.append(chip);
+  });
+  $('search').disabled = state.chosen.length >= MAX_SPECIES;
+  $('search').placeholder = state.chosen.length >= MAX_SPECIES
+    ? 'Four species at most: remove one to add another'
+    : 'Add a species: common or scientific name, or code';
+}
+
+function searchMatches(text) {
+  const t = text.trim().toLowerCase();
+  if (!t) return [];
+  return state.species.filter((s) => !state.chosen.includes(s.code) &&
+    (s.common.toLowerCase().includes(t) || s.scientific.toLowerCase().includes(t) ||
+     s.code.toLowerCase() === t || s.code.toLowerCase().startsWith(t))).slice(0, 30);
+}
+
+function showMatches() {
+  const list = $('matches');
+  const found = searchMatches($('search').value);
+  list.textContent = '';
+  list.hidden = found.length === 0;
+  found.forEach((s, i) => {
+    const li = document.createElement('li');
+    li.setAttribute('role', 'option');
+    li.dataset.code = s.code;
+    if (i === 0) li.setAttribute('aria-selected', 'true');
+    li.innerHTML = `${s.common} <small><i>${s.scientific}</i> ${s.code}</small>`;
+    li.onmousedown = (e) => { e.preventDefault(); addSpecies(s.code); };
+    list.append(li);
+  });
+}
+
+function addSpecies(code) {
+  if (state.chosen.length >= MAX_SPECIES || state.chosen.includes(code)) return;
+  state.chosen.push(code);
+  $('search').value = '';
+  $('matches').hidden = true;
+  refresh();
+}
+
+// ---- the age range and the slider -----------------------------------------------------
+
+function ageRange() {
+  let lo = 1, hi = 200;
+  for (const code of state.chosen) {
+    const s = state.species.find((x) => x.code === code);
+    lo = Math.max(lo, s.ages[0]);
+    hi = Math.min(hi, s.ages[1]);
+  }
+  return [lo, Math.max(lo, hi)];
+}
+
+function setAge(age) {
+  const [lo, hi] = ageRange();
+  state.age = Math.min(hi, Math.max(lo, Math.round(age)));
+  $('age').value = state.age;
+  $('age-label').textContent = `age ${state.age}`;
+  $('table-title').textContent = `At ${state.age} years`;
+}
+
+// ---- drawing ------------------------------------------------------------------------------
+
+let drawing = 0;   // the latest request for trees; older ones give way
+
+async function drawTrees(stoppedAt) {
+  const ticket = ++drawing;
+  const age = state.age;
+  const urls = state.chosen.map((code) => `/api/tree.glb?${query({ species: code, age, detail })}`);
+  const scenes = await Promise.all(urls.map(loadGlb)).catch((e) => { status(e.message); return null; });
+  if (!scenes || ticket !== drawing) return;
+  timing.treesLoadedMs ??= performance.now();
+  layoutStreet();
+  const frame = street.setTrees(scenes.map((s) => s.clone()));
+  (timing.frames ??= []).push([detail, Math.round(frame), street.triangles()]);
+  placeLabels();
+  const now = performance.now();
+  if (timing.firstTreeMs === null) timing.firstTreeMs = now;
+  if (stoppedAt != null) timing.ageDraws.push({ age, ms: now - stoppedAt, frame, detail });
+  timing.shownAge = age;
+  status('');
+  // Keep the next frames within FRAME_MS: one level coarser or finer, and redraw this age.
+  const next = frame > FRAME_MS[1] ? Math.min(3, detail + 1) : frame < FRAME_MS[0] ? Math.max(0, detail - 1) : detail;
+  timing.detail = detail;
+  $('detail').textContent = `Drawn with ${DETAIL_NAMES[detail]} (a frame takes ${frame.toFixed(0)} ms here).`;
+  if (next !== detail && ticket === drawing) {
+    detail = next;
+    drawTrees(null);
+  }
+}
+
+function loadGlb(url) {
+  if (!glbs.has(url)) {
+    timing.requests++;
+    const p = fetch(url).then(async (r) => {
+      if (!r.ok) throw new Error((await r.json()).error);
+      return r.arrayBuffer();
+    }).then((buf) => loader.parseAsync(buf, '')).then((gltf) => gltf.scene);
+    p.catch(() => glbs.delete(url));
+    glbs.set(url, p);
+    if (glbs.size > 40) glbs.delete(glbs.keys().next().value);
+  }
+  return glbs.get(url);
+}
+
+function layoutStreet() {
+  const site = state.sites.find((s) => s.key === state.site).site;
+  const region = state.regions.find((r) => r.code === state.region);
+  // Slots wide enough for each species' widest crown in its data, so trees never overlap.
+  let widest = 4, tallest = 6;
+  for (const code of state.chosen) {
+    const g = state.growth.get(code);
+    if (!g) continue;
+    for (const r of g.rows) {
+      widest = Math.max(widest, r.measured.crown_diameter, r.model.crown_diameter);
+      tallest = Math.max(tallest, r.measured.height, r.model.height);
+    }
+  }
+  street.setStreet(site, state.chosen.length, widest * 1.05 + 1, region.latitude ?? 37.6, tallest);
+}
+
+function placeLabels() {
+  const box = $('labels');
+  box.textContent = '';
+  state.chosen.forEach((code, i) => {
+    const s = state.species.find((x) => x.code === code);
+    const [x, y, visible] = street.project(street.slots[i] ?? 0, -1.5, 0);
+    if (!visible) return;
+    const div = document.createElement('div');
+    div.style.left = `${x}px`;
+    div.style.top = `${Math.min(y + 6, $('scene').clientHeight - 40)}px`;
+    div.style.borderLeft = `4px solid ${COLOURS[i]}`;
+    div.textContent = s.common;
+    box.append(div);
+  });
+}
+street.onDraw = () => { if (street.slots.length) placeLabels(); };
+
+function row(code) {
+  const g = state.growth.get(code);
+  return g && g.rows.find((r) => r.age === state.age);
+}
+
+function drawNumbers() {
+  const series = state.chosen.map((code, i) => ({ colour: COLOURS[i], rows: state.growth.get(code)?.rows || [] }));
+  for (const canvas of document.querySelectorAll('#charts canvas')) {
+    lineChart(canvas, canvas.dataset.q, series, state.age);
+  }
+  const f = (v, d = 1) => (v == null ? '–' : Number(v).toFixed(d));
+  const head = ['Species', 'Height m', 'DBH cm', 'Crown m', 'Leaf area m²', 'CO₂ stored kg',
+    'CO₂ taken up kg/yr', 'Rain held m³', 'Cooling kWh', 'Net $/yr', 'In the way'];
+  const lines = state.chosen.map((code, i) => {
+    const s = state.species.find((x) => x.code === code);
+    const r = row(code);
+    if (!r) return `<tr><td style="color:${COLOURS[i]}">${s.common}</td><td colspan="10">growing…</td></tr>`;
+    const st = r.street;
+    const conflicts = st.conflicts.map((c) => c.kind.replace('_', ' ')).join(', ') || 'nothing';
+    return `<tr><td style="color:${COLOURS[i]}"><b>${s.common}</b></td>` +
+      `<td>${f(r.model.height)} <small>(${f(r.measured.height)})</small></td>` +
+      `<td>${f(r.model.dbh)} <small>(${f(r.measured.dbh)})</small></td>` +
+      `<td>${f(r.model.crown_diameter)} <small>(${f(r.measured.crown_diameter)})</small></td>` +
+      `<td>${f(r.model.leaf_area, 0)}</td><td>${f(st.co2_stored_kg, 0)}</td>` +
+      `<td>${f(st.co2_sequestered_kg)}</td><td>${f(st.interception_m3, 2)}</td>` +
+      `<td>${f(st.cooling_kwh, 0)}</td><td>${f(st.net_usd, 0)}</td><td>${conflicts}</td></tr>`;
+  });
+  $('table').innerHTML = `<tr>${head.map((h) => `<th>${h}</th>`).join('')}</tr>${lines.join('')}` +
+    '<tr><td colspan="11" class="note">Grown tree, with the measured equation in brackets.</td></tr>';
+  const items = state.chosen.map((code, i) => {
+    const s = state.species.find((x) => x.code === code);
+    const r = row(code);
+    return r && { label: s.common, colour: COLOURS[i], street: r.street };
+  }).filter(Boolean);
+  barChart($('bars'), items);
+  const missing = new Set();
+  for (const code of state.chosen) for (const m of state.growth.get(code)?.missing || []) missing.add(m);
+  $('missing').textContent = missing.size ? `Not counted: ${[...missing].join('; ')}.` : '';
+}
+
+function drawConflicts() {
+  const [lo, hi] = ageRange();
+  const marks = $('marks');
+  marks.textContent = '';
+  const parts = [];
+  state.chosen.forEach((code, i) => {
+    const g = state.growth.get(code);
+    const s = state.species.find((x) => x.code === code);
+    if (!g) return;
+    const items = g.first_conflicts.map((c) => `${c.kind.replace('_', ' ')} at ${c.age}`);
+    parts.push(`<li style="color:${COLOURS[i]}"><b>${s.common}</b>: ${items.join(', ') || 'none in its data'}</li>`);
+    for (const c of g.first_conflicts) {
+      if (c.age < lo || c.age > hi) continue;
+      const m = document.createElement('span');
+      m.style.left = `${((c.age - lo) / Math.max(1, hi - lo)) * 100}%`;
+      m.style.background = COLOURS[i];
+      m.title = `${s.common}: first ${c.kind.replace('_', ' ')} conflict at ${c.age}`;
+      marks.append(m);
+    }
+  });
+  const label = state.sites.find((s) => s.key === state.site).label;
+  $('conflicts').innerHTML = `<p class="note">${label}.</p><ul>${parts.join('')}</ul>`;
+}
+
+function drawDownloads() {
+  const a = (href, text) => `<a href="${href}" download>${text}</a>`;
+  const all = state.chosen.join(',');
+  const links = [
+    a(`/api/compare.png?${query({ species: all, age: state.age })}`, 'Comparison picture (PNG)'),
+    a(`/api/table.csv?${query({ species: all, site: state.site })}`, 'Table (CSV)'),
+  ];
+  for (const code of state.chosen) {
+    links.push(a(`/api/tree.glb?${query({ species: code, age: state.age })}`, `${code} at ${state.age} (GLB)`));
+    links.push(a(`/api/plan.svg?${query({ species: code, age: state.age })}`, `${code} plan symbol (SVG)`));
+  }
+  $('downloads').innerHTML = links.join(' ');
+}
+
+function drawAll() {
+  drawNumbers();
+  drawConflicts();
+  drawDownloads();
+}
+
+// ---- loading ------------------------------------------------------------------------------
+
+async function refresh() {
+  renderChips();
+  timing.tables = 0;
+  if (state.chosen.length === 0) {
+    street.setTrees([]);
+    $('labels').textContent = '';
+    drawAll();
+    status('Add a species to begin: type part of its name above.');
+    return;
+  }
+  const [lo, hi] = ageRange();
+  $('age').min = lo;
+  $('age').max = hi;
+  setAge(state.age);
+  const chosen = state.chosen.slice();
+  status('Growing the trees…');
+  const trees = drawTrees(null);
+  drawAll();
+  await Promise.all(chosen.map(async (code) => {
+    const key = `${code}/${state.site}`;
+    if (state.growth.get(code)?.key !== key) {
+      const g = await getJson(`/api/growth?${query({ species: code, site: state.site })}`);
+      g.key = key;
+      state.growth.set(code, g);
+      drawAll();
+    }
+  })).catch((e) => status(e.message));
+  timing.tables = state.chosen.filter((c) => state.growth.get(c)?.key === `${c}/${state.site}`).length;
+  await trees;
+  layoutStreet();
+  drawTrees(null);
+}
+
+let playing = null;
+function play() {
+  if (playing) { clearInterval(playing); playing = null; $('play').innerHTML = '&#9654;'; return; }
+  const [lo, hi] = ageRange();
+  if (state.age >= hi) setAge(lo);
+  $('play').innerHTML = '&#10074;&#10074;';
+  playing = setInterval(async () => {
+    const [, top] = ageRange();
+    if (state.age >= top) { play(); return; }
+    setAge(state.age + 1);
+    drawNumbers();
+    drawDownloads();
+    await drawTrees(null);
+  }, 600);
+}
+
+async function start() {
+  // The trees the page opens on are fetched at once, beside the lists it needs first.
+  const url = new URLSearchParams(location.search);
+  const wanted = (url.get('species') || 'PLAC,PICH').split(',').filter(Boolean);
+  if (url.get('age')) state.age = Number(url.get('age'));
+  state.region = url.get('region') || 'InlVal';
+  for (const code of wanted) loadGlb(`/api/tree.glb?${query({ species: code, age: state.age, detail })}`).catch(() => {});
+  const [regions, sites] = await Promise.all([getJson('/api/regions'), getJson('/api/sites')]);
+  state.regions = regions;
+  state.sites = sites;
+  // A provisional street, drawn once to compile the shaders while the trees download.
+  const region = regions.find((r) => r.code === state.region);
+  street.setStreet(sites[0].site, wanted.length, 12, region?.latitude ?? 37.6, 12);
+  timing.warmMs = street.warm();
+  $('region').innerHTML = regions.map((r) =>
+    `<option value="${r.code}">${r.city}: ${r.name} (${r.code}, ${r.species} species)</option>`).join('');
+  $('site').innerHTML = sites.map((s) => `<option value="${s.key}">${s.label}</option>`).join('');
+  $('region').onchange = (e) => chooseRegion(e.target.value, []);
+  $('site').onchange = (e) => { state.site = e.target.value; street.streetKey = null; refresh(); };
+  $('search').oninput = showMatches;
+  $('search').onkeydown = (e) => {
+    if (e.key === 'Enter') {
+      const first = $('matches').querySelector('li');
+      if (first) addSpecies(first.dataset.code);
+    }
+  };
+  $('search').onblur = () => { $('matches').hidden = true; };
+  let lastInput = 0;
+  $('age').oninput = (e) => {
+    lastInput = performance.now();
+    setAge(Number(e.target.value));
+    drawNumbers();
+    drawDownloads();
+    drawTrees(lastInput);
+  };
+  $('play').onclick = play;
+  $('region').value = state.region;
+  await chooseRegion(state.region, wanted);
+}
+
+start().catch((e) => status(`Could not start: ${e.message}`));

@@ -1,0 +1,379 @@
+//! The JSON API under the page. Every handler checks its parameters first ([`crate::params`]),
+//! then reads the cache; growth, meshing and drawing run on blocking threads, never on the
+//! async ones, so a request that only reads is never held up by another's growth.
+
+use crate::State;
+use crate::cache::{Growth, Key, Refused};
+use crate::grown::{self, AgeEntry, first_conflicts, sites};
+use crate::params::{ApiError, Query};
+use axum::Json;
+use axum::extract::{Query as AxumQuery, State as AxumState};
+use axum::http::{StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use std::collections::HashMap;
+use std::sync::Arc;
+use sylva::drawing::{DrawOptions, View, draw_svg};
+use sylva::growth::Measured;
+use sylva::growth::report::{self, AgeRecord};
+use sylva::street::{climate::climate, table};
+
+type Params = AxumQuery<HashMap<String, String>>;
+type Reply = Result<Response, ApiError>;
+
+/// `GET /api/regions`: the 17 regions, Modesto's first, with the latitude the page's sun
+/// uses and how many species can be grown there.
+pub async fn regions(AxumState(state): AxumState<Arc<State>>) -> Response {
+    once(&state, "regions", || regions_json(&state))
+}
+
+fn regions_json(state: &State) -> serde_json::Value {
+    let db = state.db;
+    let mut regions: Vec<_> = db.regions().iter().collect();
+    // Modesto (the seeds' city) first, the rest as the database lists them.
+    regions.sort_by_key(|r| r.code != "InlVal");
+    let list: Vec<_> = regions
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "code": r.code,
+                "name": r.name,
+                "city": r.city,
+                "latitude": climate(&r.code).map(|c| c.latitude),
+                "species": db.growable(&r.code).len(),
+            })
+        })
+        .collect();
+    serde_json::Value::Array(list)
+}
+
+/// A JSON answer made once and kept.
+fn once(state: &State, name: &str, make: impl FnOnce() -> serde_json::Value) -> Response {
+    let kept = state
+        .lists
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get(name)
+        .cloned();
+    let bytes = kept.unwrap_or_else(|| {
+        let bytes = axum::body::Bytes::from(make().to_string());
+        state
+            .lists
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .insert(name.to_string(), bytes.clone());
+        bytes
+    });
+    ([(header::CONTENT_TYPE, "application/json")], bytes).into_response()
+}
+
+/// `GET /api/species?region=R`: the region's species that can be grown, with the ages their
+/// data cover.
+pub async fn species(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
+    let region = Query(&q).region(state.db)?;
+    Ok(once(&state, &format!("species/{region}"), || {
+        species_json(&state, &region)
+    }))
+}
+
+fn species_json(state: &State, region: &str) -> serde_json::Value {
+    let db = state.db;
+    let mut list = Vec::new();
+    for s in db.growable(region) {
+        // growable() has checked the five equations, so find() succeeds.
+        let Ok(m) = db.find(region, &s.code) else {
+            continue;
+        };
+        let ages = grown::ages_of(&m);
+        list.push(serde_json::json!({
+            "code": s.code,
+            "common": s.common,
+            "scientific": s.scientific,
+            "type": s.tree_type,
+            "ages": [ages.first(), ages.last()],
+        }));
+    }
+    serde_json::Value::Array(list)
+}
+
+/// `GET /api/status`: what the cache holds against its bound.
+pub async fn status(AxumState(state): AxumState<Arc<State>>) -> Json<serde_json::Value> {
+    let c = &state.cache;
+    Json(serde_json::json!({
+        "cache_bytes": c.bytes(),
+        "glb_bytes": state.glbs.bytes(),
+        "cache_bound": c.bound(),
+        "growths": c.len(),
+        "growing": c.growing(),
+        "growing_limit": c.growing_limit(),
+    }))
+}
+
+/// `GET /api/sites`: the built-in planting sites, as the page draws them (metres; the trunk
+/// at the origin, x along the street, y across it towards the buildings).
+pub async fn site_list() -> Json<serde_json::Value> {
+    let list: Vec<_> = sites()
+        .iter()
+        .map(|s| serde_json::json!({"key": s.key, "label": s.label, "site": s.site}))
+        .collect();
+    Json(serde_json::Value::Array(list))
+}
+
+fn dims(model: &sylva::growth::Dimensions) -> serde_json::Value {
+    let r = |v: f64, k: f64| (v * k).round() / k;
+    serde_json::json!({
+        "height": r(model.height, 100.0),
+        "crown_height": r(model.crown_height, 100.0),
+        "crown_diameter": r(model.crown_diameter, 100.0),
+        "dbh": r(model.dbh, 10.0),
+        "leaf_area": r(model.leaf_area, 10.0),
+    })
+}
+
+fn measured_dims(r: &AgeRecord) -> serde_json::Value {
+    let t = &r.measured;
+    dims(&sylva::growth::Dimensions {
+        height: t.height,
+        crown_height: t.crown_height,
+        crown_diameter: t.crown_diameter,
+        dbh: t.dbh,
+        leaf_area: t.leaf_area,
+    })
+}
+
+impl State {
+    /// The growth of a species, started if need be.
+    fn growth(&self, region: &str, m: &Measured, seed: u64) -> Result<Arc<Growth>, ApiError> {
+        let key = Key {
+            region: region.to_string(),
+            code: m.species.code.clone(),
+            seed,
+        };
+        self.cache.get(key, m).map_err(|Refused::Busy(n)| ApiError {
+            status: StatusCode::SERVICE_UNAVAILABLE,
+            parameter: None,
+            message: format!(
+                "busy: {n} species are growing, the most at once; try again in a few seconds"
+            ),
+            allowed: None,
+        })
+    }
+
+    /// Each species' entry at `age`.
+    async fn at(
+        &self,
+        region: &str,
+        species: &[Measured],
+        age: u32,
+        seed: u64,
+    ) -> Result<Vec<Arc<AgeEntry>>, ApiError> {
+        let mut entries = Vec::new();
+        for m in species {
+            let growth = self.growth(region, m, seed)?;
+            let entry = growth.at(age).await.ok_or_else(|| {
+                ApiError::internal(format!(
+                    "{}: the growth stopped before age {age}",
+                    m.label()
+                ))
+            })?;
+            entries.push(entry);
+        }
+        Ok(entries)
+    }
+}
+
+/// `GET /api/growth?region=R&species=S[&seed=0][&site=narrow]`: every age of one species:
+/// the grown tree's dimensions against the equations, the year's benefits, costs and
+/// conflicts on the site, the first year of each conflict, and what is not computed.
+pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
+    let query = Query(&q);
+    let region = query.region(state.db)?;
+    let species = query.species(state.db, &region)?;
+    let [m] = species.as_slice() else {
+        return Err(ApiError::bad(
+            "species",
+            format!(
+                "{} species given; the growth table is one species'",
+                species.len()
+            ),
+            "one species",
+        ));
+    };
+    let seed = query.seed()?;
+    let site = query.site()?;
+    let entries = state.growth(&region, m, seed)?.all().await;
+    let rows: Vec<_> = entries
+        .iter()
+        .map(|e| {
+            serde_json::json!({
+                "age": e.record.age,
+                "model": dims(&e.record.model),
+                "measured": measured_dims(&e.record),
+                "street": table::json(&e.accounts[site]),
+            })
+        })
+        .collect();
+    let first: Vec<_> = first_conflicts(&entries, site)
+        .into_iter()
+        .map(|(age, kind)| serde_json::json!({"kind": kind.name(), "age": age}))
+        .collect();
+    let (bark, leaves) = m.colours();
+    let body = serde_json::json!({
+        "species": {
+            "code": m.species.code,
+            "common": m.species.common,
+            "scientific": m.species.scientific,
+            "type": m.species.tree_type,
+            "label": m.label(),
+            "bark": bark,
+            "leaves": leaves,
+        },
+        "region": {"code": m.region.code, "name": m.region.name, "city": m.region.city},
+        "seed": seed,
+        "site": sites()[site].key,
+        "rows": rows,
+        "first_conflicts": first,
+        "missing": grown::missing(m, site),
+    });
+    Ok(Json(body).into_response())
+}
+
+/// `GET /api/tree.glb?region=R&species=S&age=A[&seed=0][&detail=0]`: the grown tree as the
+/// page draws it, whole or thinned for a slow graphics path (detail 1 to 3).
+pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
+    let query = Query(&q);
+    let region = query.region(state.db)?;
+    let species = query.species(state.db, &region)?;
+    if species.len() != 1 {
+        return Err(ApiError::bad(
+            "species",
+            format!("{} species given; a GLB holds one tree", species.len()),
+            "one species",
+        ));
+    }
+    let age = query.age(&species)?;
+    let seed = query.seed()?;
+    let detail = query.detail()?;
+    let name = format!("{}-age-{age:02}.glb", species[0].species.code);
+    let kept = format!("{region}/{}/{seed}/{age}/{detail}", species[0].species.code);
+    if let Some(glb) = state.glbs.get(&kept) {
+        return Ok(file(glb, "model/gltf-binary", &name));
+    }
+    let entry = state.at(&region, &species, age, seed).await?.remove(0);
+    let m = species[0].clone();
+    let glb = blocking(move || {
+        grown::web_glb(&m, &entry.skeleton, detail).map_err(|e| ApiError::internal(e.to_string()))
+    })
+    .await?;
+    let glb = axum::body::Bytes::from(glb);
+    state.glbs.put(kept, glb.clone());
+    Ok(file(glb, "model/gltf-binary", &name))
+}
+
+/// `GET /api/plan.svg?region=R&species=S&age=A[&seed=0]`: the tree from above, a line
+/// drawing with a scale bar, as `sylva draw --view top` makes for CAD.
+pub async fn plan_svg(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
+    let query = Query(&q);
+    let region = query.region(state.db)?;
+    let species = query.species(state.db, &region)?;
+    if species.len() != 1 {
+        return Err(ApiError::bad(
+            "species",
+            format!(
+                "{} species given; a plan symbol is one tree's",
+                species.len()
+            ),
+            "one species",
+        ));
+    }
+    let age = query.age(&species)?;
+    let seed = query.seed()?;
+    let entry = state.at(&region, &species, age, seed).await?.remove(0);
+    let svg = blocking(move || {
+        let options = DrawOptions {
+            view: View::Top,
+            ..Default::default()
+        };
+        Ok(draw_svg(&entry.skeleton, &options))
+    })
+    .await?;
+    let name = format!("{}-age-{age:02}-plan.svg", species[0].species.code);
+    Ok(file(svg.into_bytes(), "image/svg+xml", &name))
+}
+
+/// `GET /api/table.csv?region=R&species=A,B[&seed=0][&site=narrow]`: every age of each
+/// species, as `sylva grow` writes its CSV, with the species' code first on each row.
+pub async fn table_csv(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
+    let query = Query(&q);
+    let region = query.region(state.db)?;
+    let species = query.species(state.db, &region)?;
+    let seed = query.seed()?;
+    let site = query.site()?;
+    let mut out = String::new();
+    for (i, m) in species.iter().enumerate() {
+        let entries = state.growth(&region, m, seed)?.all().await;
+        let history: Vec<AgeRecord> = entries.iter().map(|e| e.record).collect();
+        let accounts: Vec<_> = entries.iter().map(|e| e.accounts[site].clone()).collect();
+        let csv = table::join_csv(&report::csv(&history), &accounts);
+        for (n, line) in csv.lines().enumerate() {
+            if n == 0 {
+                if i == 0 {
+                    out.push_str("species,");
+                    out.push_str(line);
+                    out.push('\n');
+                }
+                continue;
+            }
+            out.push_str(&m.species.code);
+            out.push(',');
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    let codes: Vec<&str> = species.iter().map(|m| m.species.code.as_str()).collect();
+    Ok(file(
+        out.into_bytes(),
+        "text/csv",
+        &format!("{}.csv", codes.join("-")),
+    ))
+}
+
+/// `GET /api/compare.png?region=R&species=A,B&age=A[&seed=0][&size=1280x720]`: the species
+/// side by side at that age, drawn as `sylva grow --compare` draws them.
+pub async fn compare_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
+    let query = Query(&q);
+    let region = query.region(state.db)?;
+    let species = query.species(state.db, &region)?;
+    let age = query.age(&species)?;
+    let seed = query.seed()?;
+    let size = query.size()?;
+    let entries = state.at(&region, &species, age, seed).await?;
+    let pictures = state.clone();
+    let names: Vec<&str> = species.iter().map(|m| m.species.code.as_str()).collect();
+    let name = format!("compare-{}-age-{age:02}.png", names.join("-"));
+    let png = blocking(move || pictures.pictures.compare(&species, &entries, age, size)).await?;
+    Ok(file(png, "image/png", &name))
+}
+
+/// Runs `work` on a blocking thread.
+async fn blocking<T: Send + 'static>(
+    work: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    tokio::task::spawn_blocking(work)
+        .await
+        .map_err(|e| ApiError::internal(format!("the work stopped: {e}")))?
+}
+
+/// A download: its type and the file name a browser saves it as.
+fn file(bytes: impl Into<axum::body::Bytes>, content_type: &'static str, name: &str) -> Response {
+    (
+        [
+            (header::CONTENT_TYPE, content_type.to_string()),
+            (
+                header::CONTENT_DISPOSITION,
+                format!("inline; filename=\"{name}\""),
+            ),
+        ],
+        bytes.into(),
+    )
+        .into_response()
+}

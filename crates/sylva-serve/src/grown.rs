@@ -1,0 +1,283 @@
+//! One species grown through every whole age its data cover, once, with what the page shows at
+//! each age: the tree measured against the equations, its account on each built-in site, and
+//! its skeleton (meshed or drawn only when asked for: a skeleton is a fraction of a mesh's
+//! size, and meshing a grown tree takes milliseconds).
+
+use std::sync::OnceLock;
+use sylva::ExportError;
+use sylva::Skeleton;
+use sylva::export::{Materials, to_glb};
+use sylva::growth::Measured;
+use sylva::growth::report::{AgeRecord, Cohort, MESH};
+use sylva::lod::LodTree;
+use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::skeleton::LeafShape;
+use sylva::street::{Assessor, Kind, Site, YearAccount};
+
+/// A planting site the page offers: its key in the API, what the page calls it, and the site.
+pub struct NamedSite {
+    /// The `site` parameter's value.
+    pub key: &'static str,
+    /// What the page says.
+    pub label: &'static str,
+    /// The site.
+    pub site: Site,
+}
+
+/// The three sites of issue N, read from the repository's `sites/` files at build time.
+pub fn sites() -> &'static [NamedSite] {
+    static SITES: OnceLock<Vec<NamedSite>> = OnceLock::new();
+    SITES.get_or_init(|| {
+        let files: [(&str, &str, &str, &str); 3] = [
+            (
+                "narrow",
+                "Narrow sidewalk under wires",
+                "sites/narrow-under-wires.toml",
+                include_str!("../../../sites/narrow-under-wires.toml"),
+            ),
+            (
+                "boulevard",
+                "Wide boulevard",
+                "sites/boulevard.toml",
+                include_str!("../../../sites/boulevard.toml"),
+            ),
+            (
+                "facade",
+                "Façade 3 m from the trunk",
+                "sites/facade-3m.toml",
+                include_str!("../../../sites/facade-3m.toml"),
+            ),
+        ];
+        files
+            .into_iter()
+            .map(|(key, label, file, text)| NamedSite {
+                key,
+                label,
+                // The files are the repository's own and a test parses them: a failure here
+                // is a broken build, not bad input.
+                site: Site::parse(text, file).expect("the built-in sites parse"),
+            })
+            .collect()
+    })
+}
+
+/// The index of a site key, or `None`.
+pub fn site_index(key: &str) -> Option<usize> {
+    sites().iter().position(|s| s.key == key)
+}
+
+/// One age of a grown species.
+pub struct AgeEntry {
+    /// The tree measured, and the equations at that age.
+    pub record: AgeRecord,
+    /// The year's account on each of [`sites`], in order.
+    pub accounts: Vec<YearAccount>,
+    /// The tree.
+    pub skeleton: Skeleton,
+}
+
+impl AgeEntry {
+    /// Bytes held, roughly: what the cache's memory bound counts.
+    pub fn bytes(&self) -> usize {
+        let s = &self.skeleton;
+        std::mem::size_of::<Self>()
+            + std::mem::size_of_val(s.stems.as_slice())
+            + std::mem::size_of_val(s.sections.as_slice())
+            + std::mem::size_of_val(s.leaves.as_slice())
+            + self
+                .accounts
+                .iter()
+                .map(|a| std::mem::size_of_val(a) + std::mem::size_of_val(a.conflicts.as_slice()))
+                .sum::<usize>()
+    }
+}
+
+/// The whole ages the page shows for a species: from the first its data cover (at least 1)
+/// to the last.
+pub fn ages_of(m: &Measured) -> Vec<u32> {
+    let ages = m.whole_ages();
+    ((*ages.start()).max(1)..=*ages.end()).collect()
+}
+
+/// Grows `m` from seed `seed` through [`ages_of`], handing each age to `done` as it is
+/// reached, so that the first ages can be shown while the rest grow. Stops early when `done`
+/// returns false (nobody wants the rest).
+pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool) {
+    let mut assessors: Vec<Assessor> = sites()
+        .iter()
+        .map(|s| Assessor::new(m, Some(s.site.clone()), None, None))
+        .collect();
+    let mut cohort = Cohort::new(vec![m.clone()], seed);
+    for age in ages_of(m) {
+        let age = f64::from(age);
+        let skeleton = cohort
+            .advance_to(age)
+            .pop()
+            .expect("a cohort of one gives one skeleton");
+        let record = *cohort.history[0]
+            .last()
+            .expect("advance_to records the age");
+        let accounts = assessors
+            .iter_mut()
+            .map(|a| a.year(age, &record.model, &skeleton))
+            .collect();
+        let entry = AgeEntry {
+            record,
+            accounts,
+            skeleton,
+        };
+        if !done(entry) {
+            return;
+        }
+    }
+}
+
+/// The benefits and costs not computed for `m`, each with its reason (the same on every site
+/// but for the façade's energy).
+pub fn missing(m: &Measured, site: usize) -> Vec<String> {
+    let site = sites().get(site).map(|s| s.site.clone());
+    Assessor::new(m, site, None, None).missing().to_vec()
+}
+
+/// The first age each kind of conflict happens on site `site`, in order of age.
+pub fn first_conflicts(entries: &[std::sync::Arc<AgeEntry>], site: usize) -> Vec<(u32, Kind)> {
+    let mut first: Vec<(u32, Kind)> = Vec::new();
+    for e in entries {
+        for c in &e.accounts[site].conflicts {
+            if !first.iter().any(|(_, k)| *k == c.kind) {
+                first.push((e.record.age as u32, c.kind));
+            }
+        }
+    }
+    first
+}
+
+/// How the page's trees are meshed: a browser draws several trees of tens of thousands of
+/// leaves each while a slider moves, so the rings are coarser than `sylva grow`'s and every
+/// leaf is a four-corner kite instead of an eight-corner oval. The kite is widened by 1.4 so
+/// that its area (0.50 of its length × width) is the oval's (the octagon Sylva meshes covers
+/// 0.70): the crown holds the same leaf area and looks as dense.
+pub const WEB_MESH: MeshOptions = MeshOptions {
+    quality: MESH.quality * 0.6,
+    sides: None,
+};
+
+/// How much wider a kite is than the oval it stands for (see [`WEB_MESH`]).
+const KITE_WIDENING: f32 = 0.70 / 0.50;
+
+/// Most detail levels the page may ask for: 0 is the whole tree, each next one draws about
+/// half the triangles.
+pub const DETAIL_LEVELS: u32 = 4;
+
+/// Items of each of the four lists of a [`LodTree`] (stems by level, then leaves) that each
+/// detail level keeps, as Weber & Penn's degradation at range thins a tree: twigs and leaves
+/// first, the trunk and limbs never. The leaves that remain grow to keep the crown's leaf
+/// area ([`LodTree::engine_mesh`]).
+const DETAIL: [[f64; 4]; DETAIL_LEVELS as usize] = [
+    [16.0, 16.0, 16.0, 4.0],
+    [16.0, 16.0, 8.0, 2.0],
+    [16.0, 8.0, 2.0, 1.0],
+    [16.0, 4.0, 1.0, 0.5],
+];
+
+/// A grown tree as the page draws it at `detail` (0 to [`DETAIL_LEVELS`] - 1), in a GLB. A
+/// browser without a GPU draws some hundred thousand triangles a second, so the page asks for
+/// the level its own frame times allow.
+pub fn web_glb(m: &Measured, skeleton: &Skeleton, detail: u32) -> Result<Vec<u8>, ExportError> {
+    let mesh = if detail == 0 {
+        web_mesh(skeleton)
+    } else {
+        let lod = LodTree::build(&kites(skeleton), &WEB_MESH);
+        lod.engine_mesh(DETAIL[detail.min(DETAIL_LEVELS - 1) as usize])
+    };
+    let (bark, leaves) = m.colours();
+    to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))
+}
+
+/// The web mesh of a skeleton (see [`WEB_MESH`]).
+pub fn web_mesh(skeleton: &Skeleton) -> TreeMesh {
+    mesh_tree(&kites(skeleton), &WEB_MESH)
+}
+
+/// The skeleton with its oval leaves drawn as kites of the same area.
+fn kites(skeleton: &Skeleton) -> Skeleton {
+    let mut light = skeleton.clone();
+    for leaf in &mut light.leaves {
+        if leaf.shape == LeafShape::Oval {
+            leaf.shape = LeafShape::Triangle;
+            leaf.width *= KITE_WIDENING;
+        }
+    }
+    light
+}
+
+/// A grown tree as `sylva grow` meshes it (for pictures).
+pub fn full_mesh(skeleton: &Skeleton) -> TreeMesh {
+    mesh_tree(skeleton, &MESH)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sylva::growth::Database;
+
+    #[test]
+    fn the_built_in_sites_parse_and_have_what_the_page_draws() {
+        let s = sites();
+        assert_eq!(s.len(), 3);
+        assert!(!s[0].site.wire.is_empty(), "narrow has a wire");
+        assert!(s[2].site.facade.is_some(), "façade site has a façade");
+        assert_eq!(site_index("boulevard"), Some(1));
+        assert_eq!(site_index("nowhere"), None);
+    }
+
+    #[test]
+    fn the_web_kite_keeps_the_leaf_area_and_cuts_the_vertices() {
+        let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+        let mut got = Vec::new();
+        grow_all(&plane, 0, |e| {
+            got.push(e);
+            got.len() < 6
+        });
+        assert_eq!(got.len(), 6, "stops when told");
+        assert_eq!(got[0].record.age, 1.0);
+        assert_eq!(got[5].record.age, 6.0);
+        let s = &got[5].skeleton;
+        let full = full_mesh(s);
+        let web = web_mesh(s);
+        // Oval 8 corners, kite 4: the leaves take half the vertices.
+        assert_eq!(web.leaves.vertex_count() * 2, full.leaves.vertex_count());
+        let area = |mesh: &sylva::mesh::Mesh| -> f64 {
+            mesh.indices
+                .chunks(3)
+                .map(|t| {
+                    let p = |i: u32| glam::Vec3::from(mesh.positions[i as usize]);
+                    let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+                    f64::from((b - a).cross(c - a).length()) / 2.0
+                })
+                .sum()
+        };
+        let (f, w) = (area(&full.leaves), area(&web.leaves));
+        assert!(
+            (w / f - 1.0).abs() < 0.05,
+            "leaf area web {w:.2} vs full {f:.2} m²"
+        );
+        // Each coarser level draws fewer triangles and keeps the leaf area.
+        let lod = LodTree::build(&kites(s), &WEB_MESH);
+        let mut before = web.triangle_count();
+        for (level, x) in DETAIL.iter().enumerate().skip(1) {
+            let m = lod.engine_mesh(*x);
+            let a = area(&m.leaves);
+            println!(
+                "level {level}: {} triangles, leaves {a:.1} m²",
+                m.triangle_count()
+            );
+            assert!(m.triangle_count() < before, "level {level}");
+            assert!(
+                (a / f - 1.0).abs() < 0.1,
+                "level {level}: leaf area {a:.2} vs {f:.2} m²"
+            );
+            before = m.triangle_count();
+        }
+    }
+}

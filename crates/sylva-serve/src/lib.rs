@@ -1,0 +1,185 @@
+//! `sylva serve`: a local web page on which city planners compare street trees of the Urban
+//! Tree Database growing side by side over the years (Rudnick, Linsen & McPherson 2007 build
+//! their tool to reach planners "over the web"), with the JSON API under it.
+//!
+//! - [`assets`]: the page (HTML, JavaScript, three.js) compiled into the binary.
+//! - [`api`]: regions, species, sites, a species' growth table, a grown tree as GLB, the
+//!   comparison picture, the CSV and the plan symbol. [`params`] checks every parameter.
+//! - [`cache`]: each (region, species, seed) grown once for every age, within a memory bound;
+//!   [`grown`] is what one growth holds; [`pictures`] draws with Sylva's renderer;
+//!   [`recent`] keeps the last GLB files sent.
+//!
+//! Growth runs on blocking threads; the async threads only route and copy.
+//!
+//! ```no_run
+//! let options = sylva_serve::Options::default();
+//! sylva_serve::run(&options, |url| println!("open {url}")).unwrap();
+//! ```
+
+pub mod api;
+pub mod assets;
+pub mod cache;
+pub mod grown;
+pub mod params;
+pub mod pictures;
+pub mod recent;
+
+use axum::Router;
+use axum::routing::get;
+use std::net::SocketAddr;
+use std::sync::Arc;
+use sylva::growth::Database;
+
+/// How the server runs.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Address to bind: localhost unless told otherwise.
+    pub host: String,
+    /// Port (0: any free one).
+    pub port: u16,
+    /// Most bytes of grown trees kept (finished growths past this are dropped, oldest use
+    /// first).
+    pub cache_bytes: usize,
+    /// Most species growing at once; requests for more get 503 "busy".
+    pub growing_limit: usize,
+    /// Species grown as the server starts, so that the page's first trees are ready:
+    /// (region, species code).
+    pub warm: Vec<(String, String)>,
+}
+
+/// The default memory bound: 1 GiB of grown trees. A London plane grown through its 55 ages
+/// holds about 40 MB (skeletons and accounts), so this keeps some 25 species.
+pub const DEFAULT_CACHE_BYTES: usize = 1 << 30;
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            host: "127.0.0.1".into(),
+            port: 8080,
+            cache_bytes: DEFAULT_CACHE_BYTES,
+            growing_limit: 8,
+            // The page opens on Modesto's London plane and Chinese pistache.
+            warm: vec![
+                ("InlVal".into(), "PLAC".into()),
+                ("InlVal".into(), "PICH".into()),
+            ],
+        }
+    }
+}
+
+/// Most bytes of GLB files kept for requests asked again.
+pub const GLB_BYTES: usize = 128 << 20;
+
+/// The age the page opens at (`state.age` in `assets/app.js`).
+pub const PAGE_AGE: u32 = 20;
+
+/// What the handlers share.
+pub struct State {
+    /// The growth tables.
+    pub db: &'static Database,
+    /// Grown species.
+    pub cache: cache::Cache,
+    /// The renderer for pictures.
+    pub pictures: pictures::Pictures,
+    /// Answers that never change while the server runs (the region list, each region's
+    /// species), made once.
+    pub lists: std::sync::Mutex<std::collections::HashMap<String, axum::body::Bytes>>,
+    /// The trees last sent as GLB, so that a tree asked for again (the page's slider going
+    /// back and forth, several viewers) is not meshed again.
+    pub glbs: recent::Recent,
+}
+
+impl State {
+    /// A state with the built-in database.
+    pub fn new(options: &Options) -> Arc<State> {
+        Arc::new(State {
+            db: Database::builtin(),
+            cache: cache::Cache::new(options.cache_bytes, options.growing_limit),
+            pictures: pictures::Pictures::default(),
+            lists: Default::default(),
+            glbs: recent::Recent::new(GLB_BYTES),
+        })
+    }
+}
+
+/// The routes: the API under `/api/`, the page's files at every other path they have, 404
+/// for the rest.
+pub fn router(state: Arc<State>) -> Router {
+    Router::new()
+        .route("/api/regions", get(api::regions))
+        .route("/api/species", get(api::species))
+        .route("/api/sites", get(api::site_list))
+        .route("/api/status", get(api::status))
+        .route("/api/growth", get(api::growth))
+        .route("/api/tree.glb", get(api::tree_glb))
+        .route("/api/plan.svg", get(api::plan_svg))
+        .route("/api/table.csv", get(api::table_csv))
+        .route("/api/compare.png", get(api::compare_png))
+        .fallback(assets::serve)
+        .with_state(state)
+}
+
+/// Why the server could not run.
+#[derive(Debug)]
+pub struct ServeError(pub String);
+
+impl std::fmt::Display for ServeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ServeError {}
+
+/// Binds, calls `ready` with the page's address, and serves until Ctrl-C.
+pub fn run(options: &Options, ready: impl FnOnce(&str)) -> Result<(), ServeError> {
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .map_err(|e| ServeError(format!("cannot start the server's threads: {e}")))?;
+    runtime.block_on(async {
+        let addr = format!("{}:{}", options.host, options.port);
+        let listener = tokio::net::TcpListener::bind(&addr).await.map_err(|e| {
+            ServeError(format!(
+                "--host {} --port {}: cannot listen there: {e}",
+                options.host, options.port
+            ))
+        })?;
+        let bound: SocketAddr = listener
+            .local_addr()
+            .map_err(|e| ServeError(format!("cannot read the bound address: {e}")))?;
+        let state = State::new(options);
+        let mut warming = Vec::new();
+        for (region, code) in &options.warm {
+            if let Ok(m) = state.db.find(region, code) {
+                let key = cache::Key {
+                    region: m.region.code.clone(),
+                    code: m.species.code.clone(),
+                    seed: 0,
+                };
+                // A refusal (more warm species than growths allowed) only means it grows
+                // when first asked for.
+                if let Ok(g) = state.cache.get(key, &m) {
+                    warming.push(g);
+                }
+            }
+        }
+        // The page is announced once its first trees are grown to the age it opens at (a
+        // second or two), so that whoever opens it sees trees at once; they go on growing.
+        for g in warming {
+            let _ = tokio::time::timeout(std::time::Duration::from_secs(10), g.at(PAGE_AGE)).await;
+        }
+        let host = if bound.ip().is_unspecified() {
+            "127.0.0.1".to_string()
+        } else {
+            bound.ip().to_string()
+        };
+        ready(&format!("http://{host}:{}/", bound.port()));
+        axum::serve(listener, router(state))
+            .with_graceful_shutdown(async {
+                let _ = tokio::signal::ctrl_c().await;
+            })
+            .await
+            .map_err(|e| ServeError(format!("the server stopped: {e}")))
+    })
+}

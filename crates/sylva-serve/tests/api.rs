@@ -1,0 +1,278 @@
+//! The API as a client sees it, through the router (no socket): answers read back by real
+//! readers (the gltf crate, image, JSON), bad parameters refused with 400 and a message naming
+//! them, nothing but the page's files served, identical requests grown once.
+
+use axum::body::Body;
+use axum::http::{Request, StatusCode};
+use http_body_util::BodyExt;
+use std::sync::Arc;
+use sylva_serve::{Options, State, router};
+use tower::ServiceExt;
+
+fn state() -> Arc<State> {
+    State::new(&Options {
+        warm: Vec::new(),
+        ..Default::default()
+    })
+}
+
+async fn get(state: &Arc<State>, uri: &str) -> (StatusCode, String, Vec<u8>) {
+    let response = router(state.clone())
+        .oneshot(Request::get(uri).body(Body::empty()).unwrap())
+        .await
+        .unwrap();
+    let status = response.status();
+    let kind = response
+        .headers()
+        .get("content-type")
+        .map(|v| v.to_str().unwrap().to_string())
+        .unwrap_or_default();
+    let body = response.into_body().collect().await.unwrap().to_bytes();
+    (status, kind, body.to_vec())
+}
+
+async fn json(state: &Arc<State>, uri: &str) -> serde_json::Value {
+    let (status, kind, body) = get(state, uri).await;
+    assert_eq!(
+        status,
+        StatusCode::OK,
+        "{uri}: {}",
+        String::from_utf8_lossy(&body)
+    );
+    assert!(kind.starts_with("application/json"), "{uri}: {kind}");
+    serde_json::from_slice(&body).unwrap()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn regions_and_species_list_the_database() {
+    let s = state();
+    let regions = json(&s, "/api/regions").await;
+    let regions = regions.as_array().unwrap();
+    assert_eq!(regions.len(), 17, "the Urban Tree Database's 17 regions");
+    assert_eq!(regions[0]["code"], "InlVal", "Modesto first");
+    assert_eq!(regions[0]["city"], "Modesto");
+    assert!((regions[0]["latitude"].as_f64().unwrap() - 37.6).abs() < 0.1);
+    let species = json(&s, "/api/species?region=InlVal").await;
+    let species = species.as_array().unwrap();
+    assert_eq!(
+        species.len(),
+        regions[0]["species"].as_u64().unwrap() as usize
+    );
+    let plane = species.iter().find(|x| x["code"] == "PLAC").unwrap();
+    assert_eq!(plane["common"], "London planetree");
+    let ages = plane["ages"].as_array().unwrap();
+    assert!(ages[0].as_u64().unwrap() <= 5 && ages[1].as_u64().unwrap() >= 50);
+    let sites = json(&s, "/api/sites").await;
+    assert_eq!(sites.as_array().unwrap().len(), 3);
+    assert_eq!(sites[0]["site"]["wire"][0]["height"], 8.5);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_grown_tree_comes_back_as_a_readable_glb_of_its_measured_height() {
+    let s = state();
+    let (status, kind, glb) = get(&s, "/api/tree.glb?region=InlVal&species=LAIN&age=6").await;
+    assert_eq!(status, StatusCode::OK, "{}", String::from_utf8_lossy(&glb));
+    assert_eq!(kind, "model/gltf-binary");
+    let gltf = gltf::Gltf::from_slice(&glb).expect("a GLB the gltf crate reads");
+    let mesh = gltf.meshes().next().unwrap();
+    assert_eq!(mesh.primitives().count(), 2, "bark and leaves");
+    let top = mesh
+        .primitives()
+        .map(|p| p.bounding_box().max[1])
+        .fold(0.0f32, f32::max);
+    let growth = json(&s, "/api/growth?region=InlVal&species=LAIN").await;
+    let row = growth["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["age"] == 6.0)
+        .unwrap()
+        .clone();
+    let height = row["model"]["height"].as_f64().unwrap() as f32;
+    assert!(
+        (top - height).abs() < 0.05,
+        "GLB top {top} m, grown height {height} m"
+    );
+    let measured = row["measured"]["height"].as_f64().unwrap() as f32;
+    assert!(
+        (height / measured - 1.0).abs() < 0.1,
+        "{height} vs {measured} m"
+    );
+    // The year's account is there, and what is not computed says so.
+    assert!(row["street"]["co2_stored_kg"].as_f64().unwrap() > 0.0);
+    assert!(growth["missing"].as_array().unwrap().iter().any(|m| {
+        m.as_str()
+            .unwrap()
+            .starts_with("air pollutant uptake: not computed")
+    }));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn downloads_csv_svg_and_png_read_back() {
+    let s = state();
+    let (status, kind, csv) = get(&s, "/api/table.csv?species=LAIN,PRCE&site=boulevard").await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(kind, "text/csv");
+    let text = String::from_utf8(csv).unwrap();
+    let mut reader = csv_rows(&text);
+    let header = reader.remove(0);
+    assert_eq!(header[0], "species");
+    assert!(header.iter().any(|h| h == "net_usd"), "{header:?}");
+    assert!(reader.iter().any(|r| r[0] == "LAIN") && reader.iter().any(|r| r[0] == "PRCE"));
+    assert!(reader.iter().all(|r| r.len() == header.len()));
+    let (status, kind, svg) = get(&s, "/api/plan.svg?species=LAIN&age=8").await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(kind, "image/svg+xml");
+    let svg = String::from_utf8(svg).unwrap();
+    assert!(
+        svg.starts_with("<svg") || svg.starts_with("<?xml"),
+        "{}",
+        &svg[..60]
+    );
+    assert!(svg.contains("<path") || svg.contains("<line") || svg.contains("<polyline"));
+    let (status, kind, png) =
+        get(&s, "/api/compare.png?species=LAIN,PRCE&age=8&size=320x200").await;
+    assert_eq!(status, StatusCode::OK, "{}", String::from_utf8_lossy(&png));
+    assert_eq!(kind, "image/png");
+    let picture = image::load_from_memory(&png).unwrap();
+    assert_eq!(picture.width(), 320);
+    assert!(picture.height() > 200, "a caption under the picture");
+}
+
+fn csv_rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_parameters_get_400_naming_them() {
+    let s = state();
+    let cases = [
+        ("/api/species?region=Atlantis", "region"),
+        ("/api/growth?species=NOPE", "species"),
+        ("/api/growth", "species"),
+        ("/api/tree.glb?species=LAIN&age=500", "age"),
+        ("/api/tree.glb?species=LAIN&age=ten", "age"),
+        ("/api/tree.glb?species=LAIN&age=2.5", "age"),
+        ("/api/tree.glb?species=LAIN", "age"),
+        ("/api/tree.glb?species=LAIN&age=5&seed=-1", "seed"),
+        ("/api/growth?species=LAIN&site=roof", "site"),
+        (
+            "/api/compare.png?species=LAIN,PRCE,PLAC,PICH,ZESE&age=5",
+            "species",
+        ),
+        ("/api/compare.png?species=LAIN&age=5&size=9x9", "size"),
+        ("/api/tree.glb?species=LAIN,PRCE&age=5", "species"),
+        ("/api/tree.glb?species=LAIN&age=5&detail=4", "detail"),
+    ];
+    for (uri, parameter) in cases {
+        let (status, kind, body) = get(&s, uri).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{uri}");
+        assert!(kind.starts_with("application/json"), "{uri}");
+        let body: serde_json::Value = serde_json::from_slice(&body).unwrap();
+        assert_eq!(body["parameter"], parameter, "{uri}: {body}");
+        let error = body["error"].as_str().unwrap();
+        assert!(
+            error.starts_with(&format!("{parameter}: ")),
+            "{uri}: {error}"
+        );
+        assert!(!body["allowed"].as_str().unwrap().is_empty(), "{uri}");
+    }
+    assert!(s.cache.is_empty(), "nothing grew for a bad request");
+}
+
+#[tokio::test]
+async fn only_the_page_files_are_served() {
+    let s = state();
+    let (status, kind, body) = get(&s, "/").await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(kind.starts_with("text/html"));
+    assert!(String::from_utf8(body).unwrap().contains("/app.js"));
+    let (status, kind, _) = get(&s, "/vendor/three.min.js").await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(kind.starts_with("text/javascript"));
+    for uri in [
+        "/../Cargo.toml",
+        "/%2e%2e/Cargo.toml",
+        "/..%2fCargo.toml",
+        "//etc/passwd",
+        "/vendor/../app.js",
+        "/assets/app.js",
+        "/src/lib.rs",
+        "/api/nothing",
+    ] {
+        let (status, _, _) = get(&s, uri).await;
+        assert_eq!(status, StatusCode::NOT_FOUND, "{uri}");
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn identical_requests_in_flight_are_grown_once() {
+    let s = state();
+    let requests: Vec<_> = (0..8)
+        .map(|_| {
+            let s = s.clone();
+            tokio::spawn(async move { get(&s, "/api/growth?species=LAIN&seed=7").await })
+        })
+        .collect();
+    let mut bodies = Vec::new();
+    for r in requests {
+        let (status, _, body) = r.await.unwrap();
+        assert_eq!(status, StatusCode::OK);
+        bodies.push(body);
+    }
+    assert_eq!(s.cache.len(), 1, "one growth for eight requests");
+    assert!(bodies.windows(2).all(|w| w[0] == w[1]));
+    let status = json(&s, "/api/status").await;
+    assert_eq!(status["growths"], 1);
+    assert!(status["cache_bytes"].as_u64().unwrap() > 0);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn hostile_values_are_refused_never_a_panic() {
+    let s = state();
+    let long = "9".repeat(5000);
+    let values = [
+        "",
+        " ",
+        "-1",
+        "NaN",
+        "inf",
+        "-inf",
+        "1e309",
+        "0x10",
+        "1.0e1",
+        "%00",
+        "%ff%fe",
+        "☃",
+        "../../etc",
+        "PLAC,",
+        ",",
+        ",,,,",
+        long.as_str(),
+    ];
+    for value in values {
+        for parameter in ["region", "species", "age", "seed", "site", "size", "detail"] {
+            let mut query = vec![("species", "LAIN"), ("age", "200")];
+            query.retain(|(k, _)| *k != parameter);
+            query.push((parameter, value));
+            let q: Vec<String> = query
+                .iter()
+                .map(|(k, v)| format!("{k}={}", v.replace(' ', "%20")))
+                .collect();
+            for path in ["tree.glb", "growth", "compare.png", "plan.svg", "table.csv"] {
+                let uri = format!("/api/{path}?{}", q.join("&"));
+                let (status, _, body) = get(&s, &uri).await;
+                assert!(
+                    status == StatusCode::BAD_REQUEST || status == StatusCode::OK,
+                    "{uri}: {status}"
+                );
+                if status == StatusCode::BAD_REQUEST {
+                    let body: serde_json::Value = serde_json::from_slice(&body).unwrap();
+                    assert!(body["error"].as_str().unwrap().contains(':'), "{uri}");
+                }
+            }
+        }
+    }
+}

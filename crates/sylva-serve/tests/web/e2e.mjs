@@ -1,0 +1,155 @@
+// End to end in a real browser: starts `sylva serve`, opens the page in the system's Chromium
+// (headless, through playwright-core; no browser is downloaded), picks two species by typing
+// their names, drags the age slider and sets ages from 5 to 50, and checks from screenshots
+// that two trees and the charts are drawn. Prints the timings against the issue's targets
+// (page load to the first tree drawn <= 2 s, a new age drawn <= 300 ms after the slider
+// stops), and fails only past five times a target: a shared CI machine without a GPU draws
+// WebGL on its CPU (SwiftShader), and the figures to quote are the printed ones.
+//
+//   node e2e.mjs [path/to/sylva] [folder for the screenshots]
+
+import { chromium } from 'playwright-core';
+import { writeFileSync, mkdirSync } from 'node:fs';
+import { startServer, waitUntil, check } from './common.mjs';
+
+const bin = process.argv[2] || new URL('../../../../target/release/sylva', import.meta.url).pathname;
+const shots = process.argv[3] || null;
+if (shots) mkdirSync(shots, { recursive: true });
+
+// As the workplace's probe starts Chromium: headless, no sandbox as root, nothing phoning
+// home; WebGL drawn by SwiftShader where there is no GPU.
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--no-sandbox', '--disable-quic', '--no-first-run', '--disable-background-networking',
+    '--disable-component-update', '--disable-sync', '--use-angle=swiftshader',
+    '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+});
+const server = await startServer(bin);
+let failed = false;
+try {
+  const opened = await browser.newPage({ viewport: { width: 1600, height: 1000 } });
+  watch(opened);
+
+  // 1. The page as `sylva serve --open` shows it, opened the moment the server is up.
+  await opened.goto(server.url);
+  const first = await waitUntil('the first trees', () => opened.evaluate(() => window.sylva?.firstTreeMs), 60);
+  console.log(`page load to the first trees drawn, server just started: ${first.toFixed(0)} ms`);
+  // And once more in a new tab, with the default species grown.
+  await waitUntil('the default species grown', async () => {
+    const s = await (await fetch(`${server.url}api/status`)).json();
+    return s.growths >= 2 && s.growing === 0;
+  }, 120);
+  await opened.close();
+  const page = await browser.newPage({ viewport: { width: 1600, height: 1000 } });
+  watch(page);
+  await page.goto(server.url);
+  const again = await waitUntil('the first trees', () => page.evaluate(() => window.sylva?.firstTreeMs), 60);
+  console.log(`page load to the first trees drawn, trees grown: ${again.toFixed(0)} ms`);
+  target('page load to the first trees drawn, server just started', first, 2000);
+  target('page load to the first trees drawn, trees grown', again, 2000);
+
+  // 2. Pick two species as a planner would: remove what is shown, type names, press Enter.
+  while (await page.locator('#chosen .chip button').count() > 0) {
+    await page.locator('#chosen .chip button').first().click();
+  }
+  for (const name of ['London plane', 'pistache']) {
+    await page.fill('#search', name.slice(0, 6));
+    await page.waitForSelector('#matches li');
+    await page.fill('#search', name);
+    await page.press('#search', 'Enter');
+  }
+  const chosen = await page.locator('#chosen .chip').allTextContents();
+  check(chosen.length === 2 && /London/.test(chosen[0]) && /pistache/i.test(chosen[1]),
+    `two species picked by name: ${chosen.join(', ')}`);
+  await waitUntil('both growth tables', () => page.evaluate(() => window.sylva.tables >= 2), 120);
+
+  // 3. Drag the slider with the mouse to the left end, then set ages 5 to 50 as a drag ends.
+  const slider = await page.locator('#age').boundingBox();
+  const [lo, hi] = await page.evaluate(() => [Number(age.min), Number(age.max)]);
+  const xOf = (a) => slider.x + 8 + ((a - lo) / (hi - lo)) * (slider.width - 16);
+  const drawsBefore = await page.evaluate(() => window.sylva.ageDraws.length);
+  await page.mouse.move(xOf(20), slider.y + slider.height / 2);
+  await page.mouse.down();
+  for (let a = 19; a >= 5; a -= 2) await page.mouse.move(xOf(a), slider.y + slider.height / 2, { steps: 2 });
+  await page.mouse.move(xOf(5), slider.y + slider.height / 2);
+  await page.mouse.up();
+  const dragged = await page.evaluate(() => Number(age.value));
+  await waitUntil('the dragged age drawn', () => page.evaluate((n) => window.sylva.ageDraws.length > n &&
+    window.sylva.shownAge === Number(age.value), drawsBefore), 30);
+  console.log(`dragged the slider to ${dragged}`);
+  const draws = [];
+  for (const a of [5, 10, 20, 30, 40, 50]) {
+    const n = await page.evaluate(() => window.sylva.ageDraws.length);
+    await page.evaluate((a) => { age.value = a; age.dispatchEvent(new Event('input')); }, a);
+    await waitUntil(`age ${a} drawn`, () => page.evaluate((n) => window.sylva.ageDraws.length > n, n), 30);
+    const d = await page.evaluate(() => window.sylva.ageDraws.at(-1));
+    draws.push(d);
+    if (a === 5 || a === 50) await look(page, a);
+  }
+  const worst = Math.max(...draws.map((d) => d.ms));
+  console.log(`new age drawn after the slider stopped: ${draws.map((d) => `${d.age}: ${d.ms.toFixed(0)} ms (detail ${d.detail}, frame ${d.frame.toFixed(0)} ms)`).join(', ')}`);
+  target('slowest new age drawn after the slider stopped', worst, 300);
+  check(!failed, 'no errors on the page');
+} finally {
+  await browser.close();
+  await server.stop();
+}
+
+// Prints a timing against its target; fails past five times the target.
+function target(what, ms, most) {
+  console.log(`${what}: ${ms.toFixed(0)} ms (target ${most} ms: ${ms <= most ? 'met' : 'MISSED'})`);
+  check(ms <= 5 * most, `${what} within five times the target`);
+}
+
+function watch(page) {
+  page.on('pageerror', (e) => { console.log(`page error: ${e.message}`); failed = true; });
+  page.on('console', (m) => { if (m.type() === 'error') console.log(`console: ${m.text()}`); });
+}
+
+// Screenshot the page and measure it: leaf-green pixels under each tree's label (two trees),
+// and each chart holding both species' colours.
+async function look(page, a) {
+  const png = await page.screenshot();
+  if (shots) writeFileSync(`${shots}/page-age-${a}.png`, png);
+  const found = await page.evaluate(async (b64) => {
+    const blob = await (await fetch(`data:image/png;base64,${b64}`)).blob();
+    const img = await createImageBitmap(blob);
+    const c = new OffscreenCanvas(img.width, img.height);
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const px = g.getImageData(0, 0, img.width, img.height).data;
+    const at = (x, y) => { const i = 4 * (y * img.width + x); return [px[i], px[i + 1], px[i + 2]]; };
+    const scene = document.getElementById('scene').getBoundingClientRect();
+    const labels = [...document.querySelectorAll('#labels div')].map((d) => d.getBoundingClientRect());
+    const half = labels.length > 1 ? (labels[1].left + labels[1].width / 2 - labels[0].left - labels[0].width / 2) * 0.4 : 100;
+    const trees = labels.map((l) => {
+      const cx = Math.round(l.left + l.width / 2);
+      let leafy = 0;
+      for (let x = Math.max(0, Math.round(cx - half)); x < Math.min(scene.right, cx + half); x++) {
+        for (let y = Math.round(scene.top); y < scene.bottom; y++) {
+          const [r, gr, b] = at(x, y);
+          if (gr > r + 8 && gr > b + 8) leafy++;
+        }
+      }
+      return leafy;
+    });
+    const colours = [[0x2f, 0x7d, 0x4f], [0xc0, 0x61, 0x2b]];
+    const charts = [...document.querySelectorAll('#charts canvas')].map((cv) => {
+      const r = cv.getBoundingClientRect();
+      return colours.map((col) => {
+        let n = 0;
+        for (let x = Math.round(r.left); x < r.right; x++) {
+          for (let y = Math.round(r.top); y < r.bottom; y++) {
+            const p = at(x, y);
+            if (Math.abs(p[0] - col[0]) + Math.abs(p[1] - col[1]) + Math.abs(p[2] - col[2]) < 60) n++;
+          }
+        }
+        return n;
+      });
+    });
+    return { trees, charts };
+  }, png.toString('base64'));
+  console.log(`age ${a}: leaf pixels per tree ${found.trees.join(', ')}; species colours per chart ${found.charts.map((c) => c.join('/')).join(', ')}`);
+  check(found.trees.length === 2 && found.trees.every((n) => n > 400), `age ${a}: two trees drawn`);
+  check(found.charts.length === 4 && found.charts.every((c) => c.every((n) => n > 40)), `age ${a}: four charts drawn, both species on each`);
+}
