@@ -11,12 +11,13 @@ import { QUANTITIES, lineChart, barChart } from '/charts.js';
 
 const COLOURS = ['#2f7d4f', '#c0612b', '#3b6fb6', '#8e4fa8'];
 // Detail levels of /api/tree.glb: 0 every twig and leaf; each next level about half the
-// triangles, leaf area kept (Weber & Penn's degradation). The page starts at 2 and moves one
-// level at a time to keep a frame within FRAME_MS: a GPU draws the whole trees, a computer
-// drawing WebGL on its CPU a thinner crown that still turns smoothly.
+// triangles, leaf area kept (Weber & Penn's degradation). The page starts at the coarsest, so
+// that the first trees come quickly, and moves one level at a time to keep a frame within
+// FRAME_MS: a GPU soon draws the whole trees, a computer drawing WebGL on its CPU a thinner
+// crown that still turns smoothly.
 const DETAIL_NAMES = ['every twig and leaf', 'half the twigs and leaves', 'a quarter of the twigs and leaves', 'an eighth of the twigs and leaves'];
 const FRAME_MS = [25, 120];
-let detail = 2;
+let detail = 3;
 const MAX_SPECIES = 4;
 const $ = (id) => document.getElementById(id);
 
@@ -278,6 +279,24 @@ function drawConflicts() {
   });
   const label = state.sites.find((s) => s.key === state.site).label;
   $('conflicts').innerHTML = `<p class="note">${label}.</p><ul>${parts.join('')}</ul>`;
+  drawSitePictures();
+}
+
+// Each tree on its site at the slider's age (across the street, and from above; red: what is
+// in the way), fetched once the slider has rested for a moment.
+let siteTimer = null;
+function drawSitePictures() {
+  clearTimeout(siteTimer);
+  siteTimer = setTimeout(() => {
+    const box = $('site-pictures');
+    box.textContent = '';
+    for (const code of state.chosen) {
+      const img = document.createElement('img');
+      img.alt = `${code} on the site at ${state.age} years`;
+      img.src = `/api/site.png?${query({ species: code, age: state.age, site: state.site })}`;
+      box.append(img);
+    }
+  }, 300);
 }
 
 function drawDownloads() {
@@ -298,6 +317,13 @@ function drawAll() {
   drawNumbers();
   drawConflicts();
   drawDownloads();
+}
+
+// What changes with the slider's age alone.
+function drawAge() {
+  drawNumbers();
+  drawDownloads();
+  drawSitePictures();
 }
 
 // ---- loading ------------------------------------------------------------------------------
@@ -345,8 +371,7 @@ function play() {
     const [, top] = ageRange();
     if (state.age >= top) { play(); return; }
     setAge(state.age + 1);
-    drawNumbers();
-    drawDownloads();
+    drawAge();
     await drawTrees(null);
   }, 600);
 }
@@ -382,8 +407,7 @@ async function start() {
   $('age').oninput = (e) => {
     lastInput = performance.now();
     setAge(Number(e.target.value));
-    drawNumbers();
-    drawDownloads();
+    drawAge();
     drawTrees(lastInput);
   };
   $('play').onclick = play;

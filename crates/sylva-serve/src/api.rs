@@ -15,6 +15,7 @@ use std::sync::Arc;
 use sylva::drawing::{DrawOptions, View, draw_svg};
 use sylva::growth::Measured;
 use sylva::growth::report::{self, AgeRecord};
+use sylva::street::picture::site_picture;
 use sylva::street::{climate::climate, table};
 
 type Params = AxumQuery<HashMap<String, String>>;
@@ -100,7 +101,7 @@ pub async fn status(AxumState(state): AxumState<Arc<State>>) -> Json<serde_json:
     let c = &state.cache;
     Json(serde_json::json!({
         "cache_bytes": c.bytes(),
-        "glb_bytes": state.glbs.bytes(),
+        "recent_bytes": state.recent.bytes(),
         "cache_bound": c.bound(),
         "growths": c.len(),
         "growing": c.growing(),
@@ -200,7 +201,12 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
     };
     let seed = query.seed()?;
     let site = query.site()?;
-    let entries = state.growth(&region, m, seed)?.all().await;
+    let kept = format!("growth/{region}/{}/{seed}/{site}", m.species.code);
+    if let Some(json) = state.recent.get(&kept) {
+        return Ok(([(header::CONTENT_TYPE, "application/json")], json).into_response());
+    }
+    let growth = state.growth(&region, m, seed)?;
+    let entries = growth.all().await;
     let rows: Vec<_> = entries
         .iter()
         .map(|e| {
@@ -234,7 +240,12 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
         "first_conflicts": first,
         "missing": grown::missing(m, site),
     });
-    Ok(Json(body).into_response())
+    let json = axum::body::Bytes::from(body.to_string());
+    // Kept only whole: a growth that stopped short is asked again next time.
+    if entries.len() == growth.ages.len() {
+        state.recent.put(kept, json.clone());
+    }
+    Ok(([(header::CONTENT_TYPE, "application/json")], json).into_response())
 }
 
 /// `GET /api/tree.glb?region=R&species=S&age=A[&seed=0][&detail=0]`: the grown tree as the
@@ -255,7 +266,7 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
     let detail = query.detail()?;
     let name = format!("{}-age-{age:02}.glb", species[0].species.code);
     let kept = format!("{region}/{}/{seed}/{age}/{detail}", species[0].species.code);
-    if let Some(glb) = state.glbs.get(&kept) {
+    if let Some(glb) = state.recent.get(&kept) {
         return Ok(file(glb, "model/gltf-binary", &name));
     }
     let entry = state.at(&region, &species, age, seed).await?.remove(0);
@@ -265,7 +276,7 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
     })
     .await?;
     let glb = axum::body::Bytes::from(glb);
-    state.glbs.put(kept, glb.clone());
+    state.recent.put(kept, glb.clone());
     Ok(file(glb, "model/gltf-binary", &name))
 }
 
@@ -351,6 +362,55 @@ pub async fn compare_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): 
     let names: Vec<&str> = species.iter().map(|m| m.species.code.as_str()).collect();
     let name = format!("compare-{}-age-{age:02}.png", names.join("-"));
     let png = blocking(move || pictures.pictures.compare(&species, &entries, age, size)).await?;
+    Ok(file(png, "image/png", &name))
+}
+
+/// `GET /api/site.png?region=R&species=S&age=A[&seed=N][&site=K][&size=640x300]`: the tree
+/// on its site that year, across the street and from above, with what is in the way in red
+/// and the zones of that year's conflicts outlined (as `sylva grow --site` draws it).
+pub async fn site_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
+    let query = Query(&q);
+    let region = query.region(state.db)?;
+    let species = query.species(state.db, &region)?;
+    if species.len() != 1 {
+        return Err(ApiError::bad(
+            "species",
+            format!(
+                "{} species given; a site picture is one tree's",
+                species.len()
+            ),
+            "one species",
+        ));
+    }
+    let age = query.age(&species)?;
+    let seed = query.seed()?;
+    let site = query.site()?;
+    let size = if q.contains_key("size") {
+        query.size()?
+    } else {
+        (640, 300)
+    };
+    let entry = state.at(&region, &species, age, seed).await?.remove(0);
+    let png = blocking(move || {
+        let kinds: Vec<_> = entry.accounts[site]
+            .conflicts
+            .iter()
+            .map(|c| c.kind)
+            .collect();
+        let (w, h, rgba) = site_picture(&entry.skeleton, &sites()[site].site, &kinds, size);
+        let mut png = Vec::new();
+        image::ImageEncoder::write_image(
+            image::codecs::png::PngEncoder::new(&mut png),
+            &rgba,
+            w,
+            h,
+            image::ExtendedColorType::Rgba8,
+        )
+        .map_err(|e| ApiError::internal(format!("encoding the site picture: {e}")))?;
+        Ok(png)
+    })
+    .await?;
+    let name = format!("{}-site-age-{age:02}.png", species[0].species.code);
     Ok(file(png, "image/png", &name))
 }
 

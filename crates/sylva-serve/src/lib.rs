@@ -67,8 +67,8 @@ impl Default for Options {
     }
 }
 
-/// Most bytes of GLB files kept for requests asked again.
-pub const GLB_BYTES: usize = 128 << 20;
+/// Most bytes of answers (GLB files, growth tables) kept for requests asked again.
+pub const RECENT_BYTES: usize = 128 << 20;
 
 /// The age the page opens at (`state.age` in `assets/app.js`).
 pub const PAGE_AGE: u32 = 20;
@@ -84,9 +84,10 @@ pub struct State {
     /// Answers that never change while the server runs (the region list, each region's
     /// species), made once.
     pub lists: std::sync::Mutex<std::collections::HashMap<String, axum::body::Bytes>>,
-    /// The trees last sent as GLB, so that a tree asked for again (the page's slider going
-    /// back and forth, several viewers) is not meshed again.
-    pub glbs: recent::Recent,
+    /// The trees last sent as GLB and the growth tables last sent as JSON, so that what is
+    /// asked for again (the page's slider going back and forth, several viewers) is not made
+    /// again.
+    pub recent: recent::Recent,
 }
 
 impl State {
@@ -97,7 +98,7 @@ impl State {
             cache: cache::Cache::new(options.cache_bytes, options.growing_limit),
             pictures: pictures::Pictures::default(),
             lists: Default::default(),
-            glbs: recent::Recent::new(GLB_BYTES),
+            recent: recent::Recent::new(RECENT_BYTES),
         })
     }
 }
@@ -115,6 +116,7 @@ pub fn router(state: Arc<State>) -> Router {
         .route("/api/plan.svg", get(api::plan_svg))
         .route("/api/table.csv", get(api::table_csv))
         .route("/api/compare.png", get(api::compare_png))
+        .route("/api/site.png", get(api::site_png))
         .fallback(assets::serve)
         .with_state(state)
 }

@@ -139,6 +139,29 @@ async fn downloads_csv_svg_and_png_read_back() {
     assert!(picture.height() > 200, "a caption under the picture");
 }
 
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_site_picture_marks_a_conflict() {
+    let s = state();
+    // A crapemyrtle of 8 years on the narrow site is over the sidewalk's clearance.
+    let growth = json(&s, "/api/growth?species=LAIN&site=narrow").await;
+    let row = &growth["rows"].as_array().unwrap()[7];
+    assert_eq!(row["age"], 8.0);
+    assert!(
+        !row["street"]["conflicts"].as_array().unwrap().is_empty(),
+        "{row}"
+    );
+    let (status, kind, png) = get(&s, "/api/site.png?species=LAIN&age=8&site=narrow").await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(kind, "image/png");
+    let picture = image::load_from_memory(&png).unwrap().to_rgba8();
+    assert_eq!(picture.dimensions(), (640, 300));
+    let red = picture
+        .pixels()
+        .filter(|p| p[0] > 180 && p[1] < 90 && p[2] < 90)
+        .count();
+    assert!(red > 20, "{red} red pixels");
+}
+
 fn csv_rows(text: &str) -> Vec<Vec<String>> {
     text.lines()
         .map(|l| l.split(',').map(str::to_string).collect())
@@ -261,7 +284,14 @@ async fn hostile_values_are_refused_never_a_panic() {
                 .iter()
                 .map(|(k, v)| format!("{k}={}", v.replace(' ', "%20")))
                 .collect();
-            for path in ["tree.glb", "growth", "compare.png", "plan.svg", "table.csv"] {
+            for path in [
+                "tree.glb",
+                "growth",
+                "compare.png",
+                "plan.svg",
+                "table.csv",
+                "site.png",
+            ] {
                 let uri = format!("/api/{path}?{}", q.join("&"));
                 let (status, _, body) = get(&s, &uri).await;
                 assert!(
