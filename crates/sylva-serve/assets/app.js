@@ -173,10 +173,16 @@ async function drawTrees(stoppedAt) {
 function loadGlb(url) {
   if (!glbs.has(url)) {
     timing.requests++;
-    const p = fetch(url).then(async (r) => {
-      if (!r.ok) throw new Error((await r.json()).error);
-      return r.arrayBuffer();
-    }).then((buf) => loader.parseAsync(buf, '')).then((gltf) => gltf.scene);
+    const get = async () => {
+      for (;;) {
+        const r = await fetch(url);
+        // 503: the server grows as many species as it allows at once; this one comes next.
+        if (r.status === 503) { await new Promise((ok) => setTimeout(ok, 1000)); continue; }
+        if (!r.ok) throw new Error((await r.json()).error);
+        return r.arrayBuffer();
+      }
+    };
+    const p = get().then((buf) => loader.parseAsync(buf, '')).then((gltf) => gltf.scene);
     p.catch(() => glbs.delete(url));
     glbs.set(url, p);
     if (glbs.size > 40) glbs.delete(glbs.keys().next().value);

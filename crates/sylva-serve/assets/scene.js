@@ -130,7 +130,9 @@ export class Street {
       const m = new THREE.Mesh(g, flat(0x111111));
       m.position.copy(at(0, w.offset, w.height));
       this.site.add(m);
-      for (let x = -half + 4; x < half; x += 30) box(0.3, w.height + 0.5, 0.3, 0x6b4f33, x, w.offset, (w.height + 0.5) / 2);
+      // Poles between the trees (and at both ends of the row), never through a crown.
+      const poles = [this.slots[0] - spacing / 2, ...this.slots.map((x) => x + spacing / 2)];
+      for (const x of poles) box(0.3, w.height + 0.5, 0.3, 0x6b4f33, x, w.offset, (w.height + 0.5) / 2);
     }
     // The person stands on the sidewalk beside the first tree, where the eye compares them.
     this.site.add(person(at(this.slots[0] + 2.2, (s.sidewalk[0] + s.sidewalk[1]) / 2, 0)));

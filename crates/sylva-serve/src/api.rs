@@ -188,17 +188,7 @@ impl State {
 pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
     let query = Query(&q);
     let region = query.region(state.db)?;
-    let species = query.species(state.db, &region)?;
-    let [m] = species.as_slice() else {
-        return Err(ApiError::bad(
-            "species",
-            format!(
-                "{} species given; the growth table is one species'",
-                species.len()
-            ),
-            "one species",
-        ));
-    };
+    let m = &query.one_species(state.db, &region, "the growth table is one species'")?;
     let seed = query.seed()?;
     let site = query.site()?;
     let kept = format!("growth/{region}/{}/{seed}/{site}", m.species.code);
@@ -253,14 +243,7 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
 pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
     let query = Query(&q);
     let region = query.region(state.db)?;
-    let species = query.species(state.db, &region)?;
-    if species.len() != 1 {
-        return Err(ApiError::bad(
-            "species",
-            format!("{} species given; a GLB holds one tree", species.len()),
-            "one species",
-        ));
-    }
+    let species = vec![query.one_species(state.db, &region, "a GLB holds one tree")?];
     let age = query.age(&species)?;
     let seed = query.seed()?;
     let detail = query.detail()?;
@@ -285,17 +268,7 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
 pub async fn plan_svg(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
     let query = Query(&q);
     let region = query.region(state.db)?;
-    let species = query.species(state.db, &region)?;
-    if species.len() != 1 {
-        return Err(ApiError::bad(
-            "species",
-            format!(
-                "{} species given; a plan symbol is one tree's",
-                species.len()
-            ),
-            "one species",
-        ));
-    }
+    let species = vec![query.one_species(state.db, &region, "a plan symbol is one tree's")?];
     let age = query.age(&species)?;
     let seed = query.seed()?;
     let entry = state.at(&region, &species, age, seed).await?.remove(0);
@@ -371,17 +344,7 @@ pub async fn compare_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): 
 pub async fn site_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
     let query = Query(&q);
     let region = query.region(state.db)?;
-    let species = query.species(state.db, &region)?;
-    if species.len() != 1 {
-        return Err(ApiError::bad(
-            "species",
-            format!(
-                "{} species given; a site picture is one tree's",
-                species.len()
-            ),
-            "one species",
-        ));
-    }
+    let species = vec![query.one_species(state.db, &region, "a site picture is one tree's")?];
     let age = query.age(&species)?;
     let seed = query.seed()?;
     let site = query.site()?;

@@ -107,6 +107,24 @@ impl Query<'_> {
             .collect()
     }
 
+    /// Exactly one species; `what` says why one (`"a GLB holds one tree"`).
+    pub fn one_species(
+        &self,
+        db: &Database,
+        region: &str,
+        what: &str,
+    ) -> Result<Measured, ApiError> {
+        let mut species = self.species(db, region)?;
+        if species.len() != 1 {
+            return Err(ApiError::bad(
+                "species",
+                format!("{} species given; {what}", species.len()),
+                "one species",
+            ));
+        }
+        Ok(species.remove(0))
+    }
+
     /// A whole age the data of every species in `species` cover.
     pub fn age(&self, species: &[Measured]) -> Result<u32, ApiError> {
         let (lo, hi) = species.iter().fold((1u32, u32::MAX), |(lo, hi), m| {

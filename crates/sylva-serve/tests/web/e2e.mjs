@@ -149,6 +149,13 @@ async function look(page, a) {
     });
     return { trees, charts };
   }, png.toString('base64'));
+  if (shots) {
+    // The panel's lower half too: conflicts, each tree on its site, downloads.
+    await page.waitForTimeout(1000);
+    await page.evaluate(() => { document.querySelector('aside').scrollTop = 1e6; });
+    await page.screenshot({ path: `${shots}/page-age-${a}-panel.png` });
+    await page.evaluate(() => { document.querySelector('aside').scrollTop = 0; });
+  }
   console.log(`age ${a}: leaf pixels per tree ${found.trees.join(', ')}; species colours per chart ${found.charts.map((c) => c.join('/')).join(', ')}`);
   check(found.trees.length === 2 && found.trees.every((n) => n > 400), `age ${a}: two trees drawn`);
   check(found.charts.length === 4 && found.charts.every((c) => c.every((n) => n > 40)), `age ${a}: four charts drawn, both species on each`);

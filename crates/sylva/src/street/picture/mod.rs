@@ -205,22 +205,31 @@ fn section(
             );
         }
     }
-    let leaf = paint(70, 120, 45, 150);
-    let leaf_hit = paint(230, 40, 40, 200);
+    leaves(&mut c, skeleton, zones, (150, 200), |p| {
+        (p.y as f64, p.z as f64)
+    });
+    if marked.contains(&Kind::TrunkFlare) {
+        let r = flare_radius(skeleton);
+        c.outline((-r, 0.0), (r, 0.5), &red);
+    }
+}
+
+/// Every leaf as a dot its size (0.7 to 6 pixels), green, or red where it is in the way; the
+/// alphas of the two paints, and where `view` puts a point on the canvas, are the view's own.
+fn leaves(
+    c: &mut Canvas,
+    skeleton: &Skeleton,
+    zones: &Zones,
+    (alpha, alpha_hit): (u8, u8),
+    view: impl Fn(glam::Vec3) -> (f64, f64),
+) {
+    let leaf = paint(70, 120, 45, alpha);
+    let leaf_hit = paint(230, 40, 40, alpha_hit);
     for l in &skeleton.leaves {
         let at = leaf_centre(l);
         let r = c.pixels(l.length.max(l.width) as f64 * 0.5).clamp(0.7, 6.0);
         let hit = zones.kind_of(at, None).is_some();
-        c.circle(
-            (at.y as f64, at.z as f64),
-            r,
-            if hit { &leaf_hit } else { &leaf },
-            true,
-        );
-    }
-    if marked.contains(&Kind::TrunkFlare) {
-        let r = flare_radius(skeleton);
-        c.outline((-r, 0.0), (r, 0.5), &red);
+        c.circle(view(at), r, if hit { &leaf_hit } else { &leaf }, true);
     }
 }
 

@@ -1,11 +1,10 @@
 //! The site from above: x along the street to the right, y across it upwards (roadway at the
 //! bottom, buildings at the top).
 
-use super::across;
 use super::canvas::{Canvas, paint};
+use super::{across, leaves};
 use crate::Skeleton;
 use crate::street::conflicts::{Kind, Zones, flare_radius};
-use crate::street::crown::leaf_centre;
 use crate::street::site::Site;
 use tiny_skia::Pixmap;
 
@@ -96,19 +95,9 @@ pub(super) fn plan(
         }
     }
     // The tree from above: leaves, then stems over them.
-    let leaf = paint(70, 120, 45, 110);
-    let leaf_hit = paint(230, 40, 40, 170);
-    for l in &skeleton.leaves {
-        let at = leaf_centre(l);
-        let r = c.pixels(l.length.max(l.width) as f64 * 0.5).clamp(0.7, 6.0);
-        let hit = zones.kind_of(at, None).is_some();
-        c.circle(
-            (at.x as f64, at.y as f64),
-            r,
-            if hit { &leaf_hit } else { &leaf },
-            true,
-        );
-    }
+    leaves(&mut c, skeleton, zones, (110, 170), |p| {
+        (p.x as f64, p.y as f64)
+    });
     let bark = paint(95, 75, 60, 255);
     for stem in skeleton.stems.iter().filter(|s| s.level <= 1) {
         let sec = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
