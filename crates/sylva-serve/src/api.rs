@@ -255,7 +255,7 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
     let entry = state.at(&region, &species, age, seed).await?.remove(0);
     let m = species[0].clone();
     let glb = blocking(move || {
-        grown::web_glb(&m, &entry.skeleton, detail).map_err(|e| ApiError::internal(e.to_string()))
+        grown::web_glb(&m, &entry, detail).map_err(|e| ApiError::internal(e.to_string()))
     })
     .await?;
     let glb = axum::body::Bytes::from(glb);

@@ -74,6 +74,10 @@ pub struct AgeEntry {
     pub accounts: Vec<YearAccount>,
     /// The tree.
     pub skeleton: Skeleton,
+    /// The tree as the page draws it, stored for range (leaves as kites): a request meshes
+    /// any detail level from it in a few milliseconds, packing having been done here, on the
+    /// growth's low-priority threads.
+    pub lod: LodTree,
 }
 
 impl AgeEntry {
@@ -84,6 +88,7 @@ impl AgeEntry {
             + std::mem::size_of_val(s.stems.as_slice())
             + std::mem::size_of_val(s.sections.as_slice())
             + std::mem::size_of_val(s.leaves.as_slice())
+            + self.lod.heap_bytes()
             + self
                 .accounts
                 .iter()
@@ -121,10 +126,12 @@ pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool)
             .iter_mut()
             .map(|a| a.year(age, &record.model, &skeleton))
             .collect();
+        let lod = LodTree::build(&kites(&skeleton), &WEB_MESH);
         let entry = AgeEntry {
             record,
             accounts,
             skeleton,
+            lod,
         };
         if !done(entry) {
             return;
@@ -183,13 +190,10 @@ const DETAIL: [[f64; 4]; DETAIL_LEVELS as usize] = [
 /// A grown tree as the page draws it at `detail` (0 to [`DETAIL_LEVELS`] - 1), in a GLB. A
 /// browser without a GPU draws some hundred thousand triangles a second, so the page asks for
 /// the level its own frame times allow.
-pub fn web_glb(m: &Measured, skeleton: &Skeleton, detail: u32) -> Result<Vec<u8>, ExportError> {
-    let mesh = if detail == 0 {
-        web_mesh(skeleton)
-    } else {
-        let lod = LodTree::build(&kites(skeleton), &WEB_MESH);
-        lod.engine_mesh(DETAIL[detail.min(DETAIL_LEVELS - 1) as usize])
-    };
+pub fn web_glb(m: &Measured, entry: &AgeEntry, detail: u32) -> Result<Vec<u8>, ExportError> {
+    let mesh = entry
+        .lod
+        .engine_mesh(DETAIL[detail.min(DETAIL_LEVELS - 1) as usize]);
     let (bark, leaves) = m.colours();
     to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))
 }
@@ -264,7 +268,16 @@ mod tests {
         );
         // Each coarser level draws fewer triangles and keeps the leaf area.
         let lod = LodTree::build(&kites(s), &WEB_MESH);
-        let mut before = web.triangle_count();
+        let whole = lod.engine_mesh(DETAIL[0]);
+        println!(
+            "level 0: {} triangles (mesh_tree: {}), leaves {:.1} m²",
+            whole.triangle_count(),
+            web.triangle_count(),
+            area(&whole.leaves)
+        );
+        assert_eq!(whole.leaves.triangle_count(), web.leaves.triangle_count());
+        assert!((area(&whole.leaves) / w - 1.0).abs() < 1e-3);
+        let mut before = whole.triangle_count();
         for (level, x) in DETAIL.iter().enumerate().skip(1) {
             let m = lod.engine_mesh(*x);
             let a = area(&m.leaves);

@@ -47,9 +47,10 @@ pub struct Options {
     pub warm: Vec<(String, String)>,
 }
 
-/// The default memory bound: 1 GiB of grown trees (skeletons and accounts of every age).
-/// Measured (`/api/status`): London plane and Chinese pistache through their 64 and 75 ages
-/// hold 326 MB together, honeylocust's 50 ages 96 MB, so this keeps six to ten species.
+/// The default memory bound: 1 GiB of grown trees (skeletons, packed trees and accounts of
+/// every age). Measured (`/api/status`): London plane and Chinese pistache through their 64
+/// and 75 ages hold 425 MB together, honeylocust's 50 ages 126 MB, so this keeps five to eight
+/// species.
 /// Growths still running are never dropped: at most [`Options::growing_limit`] (4) run at once,
 /// so memory stays under the bound plus four growths (under 1 GB more).
 pub const DEFAULT_CACHE_BYTES: usize = 1 << 30;
