@@ -238,22 +238,54 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
     Ok(([(header::CONTENT_TYPE, "application/json")], json).into_response())
 }
 
+/// What a request for one tree at one age names, checked in the order region, species, age,
+/// seed (the GLB, the plan symbol and the site picture share it).
+struct OneTree {
+    region: String,
+    m: Measured,
+    age: u32,
+    seed: u64,
+}
+
+impl OneTree {
+    /// `what` says why one species (`"a GLB holds one tree"`).
+    fn parse(state: &State, query: &Query, what: &str) -> Result<OneTree, ApiError> {
+        let region = query.region(state.db)?;
+        let m = query.one_species(state.db, &region, what)?;
+        let age = query.age(std::slice::from_ref(&m))?;
+        let seed = query.seed()?;
+        Ok(OneTree {
+            region,
+            m,
+            age,
+            seed,
+        })
+    }
+
+    /// The tree, once grown to the age.
+    async fn entry(&self, state: &State) -> Result<Arc<AgeEntry>, ApiError> {
+        let species = std::slice::from_ref(&self.m);
+        Ok(state
+            .at(&self.region, species, self.age, self.seed)
+            .await?
+            .remove(0))
+    }
+}
+
 /// `GET /api/tree.glb?region=R&species=S&age=A[&seed=0][&detail=0]`: the grown tree as the
 /// page draws it, whole or thinned for a slow graphics path (detail 1 to 3).
 pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
     let query = Query(&q);
-    let region = query.region(state.db)?;
-    let species = vec![query.one_species(state.db, &region, "a GLB holds one tree")?];
-    let age = query.age(&species)?;
-    let seed = query.seed()?;
+    let tree = OneTree::parse(&state, &query, "a GLB holds one tree")?;
     let detail = query.detail()?;
-    let name = format!("{}-age-{age:02}.glb", species[0].species.code);
-    let kept = format!("{region}/{}/{seed}/{age}/{detail}", species[0].species.code);
+    let (code, age, seed) = (&tree.m.species.code, tree.age, tree.seed);
+    let name = format!("{code}-age-{age:02}.glb");
+    let kept = format!("{}/{code}/{seed}/{age}/{detail}", tree.region);
     if let Some(glb) = state.recent.get(&kept) {
         return Ok(file(glb, "model/gltf-binary", &name));
     }
-    let entry = state.at(&region, &species, age, seed).await?.remove(0);
-    let m = species[0].clone();
+    let entry = tree.entry(&state).await?;
+    let m = tree.m.clone();
     let glb = blocking(move || {
         grown::web_glb(&m, &entry, detail).map_err(|e| ApiError::internal(e.to_string()))
     })
@@ -266,12 +298,8 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
 /// `GET /api/plan.svg?region=R&species=S&age=A[&seed=0]`: the tree from above, a line
 /// drawing with a scale bar, as `sylva draw --view top` makes for CAD.
 pub async fn plan_svg(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
-    let query = Query(&q);
-    let region = query.region(state.db)?;
-    let species = vec![query.one_species(state.db, &region, "a plan symbol is one tree's")?];
-    let age = query.age(&species)?;
-    let seed = query.seed()?;
-    let entry = state.at(&region, &species, age, seed).await?.remove(0);
+    let tree = OneTree::parse(&state, &Query(&q), "a plan symbol is one tree's")?;
+    let entry = tree.entry(&state).await?;
     let svg = blocking(move || {
         let options = DrawOptions {
             view: View::Top,
@@ -280,7 +308,7 @@ pub async fn plan_svg(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
         Ok(draw_svg(&entry.skeleton, &options))
     })
     .await?;
-    let name = format!("{}-age-{age:02}-plan.svg", species[0].species.code);
+    let name = format!("{}-age-{:02}-plan.svg", tree.m.species.code, tree.age);
     Ok(file(svg.into_bytes(), "image/svg+xml", &name))
 }
 
@@ -343,17 +371,14 @@ pub async fn compare_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): 
 /// and the zones of that year's conflicts outlined (as `sylva grow --site` draws it).
 pub async fn site_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
     let query = Query(&q);
-    let region = query.region(state.db)?;
-    let species = vec![query.one_species(state.db, &region, "a site picture is one tree's")?];
-    let age = query.age(&species)?;
-    let seed = query.seed()?;
+    let tree = OneTree::parse(&state, &query, "a site picture is one tree's")?;
     let site = query.site()?;
     let size = if q.contains_key("size") {
         query.size()?
     } else {
         (640, 300)
     };
-    let entry = state.at(&region, &species, age, seed).await?.remove(0);
+    let entry = tree.entry(&state).await?;
     let png = blocking(move || {
         let kinds: Vec<_> = entry.accounts[site]
             .conflicts
@@ -373,7 +398,7 @@ pub async fn site_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
         Ok(png)
     })
     .await?;
-    let name = format!("{}-site-age-{age:02}.png", species[0].species.code);
+    let name = format!("{}-site-age-{:02}.png", tree.m.species.code, tree.age);
     Ok(file(png, "image/png", &name))
 }
 

@@ -39,8 +39,6 @@ pub struct Growth {
     pub measured: Measured,
     /// The ages it will reach, in order.
     pub ages: Vec<u32>,
-    /// Its seed.
-    pub seed: u64,
     entries: Mutex<Vec<Arc<AgeEntry>>>,
     /// How many of `ages` are in `entries`; the sender lives with the growing thread.
     reached: watch::Receiver<usize>,
@@ -177,7 +175,6 @@ impl Cache {
         let growth = Arc::new(Growth {
             measured: measured.clone(),
             ages: ages_of(measured),
-            seed: key.seed,
             entries: Mutex::new(Vec::new()),
             reached,
             bytes: AtomicUsize::new(0),
@@ -209,17 +206,9 @@ impl Cache {
         if started.is_err() {
             // No thread: `tell` was dropped with the closure, so waiters wake to nothing and
             // the empty growth is dropped at the next start.
-            self.map().remove(&key_of(&growth));
+            self.map().remove(&key);
         }
         Ok(growth)
-    }
-}
-
-fn key_of(g: &Growth) -> Key {
-    Key {
-        region: g.measured.region.code.clone(),
-        code: g.measured.species.code.clone(),
-        seed: g.seed,
     }
 }
 

@@ -12,7 +12,7 @@ use sylva::growth::report::{AgeRecord, Cohort, MESH};
 use sylva::lod::LodTree;
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use sylva::skeleton::LeafShape;
-use sylva::street::{Assessor, Kind, Site, YearAccount};
+use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
 /// A planting site the page offers: its key in the API, what the page calls it, and the site.
 pub struct NamedSite {
@@ -146,16 +146,15 @@ pub fn missing(m: &Measured, site: usize) -> Vec<String> {
     Assessor::new(m, site, None, None).missing().to_vec()
 }
 
-/// The first age each kind of conflict happens on site `site`, in order of age.
+/// The first age each kind of conflict happens on site `site`, in order of age (the
+/// library's [`rank::first_conflicts`], which lists them by kind).
 pub fn first_conflicts(entries: &[std::sync::Arc<AgeEntry>], site: usize) -> Vec<(u32, Kind)> {
-    let mut first: Vec<(u32, Kind)> = Vec::new();
-    for e in entries {
-        for c in &e.accounts[site].conflicts {
-            if !first.iter().any(|(_, k)| *k == c.kind) {
-                first.push((e.record.age as u32, c.kind));
-            }
-        }
-    }
+    let accounts: Vec<YearAccount> = entries.iter().map(|e| e.accounts[site].clone()).collect();
+    let mut first: Vec<(u32, Kind)> = rank::first_conflicts(&accounts)
+        .into_iter()
+        .map(|(age, c)| (age as u32, c.kind))
+        .collect();
+    first.sort_by_key(|(age, _)| *age);
     first
 }
 
@@ -196,11 +195,6 @@ pub fn web_glb(m: &Measured, entry: &AgeEntry, detail: u32) -> Result<Vec<u8>, E
         .engine_mesh(DETAIL[detail.min(DETAIL_LEVELS - 1) as usize]);
     let (bark, leaves) = m.colours();
     to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))
-}
-
-/// The web mesh of a skeleton (see [`WEB_MESH`]).
-pub fn web_mesh(skeleton: &Skeleton) -> TreeMesh {
-    mesh_tree(&kites(skeleton), &WEB_MESH)
 }
 
 /// The skeleton with its oval leaves drawn as kites of the same area.
@@ -248,7 +242,7 @@ mod tests {
         assert_eq!(got[5].record.age, 6.0);
         let s = &got[5].skeleton;
         let full = full_mesh(s);
-        let web = web_mesh(s);
+        let web = mesh_tree(&kites(s), &WEB_MESH);
         // Oval 8 corners, kite 4: the leaves take half the vertices.
         assert_eq!(web.leaves.vertex_count() * 2, full.leaves.vertex_count());
         let area = |mesh: &sylva::mesh::Mesh| -> f64 {
