@@ -45,6 +45,17 @@ async function getJson(url) {
   }
 }
 
+// Answers asked for before they are needed (the page's first species list and growth tables
+// go out at once with its first trees), each handed over once.
+const early = new Map();
+function askEarly(url) { early.set(url, getJson(url)); }
+function json(url) {
+  const asked = early.get(url);
+  if (!asked) return getJson(url);
+  early.delete(url);
+  return asked;
+}
+
 function query(extra) {
   const p = new URLSearchParams({ region: state.region, ...extra });
   return p.toString();
@@ -56,7 +67,7 @@ function status(text) { $('status').textContent = text || ''; }
 
 async function chooseRegion(code, keep) {
   state.region = code;
-  state.species = await getJson(`/api/species?${query({})}`);
+  state.species = await json(`/api/species?${query({})}`);
   const known = new Set(state.species.map((s) => s.code));
   state.chosen = (keep || state.chosen).filter((c) => known.has(c));
   if (state.chosen.length === 0) state.chosen = state.species.slice(0, 2).map((s) => s.code);
@@ -143,6 +154,7 @@ function setAge(age) {
 // ---- drawing ------------------------------------------------------------------------------
 
 let drawing = 0;   // the latest request for trees; older ones give way
+let drawnKey = null;  // the trees and street on the screen
 
 async function drawTrees(stoppedAt) {
   const ticket = ++drawing;
@@ -152,6 +164,11 @@ async function drawTrees(stoppedAt) {
   if (!scenes || ticket !== drawing) return;
   timing.treesLoadedMs ??= performance.now();
   layoutStreet();
+  // The same trees in the same street are on the screen already (the growth tables came
+  // before the trees and laid the street out).
+  const shown = `${urls.join()}|${street.streetKey}`;
+  if (shown === drawnKey && stoppedAt == null) return;
+  drawnKey = shown;
   const frame = street.setTrees(scenes.map((s) => s.clone()));
   (timing.frames ??= []).push([detail, Math.round(frame), street.triangles()]);
   placeLabels();
@@ -339,6 +356,7 @@ async function refresh() {
   timing.tables = 0;
   if (state.chosen.length === 0) {
     street.setTrees([]);
+    drawnKey = null;
     $('labels').textContent = '';
     drawAll();
     status('Add a species to begin: type part of its name above.');
@@ -355,7 +373,7 @@ async function refresh() {
   await Promise.all(chosen.map(async (code) => {
     const key = `${code}/${state.site}`;
     if (state.growth.get(code)?.key !== key) {
-      const g = await getJson(`/api/growth?${query({ species: code, site: state.site })}`);
+      const g = await json(`/api/growth?${query({ species: code, site: state.site })}`);
       g.key = key;
       state.growth.set(code, g);
       drawAll();
@@ -389,6 +407,8 @@ async function start() {
   if (url.get('age')) state.age = Number(url.get('age'));
   state.region = url.get('region') || 'InlVal';
   for (const code of wanted) loadGlb(`/api/tree.glb?${query({ species: code, age: state.age, detail })}`).catch(() => {});
+  askEarly(`/api/species?${query({})}`);
+  for (const code of wanted) askEarly(`/api/growth?${query({ species: code, site: state.site })}`);
   const [regions, sites] = await Promise.all([getJson('/api/regions'), getJson('/api/sites')]);
   state.regions = regions;
   state.sites = sites;

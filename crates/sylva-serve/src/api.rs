@@ -285,8 +285,11 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
         return Ok(file(glb, "model/gltf-binary", &name));
     }
     let entry = tree.entry(&state).await?;
+    if detail == grown::OPENING && !entry.opening.is_empty() {
+        return Ok(file(entry.opening.clone(), "model/gltf-binary", &name));
+    }
     let m = tree.m.clone();
-    let glb = blocking(move || {
+    let glb = blocking(&state, move || {
         grown::web_glb(&m, &entry, detail).map_err(|e| ApiError::internal(e.to_string()))
     })
     .await?;
@@ -300,7 +303,7 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
 pub async fn plan_svg(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Params) -> Reply {
     let tree = OneTree::parse(&state, &Query(&q), "a plan symbol is one tree's")?;
     let entry = tree.entry(&state).await?;
-    let svg = blocking(move || {
+    let svg = blocking(&state, move || {
         let options = DrawOptions {
             view: View::Top,
             ..Default::default()
@@ -362,7 +365,10 @@ pub async fn compare_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): 
     let pictures = state.clone();
     let names: Vec<&str> = species.iter().map(|m| m.species.code.as_str()).collect();
     let name = format!("compare-{}-age-{age:02}.png", names.join("-"));
-    let png = blocking(move || pictures.pictures.compare(&species, &entries, age, size)).await?;
+    let png = blocking(&state, move || {
+        pictures.pictures.compare(&species, &entries, age, size)
+    })
+    .await?;
     Ok(file(png, "image/png", &name))
 }
 
@@ -379,7 +385,7 @@ pub async fn site_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
         (640, 300)
     };
     let entry = tree.entry(&state).await?;
-    let png = blocking(move || {
+    let png = blocking(&state, move || {
         let kinds: Vec<_> = entry.accounts[site]
             .conflicts
             .iter()
@@ -402,10 +408,19 @@ pub async fn site_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
     Ok(file(png, "image/png", &name))
 }
 
-/// Runs `work` on a blocking thread.
+/// Runs `work` on a blocking thread once one of the [`State::workers`] turns is free: as
+/// many pieces of work at once as the machine has cores. More at once would only share the
+/// cores, each holding the memory of a mesh or picture in the making the while (twenty
+/// comparison pictures asked at once would hold twenty frames).
 async fn blocking<T: Send + 'static>(
+    state: &State,
     work: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
 ) -> Result<T, ApiError> {
+    let _turn = state
+        .workers
+        .acquire()
+        .await
+        .map_err(|e| ApiError::internal(format!("the work stopped: {e}")))?;
     tokio::task::spawn_blocking(work)
         .await
         .map_err(|e| ApiError::internal(format!("the work stopped: {e}")))?

@@ -78,6 +78,10 @@ pub struct AgeEntry {
     /// any detail level from it in a few milliseconds, packing having been done here, on the
     /// growth's low-priority threads.
     pub lod: LodTree,
+    /// The GLB at [`OPENING`], the level a page opens on and a browser without a graphics
+    /// card keeps, made here as well: when many ask at once, each answer is a copy (empty if
+    /// it could not be made; a request then meshes it).
+    pub opening: axum::body::Bytes,
 }
 
 impl AgeEntry {
@@ -89,6 +93,7 @@ impl AgeEntry {
             + std::mem::size_of_val(s.sections.as_slice())
             + std::mem::size_of_val(s.leaves.as_slice())
             + self.lod.heap_bytes()
+            + self.opening.len()
             + self
                 .accounts
                 .iter()
@@ -127,12 +132,16 @@ pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool)
             .map(|a| a.year(age, &record.model, &skeleton))
             .collect();
         let lod = LodTree::build(&kites(&skeleton), &WEB_MESH);
-        let entry = AgeEntry {
+        let mut entry = AgeEntry {
             record,
             accounts,
             skeleton,
             lod,
+            opening: Default::default(),
         };
+        if let Ok(glb) = web_glb(m, &entry, OPENING) {
+            entry.opening = glb.into();
+        }
         if !done(entry) {
             return;
         }
@@ -174,6 +183,9 @@ const KITE_WIDENING: f32 = 0.70 / 0.50;
 /// Most detail levels the page may ask for: 0 is the whole tree, each next one draws about
 /// half the triangles.
 pub const DETAIL_LEVELS: u32 = 4;
+
+/// The level the page asks for first, the coarsest.
+pub const OPENING: u32 = DETAIL_LEVELS - 1;
 
 /// Items of each of the four lists of a [`LodTree`] (stems by level, then leaves) that each
 /// detail level keeps, as Weber & Penn's degradation at range thins a tree: twigs and leaves
@@ -240,6 +252,12 @@ mod tests {
         assert_eq!(got.len(), 6, "stops when told");
         assert_eq!(got[0].record.age, 1.0);
         assert_eq!(got[5].record.age, 6.0);
+        // Each age holds the opening level's GLB as a request would mesh it, and counts it.
+        for e in &got {
+            let glb = web_glb(&plane, e, OPENING).unwrap();
+            assert_eq!(e.opening.as_ref(), glb.as_slice(), "age {}", e.record.age);
+            assert!(e.bytes() > glb.len() + e.lod.heap_bytes());
+        }
         let s = &got[5].skeleton;
         let full = full_mesh(s);
         let web = mesh_tree(&kites(s), &WEB_MESH);

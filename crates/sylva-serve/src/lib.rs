@@ -47,12 +47,13 @@ pub struct Options {
     pub warm: Vec<(String, String)>,
 }
 
-/// The default memory bound: 1 GiB of grown trees (skeletons, packed trees and accounts of
-/// every age). Measured (`/api/status`): London plane and Chinese pistache through their 64
-/// and 75 ages hold 425 MB together, honeylocust's 50 ages 126 MB, so this keeps five to eight
-/// species.
+/// The default memory bound: 1 GiB of grown trees (skeletons, packed trees, the opening
+/// level's GLBs and accounts of every age). Measured (`/api/status`): London plane and Chinese
+/// pistache through their 64 and 75 ages hold 578 MB together, honeylocust's 50 ages 164 MB,
+/// so this keeps four to six species.
 /// Growths still running are never dropped: at most [`Options::growing_limit`] (4) run at once,
-/// so memory stays under the bound plus four growths (under 1 GB more).
+/// so memory stays under the bound plus four growths (some 300 MB each for the largest of
+/// these).
 pub const DEFAULT_CACHE_BYTES: usize = 1 << 30;
 
 impl Default for Options {
@@ -93,6 +94,9 @@ pub struct State {
     /// asked for again (the page's slider going back and forth, several viewers) is not made
     /// again.
     pub recent: recent::Recent,
+    /// Turns for work a request does on a blocking thread (meshing a tree, drawing a
+    /// picture): one per core.
+    pub workers: tokio::sync::Semaphore,
 }
 
 impl State {
@@ -104,6 +108,9 @@ impl State {
             pictures: pictures::Pictures::default(),
             lists: Default::default(),
             recent: recent::Recent::new(RECENT_BYTES),
+            workers: tokio::sync::Semaphore::new(
+                std::thread::available_parallelism().map_or(2, |n| n.get()),
+            ),
         })
     }
 }

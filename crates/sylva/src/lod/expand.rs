@@ -182,6 +182,19 @@ impl LodTree {
     fn expanded(&self, x: [f64; 4], keep_leaf_area: bool) -> TreeMesh {
         let q = &self.quantiser;
         let mut out = TreeMesh::default();
+        // Every buffer at its final size from the start. A growing Vec moves its contents
+        // and maps memory anew at each doubling, and threads that map memory wait on one
+        // another in the kernel: a server meshing five trees at once (10 ms each alone) took
+        // 100-160 ms over each before, 20-50 ms after.
+        let (mut vertices, mut indices) = (0, 0);
+        for (i, list) in self.lists[..3].iter().enumerate() {
+            for run in &list.runs {
+                let n = prefix_len(run.len(), list.mass, x[i]);
+                vertices += n * 2 * (run.sides as usize + 1);
+                indices += n * 6 * run.sides as usize;
+            }
+        }
+        out.bark.reserve(vertices, indices);
         for (i, list) in self.lists[..3].iter().enumerate() {
             for run in &list.runs {
                 let n = prefix_len(run.len(), list.mass, x[i]) as u32;
@@ -208,6 +221,14 @@ impl LodTree {
         let shaded = kept
             .iter()
             .any(|&(r, n)| leaves(r, n).iter().any(|l| l.xyzs[3] >> 12 < 10));
+        let (vertices, indices) = kept.iter().fold((0, 0), |(v, i), &(run, n)| {
+            let t = leaf_template(run.shape);
+            (v + n * t.positions.len(), i + n * t.indices.len())
+        });
+        out.leaves.reserve(vertices, indices);
+        if shaded {
+            out.leaves.shades.reserve_exact(vertices);
+        }
         for (run, n) in kept {
             for l in leaves(run, n) {
                 Card::of(q, l).mesh_into(run.shape, grow, shaded, &mut out.leaves);

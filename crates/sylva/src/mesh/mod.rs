@@ -53,7 +53,7 @@ impl Mesh {
     }
 
     /// Makes room for this many more vertices and indices (exactly, to keep memory tight).
-    fn reserve(&mut self, vertices: usize, indices: usize) {
+    pub(crate) fn reserve(&mut self, vertices: usize, indices: usize) {
         self.positions.reserve_exact(vertices);
         self.normals.reserve_exact(vertices);
         self.uvs.reserve_exact(vertices);
