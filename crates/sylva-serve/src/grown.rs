@@ -10,7 +10,7 @@ use sylva::export::{Materials, to_glb};
 use sylva::growth::Measured;
 use sylva::growth::report::{AgeRecord, Cohort, MESH};
 use sylva::lod::LodTree;
-use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::mesh::{MeshOptions, TreeMesh, leaf_template, mesh_tree};
 use sylva::skeleton::LeafShape;
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
@@ -209,14 +209,21 @@ pub fn web_glb(m: &Measured, entry: &AgeEntry, detail: u32) -> Result<Vec<u8>, E
     to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))
 }
 
-/// The skeleton with its oval leaves drawn as kites of the same area.
+/// The skeleton with every leaf drawn as a kite of the same area: ovals widened by
+/// [`KITE_WIDENING`], any other outline (a species' lobed, heart-shaped or compound leaf) by its
+/// template's area over the kite's. Four corners a leaf whatever the species wears, so the page's
+/// frame times hold for every species; the species still shows in its colours, and in its
+/// leaves' size and number.
 fn kites(skeleton: &Skeleton) -> Skeleton {
+    let kite = leaf_template(LeafShape::Triangle).area();
     let mut light = skeleton.clone();
     for leaf in &mut light.leaves {
-        if leaf.shape == LeafShape::Oval {
-            leaf.shape = LeafShape::Triangle;
-            leaf.width *= KITE_WIDENING;
+        match leaf.shape {
+            LeafShape::Triangle => {}
+            LeafShape::Oval => leaf.width *= KITE_WIDENING,
+            other => leaf.width *= leaf_template(other).area() / kite,
         }
+        leaf.shape = LeafShape::Triangle;
     }
     light
 }
@@ -261,8 +268,9 @@ mod tests {
         let s = &got[5].skeleton;
         let full = full_mesh(s);
         let web = mesh_tree(&kites(s), &WEB_MESH);
-        // Oval 8 corners, kite 4: the leaves take half the vertices.
-        assert_eq!(web.leaves.vertex_count() * 2, full.leaves.vertex_count());
+        // Every leaf a kite of four corners.
+        assert_eq!(web.leaves.vertex_count(), 4 * s.leaves.len());
+        assert!(web.leaves.vertex_count() < full.leaves.vertex_count());
         let area = |mesh: &sylva::mesh::Mesh| -> f64 {
             mesh.indices
                 .chunks(3)

@@ -71,7 +71,34 @@ pub enum LeafShape {
     Palm,
     /// Small closed sphere (8), for berries and grain; Arbaro's `sphere`.
     Sphere,
+    /// Palmately five-lobed blade of few corners: planes and maples grown from the database.
+    Lobed5,
+    /// Heart-shaped blade, two rounded lobes at the base: lindens, redbuds, catalpas.
+    Cordate,
+    /// Deeply cut lobes ending in points: the red-oak group (pin, red, willow-leaved kin).
+    PointedLobes,
+    /// A compound leaf of this many leaflets in pairs along a rachis (an odd count ends in a
+    /// terminal leaflet): ashes, pistache, goldenrain tree. 2 to 25.
+    Pinnate(u8),
+    /// A twice-compound leaf: this many pinnae along the rachis, each a feather of small
+    /// leaflets: honeylocust, jacaranda, silk tree. 2 to 20.
+    Bipinnate(u8),
+    /// A compound leaf of this many leaflets spread from the petiole's tip like fingers:
+    /// buckeyes and horsechestnuts. 3 to 11.
+    Palmate(u8),
+    /// A bundle (fascicle) of this many needles from one sheath: pines. 1 to 5.
+    Needles(u8),
 }
+
+/// Leaflet, pinna and needle counts a [`LeafShape`] may carry (inclusive); outside them the
+/// nearest is used.
+pub const PINNATE_LEAFLETS: (u8, u8) = (2, 25);
+/// See [`PINNATE_LEAFLETS`].
+pub const BIPINNATE_PINNAE: (u8, u8) = (2, 20);
+/// See [`PINNATE_LEAFLETS`].
+pub const PALMATE_LEAFLETS: (u8, u8) = (3, 11);
+/// See [`PINNATE_LEAFLETS`].
+pub const BUNDLE_NEEDLES: (u8, u8) = (1, 5);
 
 impl LeafShape {
     /// All shapes in index order.
@@ -86,6 +113,56 @@ impl LeafShape {
         LeafShape::Palm,
         LeafShape::Sphere,
     ];
+
+    /// Every shape with a template of its own: the indexed nine, then the outlines and the
+    /// counts of the compound kinds.
+    pub fn every() -> impl Iterator<Item = LeafShape> {
+        let counts = |(lo, hi): (u8, u8)| lo..=hi;
+        Self::ALL
+            .into_iter()
+            .chain([
+                LeafShape::Lobed5,
+                LeafShape::Cordate,
+                LeafShape::PointedLobes,
+            ])
+            .chain(counts(PINNATE_LEAFLETS).map(LeafShape::Pinnate))
+            .chain(counts(BIPINNATE_PINNAE).map(LeafShape::Bipinnate))
+            .chain(counts(PALMATE_LEAFLETS).map(LeafShape::Palmate))
+            .chain(counts(BUNDLE_NEEDLES).map(LeafShape::Needles))
+    }
+
+    /// This shape with its count brought within its bounds (see [`PINNATE_LEAFLETS`]).
+    pub fn clamped(self) -> LeafShape {
+        let within = |n: u8, (lo, hi): (u8, u8)| n.clamp(lo, hi);
+        match self {
+            LeafShape::Pinnate(n) => LeafShape::Pinnate(within(n, PINNATE_LEAFLETS)),
+            LeafShape::Bipinnate(n) => LeafShape::Bipinnate(within(n, BIPINNATE_PINNAE)),
+            LeafShape::Palmate(n) => LeafShape::Palmate(within(n, PALMATE_LEAFLETS)),
+            LeafShape::Needles(n) => LeafShape::Needles(within(n, BUNDLE_NEEDLES)),
+            other => other,
+        }
+    }
+
+    /// Position of this shape (clamped) in [`LeafShape::every`]: where its template is kept.
+    pub fn slot(self) -> usize {
+        let fixed = Self::ALL.len() + 3;
+        let span = |(lo, hi): (u8, u8)| usize::from(hi - lo) + 1;
+        let (p, b, m) = (
+            span(PINNATE_LEAFLETS),
+            span(BIPINNATE_PINNAE),
+            span(PALMATE_LEAFLETS),
+        );
+        match self.clamped() {
+            LeafShape::Lobed5 => Self::ALL.len(),
+            LeafShape::Cordate => Self::ALL.len() + 1,
+            LeafShape::PointedLobes => Self::ALL.len() + 2,
+            LeafShape::Pinnate(n) => fixed + usize::from(n - PINNATE_LEAFLETS.0),
+            LeafShape::Bipinnate(n) => fixed + p + usize::from(n - BIPINNATE_PINNAE.0),
+            LeafShape::Palmate(n) => fixed + p + b + usize::from(n - PALMATE_LEAFLETS.0),
+            LeafShape::Needles(n) => fixed + p + b + m + usize::from(n - BUNDLE_NEEDLES.0),
+            indexed => Self::ALL.iter().position(|&s| s == indexed).unwrap_or(0),
+        }
+    }
 
     /// Shape for a `LeafShape` index; out-of-range indices give `None`.
     pub fn from_index(index: u32) -> Option<Self> {
@@ -104,6 +181,13 @@ impl LeafShape {
             LeafShape::Square => "square",
             LeafShape::Palm => "palm",
             LeafShape::Sphere => "sphere",
+            LeafShape::Lobed5 => "lobed5",
+            LeafShape::Cordate => "cordate",
+            LeafShape::PointedLobes => "pointed-lobes",
+            LeafShape::Pinnate(_) => "pinnate",
+            LeafShape::Bipinnate(_) => "bipinnate",
+            LeafShape::Palmate(_) => "palmate",
+            LeafShape::Needles(_) => "needles",
         }
     }
 }

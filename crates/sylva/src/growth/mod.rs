@@ -5,6 +5,7 @@
 
 pub mod database;
 pub mod equations;
+pub mod foliage;
 pub mod form;
 pub mod habit;
 pub mod light;

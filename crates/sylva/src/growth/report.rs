@@ -250,9 +250,13 @@ pub const CHARTED: [Quantity; 5] = [
 ];
 
 impl Measured {
-    /// Colours of this species' pictures and models (sRGB): bark, and leaves (evergreens
+    /// Colours of this species' pictures and models (sRGB): bark, and leaves in summer, as
+    /// the foliage table names them; for species not in it, one bark and a green (evergreens
     /// darker).
     pub fn colours(&self) -> ([f32; 3], [f32; 3]) {
+        if let Some(f) = super::foliage::of(&self.species.code) {
+            return (f.bark.srgb, f.summer.srgb);
+        }
         let evergreen = self.species.tree_type.get(1..2) == Some("E");
         let leaves = if evergreen {
             [0.2, 0.36, 0.16]

@@ -34,11 +34,12 @@ impl LeafTemplate {
     }
 }
 
-/// The template of a shape (built once, shared).
+/// The template of a shape (every one built once, shared; a count out of its bounds takes the
+/// nearest's).
 pub fn leaf_template(shape: LeafShape) -> &'static LeafTemplate {
     static TEMPLATES: OnceLock<Vec<LeafTemplate>> = OnceLock::new();
-    let all = TEMPLATES.get_or_init(|| LeafShape::ALL.iter().map(|&s| build(s)).collect());
-    &all[LeafShape::ALL.iter().position(|&s| s == shape).unwrap_or(0)]
+    let all = TEMPLATES.get_or_init(|| LeafShape::every().map(build).collect());
+    &all[shape.slot().min(all.len() - 1)]
 }
 
 /// Triangles per leaf of a shape.
@@ -251,6 +252,9 @@ fn ellipse(width: f32) -> Vec<Vec2> {
 }
 
 fn build(shape: LeafShape) -> LeafTemplate {
+    if let Some(t) = super::compound::build(shape) {
+        return t;
+    }
     let up = PI / 2.0;
     match shape {
         LeafShape::Oval => flat(&[(None, ellipse(0.5))]),
@@ -343,7 +347,84 @@ fn build(shape: LeafShape) -> LeafTemplate {
             t
         }
         LeafShape::Sphere => sphere(),
+        // The outlines grown street trees wear, drawn with few corners: a crown carries tens
+        // of thousands of them (see growth::foliage). Palmately five-lobed, as a plane's or a
+        // maple's: two basal lobes, two side lobes, the middle lobe.
+        LeafShape::Lobed5 => star(
+            Vec2::new(0.0, 0.42),
+            &[
+                (0.0, 0.15),
+                (0.38, 0.12),
+                (0.17, 0.33),
+                (0.5, 0.62),
+                (0.14, 0.6),
+                (0.0, 1.0),
+                (-0.14, 0.6),
+                (-0.5, 0.62),
+                (-0.17, 0.33),
+                (-0.38, 0.12),
+            ],
+        ),
+        // A heart: the notch where the petiole joins, the basal lobes, full sides, the tip.
+        LeafShape::Cordate => star(
+            Vec2::new(0.0, 0.45),
+            &[
+                (0.0, 0.14),
+                (0.32, 0.02),
+                (0.5, 0.38),
+                (0.0, 1.0),
+                (-0.5, 0.38),
+                (-0.32, 0.02),
+            ],
+        ),
+        // Seven lobes to points, the sinuses cut nearly to the midrib: a strip along the
+        // midrib, widest at each lobe's tip.
+        LeafShape::PointedLobes => strip(&[
+            (0.0, 0.03),
+            (0.2, 0.3),
+            (0.3, 0.06),
+            (0.48, 0.5),
+            (0.57, 0.07),
+            (0.78, 0.36),
+            (0.87, 0.05),
+            (1.0, 0.0),
+        ]),
+        // Built by `compound` above.
+        LeafShape::Pinnate(_)
+        | LeafShape::Bipinnate(_)
+        | LeafShape::Palmate(_)
+        | LeafShape::Needles(_) => flat(&[(None, ellipse(0.5))]),
     }
+}
+
+/// A blade symmetric about its midrib, `rows` of (z, half width) from base to tip, meshed as a
+/// strip of quads.
+fn strip(rows: &[(f32, f32)]) -> LeafTemplate {
+    let mut t = LeafTemplate {
+        positions: vec![],
+        normals: vec![],
+        uvs: vec![],
+        indices: vec![],
+    };
+    for &(z, w) in rows {
+        for x in [-w, w] {
+            t.positions.push(Vec3::new(x, 0.0, z));
+            t.normals.push(Vec3::Y);
+            t.uvs.push([x + 0.5, z]);
+        }
+    }
+    for i in 0..rows.len() as u32 - 1 {
+        let (l0, r0, l1, r1) = (2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 3);
+        // Counter-clockwise seen from +y.
+        t.indices.extend_from_slice(&[l0, l1, r0, r0, l1, r1]);
+    }
+    t
+}
+
+/// A flat outline of `corners` (x, z), counter-clockwise, fanned from `centre`.
+fn star(centre: Vec2, corners: &[(f32, f32)]) -> LeafTemplate {
+    let outline = corners.iter().map(|&(x, z)| Vec2::new(x, z)).collect();
+    flat(&[(Some(centre), outline)])
 }
 
 /// An octahedron subdivided once and pushed onto the sphere inscribed in the unit box.
@@ -391,7 +472,7 @@ mod tests {
 
     #[test]
     fn every_template_fits_the_unit_box_and_faces_its_normal() {
-        for shape in LeafShape::ALL {
+        for shape in LeafShape::every() {
             let t = leaf_template(shape);
             assert!(!t.indices.is_empty(), "{shape:?}");
             for p in &t.positions {
@@ -415,7 +496,13 @@ mod tests {
                 );
                 area += n.length() / 2.0;
             }
-            assert!(area > 0.1, "{shape:?} area {area}");
+            // A bundle of two needles is mostly air; every blade elsewhere fills a tenth.
+            let least = if matches!(shape, LeafShape::Needles(_)) {
+                0.02
+            } else {
+                0.1
+            };
+            assert!(area > least, "{shape:?} area {area}");
         }
     }
 

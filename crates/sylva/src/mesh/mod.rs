@@ -3,10 +3,12 @@
 //! bark and one for leaves, in the skeleton's Z-up metres; exporters convert the axes.
 
 mod apart;
+mod compound;
 mod leaves;
 mod leaves_apart;
 mod stems;
 
+pub use compound::natural_aspect;
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
 pub(crate) use stems::ring_frame;
 pub use stems::ring_vertices;

@@ -9,13 +9,14 @@ use std::sync::OnceLock;
 
 /// One side of a leaf, m² (its template's area, computed once per shape, times its size).
 pub fn leaf_area(l: &Leaf) -> f64 {
-    static AREAS: OnceLock<[f32; 9]> = OnceLock::new();
-    let areas = AREAS.get_or_init(|| LeafShape::ALL.map(|s| leaf_template(s).area()));
-    let i = LeafShape::ALL
-        .iter()
-        .position(|&s| s == l.shape)
-        .unwrap_or(0);
-    (areas[i] * l.length * l.width) as f64
+    static AREAS: OnceLock<Vec<f32>> = OnceLock::new();
+    let areas = AREAS.get_or_init(|| {
+        LeafShape::every()
+            .map(|s| leaf_template(s).area())
+            .collect()
+    });
+    let area = areas.get(l.shape.slot()).copied().unwrap_or(0.0);
+    (area * l.length * l.width) as f64
 }
 
 /// A leaf's centre, where its area is counted.

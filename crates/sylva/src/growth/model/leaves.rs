@@ -132,17 +132,32 @@ impl Grower {
 
     /// Length and width of a leaf as drawn, m.
     pub(super) fn drawn_leaf_size(&self) -> (f32, f32) {
-        let natural = self.leaf_size.0
-            * self.leaf_size.1
-            * crate::mesh::leaf_template(self.leaf_shape).area();
+        let (l, w) = self.leaf_size_now();
+        let natural = l * w * crate::mesh::leaf_template(self.leaf_shape).area();
         let k = (self.leaf_area_each() * self.leaf_boost / natural).sqrt();
-        (self.leaf_size.0 * k, self.leaf_size.1 * k)
+        (l * k, w * k)
     }
 
-    /// Area of one leaf as drawn, m² (larger than life when the leaf budget is reached).
+    /// The species' leaf, on a sapling no longer than the generic 14 cm leaf or a sixteenth of
+    /// the crown's measured width, whichever is longer: a goldenrain tree's 28 cm leaves on a
+    /// crown 1.5 m wide would hang a tenth of its width outside it, so a young tree's leaves
+    /// grow to their full size as its crown widens (a drawing rule, not a measurement).
+    fn leaf_size_now(&self) -> (f32, f32) {
+        let (l, w) = self.leaf_size;
+        let longest = (self.targets_now().crown_diameter as f32 / 16.0).max(0.14);
+        let k = (longest / l).min(1.0);
+        (l * k, w * k)
+    }
+
+    /// Area of one leaf as drawn, m² (larger than life when the leaf budget is reached, or
+    /// when leaves this small would take more vertices than the tree's allowance).
     pub(super) fn leaf_area_each(&self) -> f32 {
-        let template = crate::mesh::leaf_template(self.leaf_shape).area();
-        let natural = self.leaf_size.0 * self.leaf_size.1 * template;
+        let t = crate::mesh::leaf_template(self.leaf_shape);
+        let (l, w) = self.leaf_size_now();
+        let leaf_area = self.targets_now().leaf_area as f32;
+        // Vertices allowed: the cap's density over the crown, or over the free area.
+        let allowed = self.leaf_vertex_cap * leaf_area.max(super::LEAF_VERTEX_FREE_AREA);
+        let natural = (l * w * t.area()).max(t.positions.len() as f32 * leaf_area / allowed);
         let t = self.targets_now();
         let needed = t.leaf_area as f32 / self.options.max_leaves as f32;
         natural.max(needed)

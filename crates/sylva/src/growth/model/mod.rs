@@ -20,6 +20,7 @@
 use super::habit::{Envelope, Habit, TreeForm, habit_of};
 use super::light::{LightGrid, Ray, daylight};
 use super::measured::Measured;
+use crate::growth::foliage;
 use crate::rng::{Random, StreamKey};
 use crate::skeleton::{CrossSection, Leaf, LeafShape, Skeleton, Stem, StemId};
 use glam::{Quat, Vec3};
@@ -85,6 +86,33 @@ const SPUR_MAX_RADIUS: f32 = 0.08;
 const SPUR_DENSITY: f32 = 0.5;
 /// ...and this share of its weight when the leaf area is shared out.
 const SPUR_WEIGHT: f32 = 0.5;
+
+/// How many times the generic leaf's vertices per m² a species' own leaves may take (the
+/// generic leaf: a 14 x 10 cm oval, or a conifer's 12 x 3 cm needle tuft), once a crown holds
+/// more than [`LEAF_VERTEX_FREE_AREA`]. Simple blades get 1: the crown costs what the generic
+/// crown cost, to mesh (a growth step) and to store (a silver maple's five-lobed leaves at 1.5
+/// made its growth steps 16% slower). Compound leaves and needle bundles get 1.5, the bound on
+/// a grown tree's model at 30 years (issue G2): their fine texture is what tells them apart,
+/// and their small leaflets cost most. Past it leaves are drawn larger and fewer.
+pub fn leaf_vertex_allowance(shape: LeafShape) -> f32 {
+    match shape {
+        LeafShape::Pinnate(_)
+        | LeafShape::Bipinnate(_)
+        | LeafShape::Palmate(_)
+        | LeafShape::Needles(_) => 1.5,
+        _ => 1.0,
+    }
+}
+
+/// Leaf area, m², below which a crown's leaves are drawn at their own size whatever they cost:
+/// a sapling's few thousand vertices cost nothing, and its leaves must be true to it.
+pub const LEAF_VERTEX_FREE_AREA: f32 = 50.0;
+
+/// Vertices per m² of leaf of leaves `length` x `width` m of `shape`.
+pub(crate) fn vertices_per_area(length: f32, width: f32, shape: LeafShape) -> f32 {
+    let t = crate::mesh::leaf_template(shape);
+    t.positions.len() as f32 / (length * width * t.area()).max(1e-9)
+}
 
 /// Settings of a growth run.
 #[derive(Clone, Debug, PartialEq)]
@@ -228,6 +256,8 @@ pub struct Grower {
     /// Leaf blade length and width, m, and area of one leaf, m².
     leaf_size: (f32, f32),
     leaf_shape: LeafShape,
+    /// Most leaf vertices per m² of leaf as drawn (see [`leaf_vertex_allowance`]).
+    leaf_vertex_cap: f32,
     /// Least distance between leaves along a shoot, m.
     leaf_spacing: f32,
     /// Leaves per segment, from the last allocation.
@@ -262,13 +292,22 @@ impl Grower {
         let metamer = (grown / 40.0).clamp(0.12, 0.35);
         let fork_height = measured.crown_base(measured.ages.1).max(1.5) as f32;
         let conifer = measured.species.tree_type.starts_with('C');
-        // A conifer's "leaf" is a tuft of needles, set far closer along the shoot than a
-        // broadleaf's leaves.
-        let (leaf_size, leaf_shape, leaf_spacing) = if conifer {
-            ((0.12, 0.03), LeafShape::Palm, 0.004)
+        // A conifer's "leaf" is a tuft or bundle of needles, set far closer along the shoot
+        // than a broadleaf's leaves. Species of the foliage table wear their own leaves;
+        // the others a 14 x 10 cm oval or a needle tuft.
+        let (generic, spacing) = if conifer {
+            (((0.12, 0.03), LeafShape::Palm), 0.004)
         } else {
-            ((0.14, 0.1), LeafShape::Oval, 0.012)
+            (((0.14, 0.1), LeafShape::Oval), 0.012)
         };
+        let (leaf_size, leaf_shape) =
+            foliage::of(&measured.species.code).map_or(generic, |f| (f.leaf_size(), f.shape()));
+        let leaf_spacing = spacing;
+        // Small or finely cut leaves cost more vertices per square metre of leaf than the
+        // generic one; past their allowance they are drawn larger (and fewer), so a
+        // species' model stays about the size of the generic tree's.
+        let ((gl, gw), gs) = generic;
+        let leaf_vertex_cap = leaf_vertex_allowance(leaf_shape) * vertices_per_area(gl, gw, gs);
         // Refitted to the tree's bounds every step: cells outside a crown are empty, so
         // light there needs no walking.
         let light = LightGrid::new(Vec3::ZERO, Vec3::ONE, options.light_cell, MAX_LIGHT_CELLS);
@@ -294,6 +333,7 @@ impl Grower {
             buds: Vec::new(),
             leaf_size,
             leaf_shape,
+            leaf_vertex_cap,
             leaf_spacing,
             leaves_on: Vec::new(),
             radii: Vec::new(),
