@@ -49,8 +49,8 @@ pub struct Options {
 
 /// The default memory bound: 1 GiB of grown trees (skeletons, packed trees, the opening
 /// level's GLBs and accounts of every age). Measured (`/api/status`): London plane and Chinese
-/// pistache through their 64 and 75 ages hold 578 MB together, honeylocust's 50 ages 164 MB,
-/// so this keeps four to six species.
+/// pistache through their 64 and 75 ages hold 446 MB together, honeylocust's 50 ages 122 MB,
+/// so this keeps four to eight species.
 /// Growths still running are never dropped: at most [`Options::growing_limit`] (4) run at once,
 /// so memory stays under the bound plus four growths (some 300 MB each for the largest of
 /// these).
