@@ -75,6 +75,8 @@ pub enum LeafShape {
     Lobed5,
     /// Heart-shaped blade, two rounded lobes at the base: lindens, redbuds, catalpas.
     Cordate,
+    /// A fan, widest at its notched tip: the ginkgo.
+    Fan,
     /// Deeply cut lobes ending in points: the red-oak group (pin, red, willow-leaved kin).
     PointedLobes,
     /// A compound leaf of this many leaflets in pairs along a rachis (an odd count ends in a
@@ -145,7 +147,7 @@ impl LeafShape {
 
     /// Position of this shape (clamped) in [`LeafShape::every`]: where its template is kept.
     pub fn slot(self) -> usize {
-        let fixed = Self::ALL.len() + 3;
+        let fixed = Self::ALL.len() + 4;
         let span = |(lo, hi): (u8, u8)| usize::from(hi - lo) + 1;
         let (p, b, m) = (
             span(PINNATE_LEAFLETS),
@@ -155,7 +157,8 @@ impl LeafShape {
         match self.clamped() {
             LeafShape::Lobed5 => Self::ALL.len(),
             LeafShape::Cordate => Self::ALL.len() + 1,
-            LeafShape::PointedLobes => Self::ALL.len() + 2,
+            LeafShape::Fan => Self::ALL.len() + 2,
+            LeafShape::PointedLobes => Self::ALL.len() + 3,
             LeafShape::Pinnate(n) => fixed + usize::from(n - PINNATE_LEAFLETS.0),
             LeafShape::Bipinnate(n) => fixed + p + usize::from(n - BIPINNATE_PINNAE.0),
             LeafShape::Palmate(n) => fixed + p + b + usize::from(n - PALMATE_LEAFLETS.0),
@@ -183,6 +186,7 @@ impl LeafShape {
             LeafShape::Sphere => "sphere",
             LeafShape::Lobed5 => "lobed5",
             LeafShape::Cordate => "cordate",
+            LeafShape::Fan => "fan",
             LeafShape::PointedLobes => "pointed-lobes",
             LeafShape::Pinnate(_) => "pinnate",
             LeafShape::Bipinnate(_) => "bipinnate",

@@ -89,8 +89,9 @@ pub struct Foliage {
     pub kind: LeafKind,
     /// Leaflets, pinnae or needles per leaf (compound leaves and bundles).
     pub count: Option<u8>,
-    /// Length of the blade, leaflet or needle, cm (range as published).
-    pub length_cm: (f32, f32),
+    /// Length of the blade, leaflet or needle, cm (range as published); a pinnate leaf's
+    /// sources may give only the whole leaf's.
+    pub length_cm: Option<(f32, f32)>,
     /// Width of the blade or leaflet, cm, where the sources give it.
     pub width_cm: Option<(f32, f32)>,
     /// Length of a whole compound leaf, cm.
@@ -131,6 +132,8 @@ impl Foliage {
                 "lobed-palmate" => LeafShape::Lobed5,
                 "lobed-pointed" => LeafShape::PointedLobes,
                 "cordate" => LeafShape::Cordate,
+                "triangular" => LeafShape::Triangle,
+                "fan" => LeafShape::Fan,
                 _ => LeafShape::Oval,
             },
         }
@@ -143,10 +146,12 @@ impl Foliage {
         let mid = |(lo, hi): (f32, f32)| (lo + hi) / 2.0 / 100.0;
         let shape = self.shape();
         let length = match self.kind {
-            LeafKind::Pinnate | LeafKind::Bipinnate => mid(self.leaf_cm.unwrap_or(self.length_cm)),
+            LeafKind::Pinnate | LeafKind::Bipinnate => {
+                self.leaf_cm.or(self.length_cm).map_or(0.0, mid)
+            }
             // The middle leaflet is 0.7 of a palmate template's length (see mesh::compound).
-            LeafKind::Palmate => mid(self.length_cm) / 0.7,
-            LeafKind::Needles | LeafKind::Simple => mid(self.length_cm),
+            LeafKind::Palmate => self.length_cm.map_or(0.0, mid) / 0.7,
+            LeafKind::Needles | LeafKind::Simple => self.length_cm.map_or(0.0, mid),
         };
         let width = match (natural_aspect(shape), self.width_cm) {
             (Some(aspect), _) => length * aspect,
@@ -199,6 +204,10 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("pale yellow", [0.88, 0.8, 0.45]),
         ("greenish yellow", [0.7, 0.7, 0.22]),
         ("orange-red", [0.84, 0.32, 0.11]),
+        ("orange", [0.9, 0.5, 0.12]),
+        ("red", [0.75, 0.15, 0.1]),
+        ("purple-red", [0.5, 0.15, 0.25]),
+        ("blue-gray", [0.55, 0.6, 0.62]),
         ("yellow-brown", [0.62, 0.47, 0.17]),
         ("bronze", [0.6, 0.37, 0.17]),
         ("russet", [0.55, 0.24, 0.12]),
@@ -207,6 +216,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("white", [0.95, 0.94, 0.9]),
         ("bright yellow", [0.95, 0.8, 0.1]),
         ("deep pink", [0.87, 0.44, 0.62]),
+        ("pink", [0.93, 0.56, 0.7]),
         // Bark.
         ("light brown", [0.55, 0.45, 0.35]),
         ("light gray", [0.62, 0.61, 0.58]),
@@ -303,14 +313,25 @@ fn parse(text: &str) -> Result<Vec<Foliage>, String> {
             "lenticels" => BarkPattern::Lenticels,
             _ => return Err(bad(16, "a bark pattern")),
         };
+        let (length_cm, leaf_cm) = (range(4)?, range(6)?);
+        let measured = match kind {
+            LeafKind::Pinnate | LeafKind::Bipinnate => length_cm.is_some() || leaf_cm.is_some(),
+            _ => length_cm.is_some(),
+        };
+        if !measured {
+            return Err(bad(
+                4,
+                "a length (a compound leaf's may be in column 7 instead)",
+            ));
+        }
         rows.push(Foliage {
             code: field(0).to_string(),
             scientific: field(1).to_string(),
             kind,
             count,
-            length_cm: range(4)?.ok_or_else(|| bad(4, "a length"))?,
+            length_cm,
             width_cm: range(5)?,
-            leaf_cm: range(6)?,
+            leaf_cm,
             outline: field(7).to_string(),
             arrangement,
             summer: named(9)?.ok_or_else(|| bad(9, "a summer colour"))?,
@@ -334,7 +355,7 @@ mod tests {
     #[test]
     fn the_table_reads_and_every_row_is_a_sourced_database_species() {
         let rows = table().unwrap();
-        assert!(rows.len() >= 13);
+        assert!(rows.len() >= 20);
         let db = Database::builtin();
         for f in rows {
             let entry = db.species().iter().find(|s| s.code == f.code);

@@ -377,6 +377,22 @@ fn build(shape: LeafShape) -> LeafTemplate {
                 (-0.32, 0.02),
             ],
         ),
+        // A fan on a narrow base, its broad edge notched in the middle.
+        LeafShape::Fan => star(
+            Vec2::new(0.0, 0.55),
+            &[
+                (0.0, 0.0),
+                (0.1, 0.12),
+                (0.5, 0.78),
+                (0.3, 0.97),
+                (0.05, 0.92),
+                (0.0, 0.82),
+                (-0.05, 0.92),
+                (-0.3, 0.97),
+                (-0.5, 0.78),
+                (-0.1, 0.12),
+            ],
+        ),
         // Seven lobes to points, the sinuses cut nearly to the midrib: a strip along the
         // midrib, widest at each lobe's tip.
         LeafShape::PointedLobes => strip(&[

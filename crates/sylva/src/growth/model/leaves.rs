@@ -154,10 +154,13 @@ impl Grower {
     pub(super) fn leaf_area_each(&self) -> f32 {
         let t = crate::mesh::leaf_template(self.leaf_shape);
         let (l, w) = self.leaf_size_now();
-        let leaf_area = self.targets_now().leaf_area as f32;
-        // Vertices allowed: the cap's density over the crown, or over the free area.
-        let allowed = self.leaf_vertex_cap * leaf_area.max(super::LEAF_VERTEX_FREE_AREA);
-        let natural = (l * w * t.area()).max(t.positions.len() as f32 * leaf_area / allowed);
+        let mut natural = l * w * t.area();
+        if let Some(cap) = self.leaf_vertex_cap {
+            // Vertices allowed: the cap's density over the crown, or over the free area.
+            let leaf_area = self.targets_now().leaf_area as f32;
+            let allowed = cap * leaf_area.max(super::LEAF_VERTEX_FREE_AREA);
+            natural = natural.max(t.positions.len() as f32 * leaf_area / allowed);
+        }
         let t = self.targets_now();
         let needed = t.leaf_area as f32 / self.options.max_leaves as f32;
         natural.max(needed)

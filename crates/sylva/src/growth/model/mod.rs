@@ -256,8 +256,9 @@ pub struct Grower {
     /// Leaf blade length and width, m, and area of one leaf, m².
     leaf_size: (f32, f32),
     leaf_shape: LeafShape,
-    /// Most leaf vertices per m² of leaf as drawn (see [`leaf_vertex_allowance`]).
-    leaf_vertex_cap: f32,
+    /// Most leaf vertices per m² of leaf as drawn (see [`leaf_vertex_allowance`]); none for
+    /// the generic leaf.
+    leaf_vertex_cap: Option<f32>,
     /// Least distance between leaves along a shoot, m.
     leaf_spacing: f32,
     /// Leaves per segment, from the last allocation.
@@ -300,14 +301,16 @@ impl Grower {
         } else {
             (((0.14, 0.1), LeafShape::Oval), 0.012)
         };
-        let (leaf_size, leaf_shape) =
-            foliage::of(&measured.species.code).map_or(generic, |f| (f.leaf_size(), f.shape()));
+        let own = foliage::of(&measured.species.code);
+        let (leaf_size, leaf_shape) = own.map_or(generic, |f| (f.leaf_size(), f.shape()));
         let leaf_spacing = spacing;
         // Small or finely cut leaves cost more vertices per square metre of leaf than the
         // generic one; past their allowance they are drawn larger (and fewer), so a
         // species' model stays about the size of the generic tree's.
         let ((gl, gw), gs) = generic;
-        let leaf_vertex_cap = leaf_vertex_allowance(leaf_shape) * vertices_per_area(gl, gw, gs);
+        // (The generic leaf itself is never capped: its trees grow as they always have.)
+        let leaf_vertex_cap =
+            own.map(|_| leaf_vertex_allowance(leaf_shape) * vertices_per_area(gl, gw, gs));
         // Refitted to the tree's bounds every step: cells outside a crown are empty, so
         // light there needs no walking.
         let light = LightGrid::new(Vec3::ZERO, Vec3::ONE, options.light_cell, MAX_LIGHT_CELLS);
