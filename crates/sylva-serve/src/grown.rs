@@ -216,12 +216,24 @@ pub fn web_glb(m: &Measured, entry: &AgeEntry, detail: u32) -> Result<Vec<u8>, E
 /// leaves' size and number.
 fn kites(skeleton: &Skeleton) -> Skeleton {
     let kite = leaf_template(LeafShape::Triangle).area();
+    // A tree's leaves share one or two shapes: each widening is worked out once.
+    let mut widening: Vec<(LeafShape, f32)> = Vec::new();
     let mut light = skeleton.clone();
     for leaf in &mut light.leaves {
-        match leaf.shape {
-            LeafShape::Triangle => {}
-            LeafShape::Oval => leaf.width *= KITE_WIDENING,
-            other => leaf.width *= leaf_template(other).area() / kite,
+        let w = match widening.iter().find(|(s, _)| *s == leaf.shape) {
+            Some(&(_, w)) => w,
+            None => {
+                let w = match leaf.shape {
+                    LeafShape::Triangle => 1.0,
+                    LeafShape::Oval => KITE_WIDENING,
+                    other => leaf_template(other).area() / kite,
+                };
+                widening.push((leaf.shape, w));
+                w
+            }
+        };
+        if leaf.shape != LeafShape::Triangle {
+            leaf.width *= w;
         }
         leaf.shape = LeafShape::Triangle;
     }
