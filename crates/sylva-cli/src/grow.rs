@@ -5,10 +5,9 @@
 use crate::args::{GrowArgs, parse_size};
 use crate::shared::{database, headless, load_street, save_picture};
 use anyhow::{Context, Result, bail};
-use sylva::export::{Materials, to_glb, write_atomically};
-use sylva::growth::Measured;
+use sylva::export::{to_glb, write_atomically};
 use sylva::growth::report::{self, AgeRecord, Cohort, age_label, run_ages};
-use sylva::mesh::mesh_tree;
+use sylva::growth::{Measured, dressed_mesh};
 use sylva::street::rank::first_conflicts;
 use sylva::street::{Assessor, Kind, YearAccount, picture::site_picture, table};
 use sylva_render::Picture;
@@ -39,7 +38,13 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         }
     }
     if args.view {
-        return sylva_viewer::watch_growth(species, ages, args.seed, args.self_test.clone());
+        return sylva_viewer::watch_growth(
+            species,
+            ages,
+            args.seed,
+            args.season,
+            args.self_test.clone(),
+        );
     }
     let output = args
         .output
@@ -68,19 +73,26 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         );
     }
     let mut cohort = Cohort::new(species, args.seed);
+    // A season names the files and captions: `PLAC-age-30-winter.glb`, "age 30 in winter".
+    let season = args
+        .season
+        .map_or(String::new(), |m| format!("-{}", m.label()));
+    let in_season = args
+        .season
+        .map_or(String::new(), |m| format!(" in {}", m.label()));
     // One frame for every age and species: the tallest and widest they reach.
     let extent = cohort.extent(&ages);
     let mut accounts: Vec<Vec<YearAccount>> = cohort.species.iter().map(|_| Vec::new()).collect();
     let mut seen: Vec<Vec<Kind>> = cohort.species.iter().map(|_| Vec::new()).collect();
     for &age in &ages {
         let skeletons = cohort.advance_to(age);
-        let mut meshes = Vec::new();
+        let (mut meshes, mut dresses) = (Vec::new(), Vec::new());
         for (i, skeleton) in skeletons.iter().enumerate() {
             let m = &cohort.species[i];
             let grown = cohort.history[i].last().context("an age was recorded")?;
             let account = assessors[i].year(age, &grown.model, skeleton);
-            let mesh = mesh_tree(skeleton, &report::MESH);
-            let stem = format!("{}-age-{}", m.species.code, age_label(age));
+            let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &report::MESH);
+            let stem = format!("{}-age-{}{season}", m.species.code, age_label(age));
             // The site at the year each kind of conflict first happens, marked.
             let new: Vec<_> = account
                 .conflicts
@@ -116,14 +128,13 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 let name = format!("{}-site-age-{}.png", m.species.code, age_label(age));
                 save_picture(&output.join(name), &picture)?;
             }
-            let (bark, leaves) = m.colours();
-            let glb = to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))?;
+            let glb = to_glb(&mesh, &m.label(), &dress.materials())?;
             write_atomically(&output.join(format!("{stem}.glb")), &glb)?;
             let model = &grown.model;
             if let Some(r) = &renderer {
-                let picture = tree_picture(r, &mesh, m, (width, height), extent)?;
+                let picture = tree_picture(r, &mesh, &dress, (width, height), extent)?;
                 let lines = [format!(
-                    "{}, age {}: height {:.1} m (measured {:.1}), crown {:.1} m",
+                    "{}, age {}{in_season}: height {:.1} m (measured {:.1}), crown {:.1} m",
                     m.label(),
                     age_label(age),
                     model.height,
@@ -158,11 +169,19 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             }
             accounts[i].push(account);
             meshes.push(mesh);
+            dresses.push(dress);
         }
         if cohort.species.len() > 1
             && let Some(r) = &renderer
         {
-            let picture = comparison_picture(r, &meshes, &cohort.species, (width, height), extent)?;
+            let picture = comparison_picture(
+                r,
+                &meshes,
+                &dresses,
+                &cohort.species,
+                (width, height),
+                extent,
+            )?;
             let heights: Vec<String> = cohort
                 .species
                 .iter()
@@ -177,9 +196,13 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                     )
                 })
                 .collect();
-            let lines = [format!("age {}: {}", age_label(age), heights.join(", "))];
+            let lines = [format!(
+                "age {}{in_season}: {}",
+                age_label(age),
+                heights.join(", ")
+            )];
             let picture = with_caption(&picture, &lines, 18.0);
-            let name = format!("compare-age-{}.png", age_label(age));
+            let name = format!("compare-age-{}{season}.png", age_label(age));
             save_picture(&output.join(name), &picture)?;
         }
     }

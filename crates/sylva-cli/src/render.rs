@@ -3,12 +3,14 @@
 //! the paper's range degradation, alone or side by side with full detail.
 
 use crate::args::{LodMode, RenderArgs, parse_size};
-use crate::shared::{grow_for_range, headless, load_params, save_picture};
+use crate::shared::{database, grow_for_range, headless, load_params, save_picture};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use sylva::forest::{ForestSpec, is_forest_file};
+use sylva::growth::dressed_mesh;
+use sylva::growth::report::{self, Cohort};
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use sylva::{GenerateOptions, Wind};
 use sylva_render::caption::{grouped, side_by_side, tile, with_caption};
@@ -88,6 +90,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if is_glb && (args.frames.is_some() || args.wind != 0.0 || args.gust != 0.0) {
         bail!("wind needs the species, not a finished .glb: render the species instead");
     }
+    if let Some(age) = args.age {
+        if is_glb || args.frames.is_some() || args.wind != 0.0 || args.gust != 0.0 {
+            bail!(
+                "--age grows a street tree of the database: give its species code or name (not a \
+                 .glb), without wind"
+            );
+        }
+        let (mesh, dress) = street_tree(args, age)?;
+        let renderer = headless()?;
+        let tree = renderer.upload(&mesh);
+        let flowers = renderer.upload_flowers(&mesh);
+        let mut scene = Scene::new(&tree, dress.bark, dress.leaves);
+        if let (Some(f), Some(colour)) = (&flowers, dress.flowers) {
+            let mut stand = scene.stands[0].clone();
+            (stand.tree, stand.leaves) = (f, colour);
+            scene.stands.push(stand);
+        }
+        let picture = draw(&renderer, args, scene, (width, height))?;
+        return write_picture(&args.output, &picture, mesh.triangle_count(), &renderer);
+    }
     let renderer = headless()?;
     if is_forest_file(Path::new(&args.input)) {
         return render_forest(args, &renderer, args.view.to_view(), (width, height));
@@ -114,6 +136,24 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         write_picture(&path, &picture, tree.triangles, &renderer)?;
     }
     Ok(())
+}
+
+/// The street tree `--age` asks for, grown from the database and dressed for `--season`.
+fn street_tree(args: &RenderArgs, age: f64) -> Result<(TreeMesh, sylva::growth::Dress)> {
+    let region = args.region.as_deref().unwrap_or("InlVal");
+    let m = database(None)?.find(region, &args.input)?;
+    let (first, last) = m.ages;
+    if !(age.is_finite() && age >= first && age <= last.floor()) {
+        bail!(
+            "--age {age}: {} in {region} is grown from {first} to {} years (the ages its data \
+             cover)",
+            m.label(),
+            last.floor()
+        );
+    }
+    let mut cohort = Cohort::new(vec![m.clone()], args.tree.seed);
+    let skeleton = cohort.advance_to(age).pop().context("one tree grown")?;
+    Ok(dressed_mesh(&skeleton, &m, args.season, &report::MESH))
 }
 
 /// One view of `scene`, or a turntable sheet of several, as the flags ask.

@@ -34,6 +34,8 @@ pub struct GlbModel {
     pub bark: [f32; 3],
     /// sRGB base colour of its leaf material.
     pub leaves: [f32; 3],
+    /// sRGB base colour of its flower material, where it has flowers.
+    pub flowers: Option<[f32; 3]>,
     /// Every node showing it.
     pub placements: Vec<Placement>,
 }
@@ -95,21 +97,29 @@ fn read_mesh(
     mesh: &gltf::Mesh,
     buffers: &[gltf::buffer::Data],
     transform: Mat4,
-) -> (TreeMesh, Option<[f32; 3]>, Option<[f32; 3]>) {
+) -> (TreeMesh, [Option<[f32; 3]>; 3]) {
     let mut out = TreeMesh::default();
-    let (mut bark, mut leaves) = (None, None);
+    let (mut bark, mut leaves, mut flowers) = (None, None, None);
     for prim in mesh.primitives() {
         if prim.mode() != gltf::mesh::Mode::Triangles {
             continue;
         }
         let [r, g, b, _] = prim.material().pbr_metallic_roughness().base_color_factor();
         let srgb = [r, g, b].map(sylva::colour::linear_to_srgb);
-        let part: &mut Mesh = if prim.material().name() == Some("leaves") {
-            leaves = Some(srgb);
-            &mut out.leaves
-        } else {
-            bark = Some(srgb);
-            &mut out.bark
+        let part: &mut Mesh = match prim.material().name() {
+            Some("leaves") => {
+                leaves = Some(srgb);
+                &mut out.leaves
+            }
+            // Sylva's flowers in their season (any other file's primitives draw as bark).
+            Some("flowers") => {
+                flowers = Some(srgb);
+                &mut out.flowers
+            }
+            _ => {
+                bark = Some(srgb);
+                &mut out.bark
+            }
         };
         let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
         let Some(positions) = reader.read_positions() else {
@@ -166,7 +176,7 @@ fn read_mesh(
         // Indices that pointed outside the primitive were dropped: keep whole triangles only.
         part.indices.truncate(part.indices.len() / 3 * 3);
     }
-    (out, bark, leaves)
+    (out, [bark, leaves, flowers])
 }
 
 /// Reads the default scene of a GLB (or glTF) file: each mesh once, placed by every node that
@@ -243,13 +253,13 @@ fn glb_scene_of(bytes: Vec<u8>, path: &Path) -> Result<GlbScene, GlbError> {
         match (as_placement(placed), by_mesh.get(&mesh.index())) {
             (Some(p), Some(&k)) => models[k].placements.push(p),
             (Some(p), None) => {
-                let (m, bark, leaves) = read_mesh(&mesh, &buffers, z_up);
+                let (m, colours) = read_mesh(&mesh, &buffers, z_up);
                 by_mesh.insert(mesh.index(), models.len());
-                models.push(model(m, bark, leaves, vec![p]));
+                models.push(model(m, colours, vec![p]));
             }
             (None, _) => {
-                let (m, bark, leaves) = read_mesh(&mesh, &buffers, placed * z_up);
-                models.push(model(m, bark, leaves, vec![Placement::ORIGIN]));
+                let (m, colours) = read_mesh(&mesh, &buffers, placed * z_up);
+                models.push(model(m, colours, vec![Placement::ORIGIN]));
             }
         }
     }
@@ -304,14 +314,14 @@ fn check_external_buffers(doc: &gltf::Document, base: &Path, path: &Path) -> Res
 
 fn model(
     mesh: TreeMesh,
-    bark: Option<[f32; 3]>,
-    leaves: Option<[f32; 3]>,
+    [bark, leaves, flowers]: [Option<[f32; 3]>; 3],
     placements: Vec<Placement>,
 ) -> GlbModel {
     GlbModel {
         mesh,
         bark: bark.unwrap_or(sylva::params::DEFAULT_BARK),
         leaves: leaves.unwrap_or(sylva::params::DEFAULT_LEAVES),
+        flowers,
         placements,
     }
 }
@@ -319,7 +329,8 @@ fn model(
 /// The trees of a GLB's scene on a renderer: each distinct mesh uploaded once, its copies
 /// placed.
 pub struct UploadedScene {
-    trees: Vec<RenderTree>,
+    /// Each model's tree, and its flowers where it has them.
+    trees: Vec<(RenderTree, Option<RenderTree>)>,
     glb: GlbScene,
 }
 
@@ -329,7 +340,7 @@ impl UploadedScene {
         let trees = glb
             .models
             .iter()
-            .map(|m| renderer.upload(&m.mesh))
+            .map(|m| (renderer.upload(&m.mesh), renderer.upload_flowers(&m.mesh)))
             .collect();
         Self { trees, glb }
     }
@@ -340,11 +351,17 @@ impl UploadedScene {
             .trees
             .iter()
             .zip(&self.glb.models)
-            .map(|(tree, m)| Stand {
-                tree,
-                bark: m.bark,
-                leaves: m.leaves,
-                placements: Cow::Borrowed(&m.placements),
+            .flat_map(|((tree, flowers), m)| {
+                let stand = |tree, leaves| Stand {
+                    tree,
+                    bark: m.bark,
+                    leaves,
+                    placements: Cow::Borrowed(&m.placements),
+                };
+                let flowers = flowers
+                    .as_ref()
+                    .map(|f| stand(f, m.flowers.unwrap_or([1.0; 3])));
+                std::iter::once(stand(tree, m.leaves)).chain(flowers)
             })
             .collect();
         Scene {

@@ -356,6 +356,19 @@ impl Renderer {
         self.store(TreeData::from_mesh(mesh), mesh.triangle_count())
     }
 
+    /// Uploads a tree's flowers, if it has any, as a tree of their own whose leaves they are:
+    /// a scene draws it as a second stand at the tree's placements, in the flowers' colour.
+    pub fn upload_flowers(&self, mesh: &TreeMesh) -> Option<RenderTree> {
+        if mesh.flowers.indices.is_empty() {
+            return None;
+        }
+        let data = TreeData {
+            leaves: tree::mesh_data(&mesh.flowers),
+            ..Default::default()
+        };
+        Some(self.store(data, mesh.flowers.triangle_count()))
+    }
+
     /// Uploads a tree stored for range degradation: drawn whole up close, and as fewer
     /// meshes, lines and points as it recedes (when the scene's `use_lod` is on).
     /// The tree is kept as it is stored (under a megabyte for a Black Tupelo): the GPU

@@ -5,7 +5,7 @@ use crate::caption::{draw_text, text_width};
 use crate::{Picture, Placement, RenderError, Renderer, Scene, Stand, View};
 use glam::Vec3;
 use std::borrow::Cow;
-use sylva::growth::Measured;
+use sylva::growth::{Dress, Measured};
 use sylva::mesh::TreeMesh;
 
 /// The camera every age of a run shares: looking from the south at a frame that holds a tree
@@ -20,26 +20,45 @@ pub fn fixed_view(tallest: f64, across: f64, aspect: f32) -> View {
     View::look_at(target + Vec3::new(0.0, -distance, h * 0.08), target, fov)
 }
 
-/// One grown tree in the run's frame (`extent`: tallest height and widest crown, metres).
+/// One grown tree, dressed as `dress` says, in the run's frame (`extent`: tallest height and
+/// widest crown, metres).
 pub fn tree_picture(
     r: &Renderer,
     mesh: &TreeMesh,
-    m: &Measured,
+    dress: &Dress,
     (width, height): (u32, u32),
     (tallest, widest): (f64, f64),
 ) -> Result<Picture, RenderError> {
     let tree = r.upload(mesh);
-    let (bark, leaves) = m.colours();
-    let scene = Scene::new(&tree, bark, leaves);
+    let flowers = r.upload_flowers(mesh);
+    let mut scene = Scene::new(&tree, dress.bark, dress.leaves);
+    scene
+        .stands
+        .extend(flower_stand(flowers.as_ref(), dress, Placement::ORIGIN));
     let view = fixed_view(tallest, widest + 2.0, width as f32 / height as f32);
     r.render(&scene, &view, width, height)
 }
 
-/// Species side by side at one age, each named under its trunk, in the run's frame. The
-/// picture widens to give each tree room.
+/// The stand that draws a tree's flowers (uploaded by [`Renderer::upload_flowers`]) at `p`.
+fn flower_stand<'a>(
+    flowers: Option<&'a crate::RenderTree>,
+    dress: &Dress,
+    p: Placement,
+) -> Option<Stand<'a>> {
+    Some(Stand {
+        tree: flowers?,
+        bark: dress.bark,
+        leaves: dress.flowers?,
+        placements: Cow::Owned(vec![p]),
+    })
+}
+
+/// Species side by side at one age, each dressed as `dresses` says and named under its trunk,
+/// in the run's frame. The picture widens to give each tree room.
 pub fn comparison_picture(
     r: &Renderer,
     meshes: &[TreeMesh],
+    dresses: &[Dress],
     species: &[Measured],
     (width, height): (u32, u32),
     (tallest, widest): (f64, f64),
@@ -47,6 +66,7 @@ pub fn comparison_picture(
     let spacing = widest as f32 * 1.1 + 1.0;
     let n = meshes.len() as f32;
     let trees: Vec<_> = meshes.iter().map(|m| r.upload(m)).collect();
+    let flowers: Vec<_> = meshes.iter().map(|m| r.upload_flowers(m)).collect();
     let placements: Vec<Placement> = (0..meshes.len())
         .map(|i| Placement {
             position: Vec3::new((i as f32 - (n - 1.0) / 2.0) * spacing, 0.0, 0.0),
@@ -55,16 +75,17 @@ pub fn comparison_picture(
         .collect();
     let stands = trees
         .iter()
-        .zip(species)
+        .zip(&flowers)
+        .zip(dresses)
         .zip(&placements)
-        .map(|((t, m), p)| {
-            let (bark, leaves) = m.colours();
-            Stand {
+        .flat_map(|(((t, f), d), p)| {
+            let tree = Stand {
                 tree: t,
-                bark,
-                leaves,
+                bark: d.bark,
+                leaves: d.leaves,
                 placements: Cow::Owned(vec![*p]),
-            }
+            };
+            std::iter::once(tree).chain(flower_stand(f.as_ref(), d, *p))
         })
         .collect();
     let mut scene = Scene::forest(stands);

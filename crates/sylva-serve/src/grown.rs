@@ -7,10 +7,10 @@ use std::sync::OnceLock;
 use sylva::ExportError;
 use sylva::Skeleton;
 use sylva::export::{Materials, to_glb};
-use sylva::growth::Measured;
 use sylva::growth::report::{AgeRecord, Cohort, MESH};
+use sylva::growth::{Dress, Measured, dressed_mesh};
 use sylva::lod::LodTree;
-use sylva::mesh::{MeshOptions, TreeMesh, leaf_template, mesh_tree};
+use sylva::mesh::{MeshOptions, TreeMesh, leaf_template};
 use sylva::skeleton::LeafShape;
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
@@ -175,6 +175,7 @@ pub fn first_conflicts(entries: &[std::sync::Arc<AgeEntry>], site: usize) -> Vec
 pub const WEB_MESH: MeshOptions = MeshOptions {
     quality: MESH.quality * 0.6,
     sides: None,
+    bark: sylva::mesh::BarkPattern::Smooth,
 };
 
 /// How much wider a kite is than the oval it stands for (see [`WEB_MESH`]).
@@ -240,9 +241,9 @@ fn kites(skeleton: &Skeleton) -> Skeleton {
     light
 }
 
-/// A grown tree as `sylva grow` meshes it (for pictures).
-pub fn full_mesh(skeleton: &Skeleton) -> TreeMesh {
-    mesh_tree(skeleton, &MESH)
+/// A grown tree as `sylva grow` meshes it and dresses it without a season (for pictures).
+pub fn full_mesh(skeleton: &Skeleton, m: &Measured) -> (TreeMesh, Dress) {
+    dressed_mesh(skeleton, m, None, &MESH)
 }
 
 #[cfg(test)]
@@ -278,8 +279,8 @@ mod tests {
             assert!(e.bytes() > glb.len() + e.lod.heap_bytes());
         }
         let s = &got[5].skeleton;
-        let full = full_mesh(s);
-        let web = mesh_tree(&kites(s), &WEB_MESH);
+        let (full, _) = full_mesh(s, &plane);
+        let web = sylva::mesh::mesh_tree(&kites(s), &WEB_MESH);
         // Every leaf a kite of four corners.
         assert_eq!(web.leaves.vertex_count(), 4 * s.leaves.len());
         assert!(web.leaves.vertex_count() < full.leaves.vertex_count());

@@ -35,7 +35,11 @@ impl Pictures {
         let r = renderer
             .as_ref()
             .map_err(|e| ApiError::internal(format!("no renderer: {e}")))?;
-        let meshes: Vec<_> = entries.iter().map(|e| full_mesh(&e.skeleton)).collect();
+        let (meshes, dresses): (Vec<_>, Vec<_>) = entries
+            .iter()
+            .zip(species)
+            .map(|(e, m)| full_mesh(&e.skeleton, m))
+            .unzip();
         // One frame for every age of these species, as `sylva grow --compare` keeps it, so
         // that pictures of different ages compare.
         let mut extent = (2.0f64, 1.0f64);
@@ -45,7 +49,7 @@ impl Pictures {
                 extent.1 = extent.1.max(m.crown_diameter(f64::from(a)));
             }
         }
-        let picture = comparison_picture(r, &meshes, species, size, extent)
+        let picture = comparison_picture(r, &meshes, &dresses, species, size, extent)
             .map_err(|e| ApiError::internal(format!("drawing the comparison: {e}")))?;
         let heights: Vec<String> = species
             .iter()

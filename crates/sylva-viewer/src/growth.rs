@@ -14,8 +14,9 @@ use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::Instant;
 use sylva::Skeleton;
-use sylva::growth::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
-use sylva::mesh::mesh_tree;
+use sylva::growth::{
+    Dimensions, Dress, Grower, GrowthOptions, Measured, Month, Targets, dressed_mesh, measure,
+};
 use sylva_render::{Placement, RenderTree, Renderer, Scene, Stand, View};
 
 /// One species at one age, as the worker sends it.
@@ -31,6 +32,7 @@ pub fn watch_growth(
     species: Vec<Measured>,
     ages: Vec<f64>,
     seed: u64,
+    season: Option<Month>,
     self_test: Option<PathBuf>,
 ) -> Result<()> {
     let names: Vec<String> = species.iter().map(|m| m.species.common.clone()).collect();
@@ -42,7 +44,7 @@ pub fn watch_growth(
         ..Default::default()
     };
     window("sylva-grow", options, move |cc| {
-        GrowthViewer::new(cc, species, ages, seed, self_test)
+        GrowthViewer::new(cc, species, ages, seed, season, self_test)
     })
 }
 
@@ -103,7 +105,10 @@ struct GrowthViewer {
     /// The age index on screen, and the one the GPU trees are of.
     age: usize,
     uploaded: Option<usize>,
-    trees: Vec<RenderTree>,
+    /// Each species' tree on the GPU, its flowers where it flowers, and how it is dressed.
+    trees: Vec<(RenderTree, Option<RenderTree>, Dress)>,
+    /// The month the trees are dressed for; `None`: summer leaves, no flowers.
+    month: Option<Month>,
     playing: bool,
     years_per_second: f32,
     /// Fraction of a year played since the last step.
@@ -126,6 +131,7 @@ impl GrowthViewer {
         species: Vec<Measured>,
         ages: Vec<f64>,
         seed: u64,
+        month: Option<Month>,
         self_test: Option<PathBuf>,
     ) -> Result<Self> {
         let (renderer, render_state) = renderer_of(cc)?;
@@ -158,6 +164,7 @@ impl GrowthViewer {
             age: 0,
             uploaded: None,
             trees: Vec::new(),
+            month,
             playing: false,
             years_per_second: 2.0,
             play_clock: 0.0,
@@ -207,9 +214,12 @@ impl GrowthViewer {
         self.trees = self
             .grown
             .iter()
-            .map(|g| {
+            .zip(&self.species)
+            .map(|(g, m)| {
                 let (skeleton, _) = g[self.age].as_ref().expect("ready");
-                self.renderer.upload(&mesh_tree(skeleton, &options))
+                let (mesh, dress) = dressed_mesh(skeleton, m, self.month, &options);
+                let flowers = self.renderer.upload_flowers(&mesh);
+                (self.renderer.upload(&mesh), flowers, dress)
             })
             .collect();
         self.uploaded = Some(self.age);
@@ -220,19 +230,19 @@ impl GrowthViewer {
         let stands = self
             .trees
             .iter()
-            .zip(&self.species)
             .enumerate()
-            .map(|(i, (tree, m))| {
-                let (bark, leaves) = m.colours();
-                Stand {
+            .flat_map(|(i, (tree, flowers, dress))| {
+                let stand = |tree, leaves| Stand {
                     tree,
-                    bark,
+                    bark: dress.bark,
                     leaves,
                     placements: Cow::Owned(vec![Placement {
                         position: self.position(i),
                         ..Placement::ORIGIN
                     }]),
-                }
+                };
+                let flowers = flowers.as_ref().zip(dress.flowers);
+                std::iter::once(stand(tree, dress.leaves)).chain(flowers.map(|(f, c)| stand(f, c)))
             })
             .collect();
         let mut scene = Scene::forest(stands);
@@ -329,6 +339,20 @@ impl GrowthViewer {
                     .logarithmic(true)
                     .text("years per second"),
             );
+            // Growth is the same in every season: a new month only dresses the trees again.
+            let name = |m: Option<Month>| m.map_or("no season (summer leaves)", Month::label);
+            let before = self.month;
+            egui::ComboBox::from_label("season")
+                .selected_text(name(self.month))
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut self.month, None, name(None));
+                    for m in (1..=12).filter_map(Month::new) {
+                        ui.selectable_value(&mut self.month, Some(m), m.name());
+                    }
+                });
+            if self.month != before {
+                self.uploaded = None;
+            }
             if ready < self.ages.len() {
                 ui.label(format!(
                     "growing: {} of {} ages ready",
@@ -376,7 +400,11 @@ impl GrowthViewer {
         );
         let frame_ms = self.frame_ms;
         let shown = self.age;
-        let triangles: usize = self.trees.iter().map(|t| t.triangles).sum();
+        let triangles: usize = self
+            .trees
+            .iter()
+            .map(|(t, f, _)| t.triangles + f.as_ref().map_or(0, |f| f.triangles))
+            .sum();
         let Some(test) = &mut self.self_test else {
             return;
         };
@@ -424,6 +452,7 @@ impl GrowthViewer {
                     "ages": self.ages,
                     "shown": test.shown,
                     "played_to": self.ages[self.age],
+                    "season": self.month.map(Month::label),
                     "adapter": self.renderer.adapter_name(),
                 });
                 let _ = std::fs::write(test.dir.join("grow-viewer.json"), report.to_string());

@@ -273,6 +273,12 @@ pub struct GrowthStepTimes {
     pub mesh_ms: f64,
     /// Baseline: copying the skeleton, ms (fastest).
     pub copy_ms: f64,
+    /// The mesh alone with the species' bark pattern drawn (finer rings on thick stems, a
+    /// shade per vertex), ms (fastest), to compare with the mesh alone without it,
+    /// `plain_mesh_ms`.
+    pub patterned_mesh_ms: f64,
+    /// The mesh alone without the bark pattern, ms (fastest).
+    pub plain_mesh_ms: f64,
 }
 
 impl GrowthStepTimes {
@@ -317,8 +323,14 @@ pub fn growth_steps(runs: u32) -> Result<Vec<GrowthStepTimes>, GrowthError> {
             light += grower.times.light;
         }
         let skeleton_ms = fastest_of(runs, || grower.skeleton_into(&mut skeleton));
-        let mesh_ms =
-            skeleton_ms + fastest_of(runs, || mesh_tree_into(&skeleton, &MESH, &mut mesh));
+        let plain_mesh_ms = fastest_of(runs, || mesh_tree_into(&skeleton, &MESH, &mut mesh));
+        let mesh_ms = skeleton_ms + plain_mesh_ms;
+        let patterned = MeshOptions {
+            bark: grower.measured().dress(None).bark_pattern,
+            ..MESH
+        };
+        let patterned_mesh_ms =
+            fastest_of(runs, || mesh_tree_into(&skeleton, &patterned, &mut mesh));
         let mut copy = Skeleton::default();
         let copy_ms = fastest_of(runs, || copy.clone_from(&skeleton));
         rows.push(GrowthStepTimes {
@@ -330,6 +342,8 @@ pub fn growth_steps(runs: u32) -> Result<Vec<GrowthStepTimes>, GrowthError> {
             skeleton_ms,
             mesh_ms,
             copy_ms,
+            patterned_mesh_ms,
+            plain_mesh_ms,
         });
     }
     Ok(rows)

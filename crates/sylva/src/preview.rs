@@ -216,6 +216,7 @@ mod tests {
                 shades: vec![],
             },
             leaves: Mesh::default(),
+            flowers: Mesh::default(),
         };
         let pic = render_preview(
             &mesh,

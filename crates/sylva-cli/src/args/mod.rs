@@ -247,6 +247,26 @@ pub struct RenderArgs {
     )]
     pub fov: f32,
 
+    /// Grow INPUT as a street tree of the Urban Tree Database (a species code such as PLAC,
+    /// or its name) to this age, years since planting, and render that.
+    #[arg(long, value_name = "YEARS", help_heading = "Street tree")]
+    pub age: Option<f64>,
+
+    /// The database's climate region for --age (default InlVal: Modesto, California).
+    #[arg(long, requires = "age", help_heading = "Street tree")]
+    pub region: Option<String>,
+
+    /// Dress the street tree for a season or month (spring, summer, autumn, winter, 1-12 or a
+    /// month's name), as `sylva grow --season` does.
+    #[arg(
+        long,
+        requires = "age",
+        value_name = "SEASON|MONTH",
+        value_parser = sylva::growth::Month::parse,
+        help_heading = "Street tree"
+    )]
+    pub season: Option<sylva::growth::Month>,
+
     /// Output PNG.
     #[arg(short, long, value_name = "FILE.png", help_heading = "Output")]
     pub output: PathBuf,
@@ -286,6 +306,13 @@ pub struct GrowArgs {
     /// A folder holding the database's CSV tables (TS1, TS2, TS6) instead of the built-in copy.
     #[arg(long, value_name = "DIR")]
     pub database: Option<PathBuf>,
+
+    /// Dress the trees for a season or month: spring (April: leaves unfolding, spring
+    /// flowers), summer (July), autumn (October: the species' autumn colour), winter (January:
+    /// deciduous trees bare), a month 1-12 or a month's name. Without it, summer leaves and no
+    /// flowers. Growth is the same whatever the season.
+    #[arg(long, value_name = "SEASON|MONTH", value_parser = sylva::growth::Month::parse)]
+    pub season: Option<sylva::growth::Month>,
 
     /// Picture size in pixels.
     #[arg(long, default_value = "900x900", value_name = "WxH")]

@@ -14,10 +14,11 @@ pub fn bench_growth(runs: u32) -> Result<()> {
          (growth and light: their mean); light: the sky's directions spread over the cores; \
          skeleton: wood and leaves at once, the leaves in runs of branches; mesh = skeleton and \
          mesh (quality 0.6: bark and leaves at once, leaves in runs), fastest of {runs}; x copy \
-         = step total / time to copy the tree's skeleton"
+         = step total / time to copy the tree's skeleton; bark: the mesh alone with the maple's \
+         bark pattern drawn (strips), and x plain: its ratio to the mesh alone without it"
     );
     println!(
-        "{:>9} {:>5} {:>8} {:>10} {:>9} {:>9} {:>13} {:>9} {:>9} {:>7}",
+        "{:>9} {:>5} {:>8} {:>10} {:>9} {:>9} {:>13} {:>9} {:>9} {:>7} {:>8} {:>7}",
         "segments",
         "age",
         "leaves",
@@ -27,11 +28,14 @@ pub fn bench_growth(runs: u32) -> Result<()> {
         "(skeleton ms)",
         "total ms",
         "copy ms",
-        "x copy"
+        "x copy",
+        "bark ms",
+        "x plain"
     );
     for row in growth_steps(runs)? {
         println!(
-            "{:>9} {:>5.1} {:>8} {:>10.2} {:>9.2} {:>9.2} {:>13.2} {:>9.2} {:>9.3} {:>7.0}",
+            "{:>9} {:>5.1} {:>8} {:>10.2} {:>9.2} {:>9.2} {:>13.2} {:>9.2} {:>9.3} {:>7.0} {:>8.2} \
+             {:>7.2}",
             row.segments,
             row.age,
             row.leaves,
@@ -41,7 +45,9 @@ pub fn bench_growth(runs: u32) -> Result<()> {
             row.skeleton_ms,
             row.total_ms(),
             row.copy_ms,
-            row.total_ms() / row.copy_ms
+            row.total_ms() / row.copy_ms,
+            row.patterned_mesh_ms,
+            row.patterned_mesh_ms / row.plain_mesh_ms
         );
     }
     let (g, l, m) = RUDNICK_MS;

@@ -24,7 +24,8 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
         // The leaves carry their light class as COLOR_0: at most ten shades, a lit top and a
         // darker inside.
         let mut shades: Vec<u32> = Vec::new();
-        for p in doc.meshes().flat_map(|m| m.primitives()) {
+        let leaves = doc.meshes().flat_map(|m| m.primitives());
+        for p in leaves.filter(|p| p.material().name() == Some("leaves")) {
             let reader = p.reader(|b| Some(&buffers[b.index()]));
             if let Some(c) = reader.read_colors(0) {
                 shades.extend(c.into_rgb_f32().map(|c| (c[1] * 1000.0).round() as u32));
@@ -178,5 +179,132 @@ fn draw_grows_a_street_tree_to_an_age_for_plans() {
         ],
         &["Atlantis"],
         d,
+    );
+}
+
+#[test]
+fn seasons_dress_the_grown_tree_and_leave_its_growth_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cherry");
+    // `season` as given, and as the file names it.
+    let grow = |season: &str, label: &str| {
+        let run = sylva(&[
+            "grow",
+            "PRSE2",
+            "--region",
+            "NoEast",
+            "--from",
+            "6",
+            "--to",
+            "6",
+            "--season",
+            season,
+            "--no-pictures",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let path = out.join(format!("PRSE2-age-06-{label}.glb"));
+        let (doc, buffers, _) = gltf::import(&path).unwrap();
+        // Each primitive's material name, base colour and triangle count.
+        let parts: Vec<(String, [f32; 4], usize)> = doc
+            .meshes()
+            .flat_map(|m| m.primitives())
+            .map(|p| {
+                let reader = p.reader(|b| Some(&buffers[b.index()]));
+                let triangles = reader.read_indices().unwrap().into_u32().count() / 3;
+                let material = p.material();
+                let colour = material.pbr_metallic_roughness().base_color_factor();
+                (material.name().unwrap().to_string(), colour, triangles)
+            })
+            .collect();
+        let bark = doc.meshes().flat_map(|m| m.primitives()).next().unwrap();
+        let reader = bark.reader(|b| Some(&buffers[b.index()]));
+        let shades: Vec<f32> = reader
+            .read_colors(0)
+            .unwrap()
+            .into_rgb_f32()
+            .map(|c| c[0])
+            .collect();
+        (parts, shades)
+    };
+    let names = |parts: &[(String, [f32; 4], usize)]| -> Vec<String> {
+        parts.iter().map(|p| p.0.clone()).collect()
+    };
+    // Summer: bark and leaves. The bark carries the cherry's bands of lenticels as shades.
+    let (summer, bark) = grow("summer", "summer");
+    assert_eq!(names(&summer), ["bark", "leaves"]);
+    assert!(bark.iter().any(|&s| s < 0.5) && bark.contains(&1.0));
+    // Winter: bare wood, the same bark (growth does not depend on the season).
+    let (winter, winter_bark) = grow("winter", "winter");
+    assert_eq!(names(&winter), ["bark"]);
+    assert_eq!(winter[0].2, summer[0].2);
+    assert_eq!(winter_bark, bark);
+    // April: smaller leaves in a lighter green, and pink flowers (Kwanzan cherry).
+    let (spring, _) = grow("spring", "spring");
+    assert_eq!(names(&spring), ["bark", "leaves", "flowers"]);
+    let [r, g, b, _] = spring[2].1;
+    assert!(r > g && r > b && g > 0.1, "pink: {:?}", spring[2].1);
+    assert!(spring[1].1[1] > summer[1].1[1], "lighter green in spring");
+    // October, autumn's month: the leaves in the cherry's autumn colour, redder than green.
+    let (autumn, _) = grow("october", "autumn");
+    assert_eq!(names(&autumn), ["bark", "leaves"]);
+    assert!(autumn[1].1[0] > autumn[1].1[1], "{:?}", autumn[1].1);
+    // `sylva render --age` grows and dresses the same tree: bare in winter, its leaves' green
+    // in summer.
+    let green = |season: &str| {
+        let png = dir.path().join(format!("{season}.png"));
+        let args = [
+            "render", "PRSE2", "--region", "NoEast", "--age", "6", "--season",
+        ];
+        let size = ["--size", "240x240", "-o", png.to_str().unwrap()];
+        let run = sylva(&[&args[..], &[season], &size[..]].concat());
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let picture = image::open(&png).unwrap().to_rgb8();
+        picture
+            .pixels()
+            .filter(|q| q[1] as i32 > q[0] as i32 + 15 && q[1] as i32 > q[2] as i32 + 15)
+            .count()
+    };
+    // The spring GLB renders with its flowers: pink pixels (red over green, blue over green;
+    // the cherry's reddish bark has less blue than green).
+    let png = dir.path().join("spring-glb.png");
+    let glb = out.join("PRSE2-age-06-spring.glb");
+    let run = sylva(&[
+        "render",
+        glb.to_str().unwrap(),
+        "--size",
+        "240x240",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let pink = image::open(&png)
+        .unwrap()
+        .to_rgb8()
+        .pixels()
+        .filter(|q| q[0] as i32 > q[1] as i32 + 40 && q[2] as i32 > q[1] as i32 + 10)
+        .count();
+    assert!(pink > 100, "{pink} pink pixels");
+    let (summer, winter) = (green("summer"), green("winter"));
+    assert!(summer > 500 && winter * 20 < summer, "{summer} {winter}");
+    let empty = tempfile::tempdir().unwrap();
+    let nowhere = scratch(empty.path(), "out");
+    refuses(
+        &[
+            "render",
+            "PLAC",
+            "--age",
+            "300",
+            "-o",
+            &format!("{nowhere}.png"),
+        ],
+        &["--age 300", "grown from"],
+        empty.path(),
+    );
+    refuses(
+        &["grow", "PRSE2", "--season", "smarch", "-o", &nowhere],
+        &["smarch", "spring, summer, autumn"],
+        empty.path(),
     );
 }

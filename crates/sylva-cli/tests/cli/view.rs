@@ -208,6 +208,18 @@ fn growth_viewer_shows_ages_side_by_side_and_plays() {
             .count()
     };
     assert!(green(0) < green(2), "foliage grows with age");
+    assert_eq!(report["season"], serde_json::Value::Null, "{report}");
+    // In winter the plane is bare and only the evergreen magnolia keeps its leaves.
+    let summer = green(2);
+    let mut winter_args = args.to_vec();
+    winter_args.extend(["--season", "winter"]);
+    let report = x.self_test(&winter_args, dir.path(), "grow-viewer.json");
+    assert_eq!(report["season"], "winter", "{report}");
+    let winter = green(2);
+    assert!(
+        winter * 3 < summer * 2 && winter > 0,
+        "green pixels at 8 years: {summer} in summer, {winter} in winter"
+    );
 }
 
 #[test]

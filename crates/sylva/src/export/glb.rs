@@ -1,5 +1,6 @@
-//! GLB (binary glTF 2.0): one node, one mesh with a bark primitive and a leaf primitive, each
-//! with its own material; positions, normals, UVs and 32-bit indices in one binary chunk.
+//! GLB (binary glTF 2.0): one node, one mesh with a bark primitive and a leaf primitive (and a
+//! flower primitive when the tree is in flower), each with its own material; positions,
+//! normals, UVs, 32-bit indices and the vertex shades (COLOR_0) in one binary chunk.
 
 use super::{write_atomically_with, y_up};
 use crate::error::ExportError;
@@ -11,14 +12,19 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
-/// Base colours (linear RGBA) of the two materials.
+/// Base colours (linear RGBA) of the materials.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Materials {
     /// Bark colour.
     pub bark: [f32; 4],
     /// Leaf colour.
     pub leaves: [f32; 4],
+    /// Flower colour (used only by a mesh with flowers).
+    pub flowers: [f32; 4],
 }
+
+/// White, for flowers of no named colour.
+const WHITE: [f32; 4] = [1.0; 4];
 
 impl Materials {
     /// Materials from sRGB colours, as species files give them.
@@ -30,6 +36,16 @@ impl Materials {
         Self {
             bark: lin(bark),
             leaves: lin(leaves),
+            flowers: WHITE,
+        }
+    }
+
+    /// These materials with flowers of an sRGB colour.
+    pub fn with_flowers(self, flowers: [f32; 3]) -> Self {
+        let l = flowers.map(crate::colour::srgb_to_linear);
+        Self {
+            flowers: [l[0], l[1], l[2], 1.0],
+            ..self
         }
     }
 }
@@ -40,6 +56,7 @@ impl Default for Materials {
         Self {
             bark: [0.16, 0.11, 0.075, 1.0],
             leaves: [0.10, 0.24, 0.045, 1.0],
+            flowers: WHITE,
         }
     }
 }
@@ -59,7 +76,8 @@ enum Piece<'a> {
     Bytes(&'a [u8]),
     /// Positions or normals, turned Y up as they are written.
     YUp(&'a [[f32; 3]]),
-    /// Leaf shades, written as grey colours.
+    /// Leaf or bark shades, written as grey colours of four normalised bytes (RGBA; a vertex
+    /// attribute's elements must start on four bytes, so RGB would take four as well).
     Shades(&'a [f32]),
 }
 
@@ -68,7 +86,7 @@ impl Piece<'_> {
         match self {
             Piece::Bytes(b) => b.len(),
             Piece::YUp(v) => std::mem::size_of_val(*v),
-            Piece::Shades(s) => s.len() * 12,
+            Piece::Shades(s) => s.len() * 4,
         }
     }
 
@@ -89,7 +107,18 @@ impl Piece<'_> {
         match self {
             Piece::Bytes(b) => w.write_all(b),
             Piece::YUp(v) => out(&mut v.iter().map(|p| y_up(*p))),
-            Piece::Shades(s) => out(&mut s.iter().map(|&s| [s; 3])),
+            Piece::Shades(s) => {
+                let mut grey: Vec<[u8; 4]> = Vec::with_capacity(AT_ONCE.min(s.len()));
+                for run in s.chunks(AT_ONCE) {
+                    grey.clear();
+                    grey.extend(run.iter().map(|&s| {
+                        let g = (s.clamp(0.0, 1.0) * 255.0).round() as u8;
+                        [g, g, g, 255]
+                    }));
+                    w.write_all(bytes_of(&grey))?;
+                }
+                Ok(())
+            }
         }
     }
 }
@@ -177,9 +206,11 @@ impl<'a> Builder<'a> {
         attributes.insert(Valid(json::mesh::Semantic::Normals), nor);
         attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), uv);
         if mesh.shades.len() == n {
-            // glTF multiplies the base colour by COLOR_0: the leaves' luminance classes.
+            // glTF multiplies the base colour by COLOR_0: the leaves' luminance classes, the
+            // bark's pattern.
             let v = self.view(Piece::Shades(&mesh.shades), Target::ArrayBuffer);
-            let colour = self.accessor(v, n, C::F32, T::Vec3, None);
+            let colour = self.accessor(v, n, C::U8, T::Vec4, None);
+            self.root.accessors[colour.value()].normalized = true;
             attributes.insert(Valid(json::mesh::Semantic::Colors(0)), colour);
         }
         json::mesh::Primitive {
@@ -422,6 +453,12 @@ impl<'a> Builder<'a> {
                 .root
                 .push(material("leaves", materials.leaves, true, 0.6));
             primitives.push(self.primitive(&mesh.leaves, m));
+        }
+        if !mesh.flowers.indices.is_empty() {
+            let m = self
+                .root
+                .push(material("flowers", materials.flowers, true, 0.6));
+            primitives.push(self.primitive(&mesh.flowers, m));
         }
         self.root.push(json::Mesh {
             extensions: None,

@@ -39,17 +39,26 @@ fn to_obj_blocks(
         name.replace(char::is_whitespace, "_")
     );
     let mut blocks = vec![head.into_bytes()];
-    for (group, part) in [("bark", &mesh.bark), ("leaves", &mesh.leaves)] {
+    for (group, part) in [
+        ("bark", &mesh.bark),
+        ("leaves", &mesh.leaves),
+        ("flowers", &mesh.flowers),
+    ] {
         if !part.indices.is_empty() {
             blocks.push(format!("g {group}\nusemtl {group}\n").into_bytes());
             blocks.extend(part_blocks(part));
         }
     }
     let mut mtl = String::new();
+    let flowers =
+        (!mesh.flowers.indices.is_empty()).then_some(("flowers", materials.flowers, true));
     for (m, c, double) in [
         ("bark", materials.bark, false),
         ("leaves", materials.leaves, true),
-    ] {
+    ]
+    .into_iter()
+    .chain(flowers)
+    {
         let _ = writeln!(
             mtl,
             "newmtl {m}\nKd {:.4} {:.4} {:.4}\nKa 0 0 0\nKs 0.02 0.02 0.02\nNs 10\nd {}\nillum 2{}\n",

@@ -11,6 +11,7 @@
 //! elliptic, ovate and obovate 2:1 to 3:2, lanceolate 6:1 to 3:1 (the middle of each range,
 //! taken geometrically).
 
+pub use crate::mesh::BarkPattern;
 use crate::mesh::natural_aspect;
 use crate::skeleton::LeafShape;
 use std::sync::OnceLock;
@@ -48,25 +49,6 @@ pub enum Persistence {
     Deciduous,
     /// Leaves kept all year.
     Evergreen,
-}
-
-/// The bark's pattern where it is distinctive.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BarkPattern {
-    /// Smooth, or too fine to tell at a street tree's distance.
-    Smooth,
-    /// Ridges and furrows running up the trunk.
-    Furrowed,
-    /// Flat plates between shallow cracks.
-    Plates,
-    /// Shed in patches, paler beneath (planes).
-    Patches,
-    /// Long strips loose at their ends (silver maple).
-    Strips,
-    /// Scaly ridges.
-    Scaly,
-    /// Smooth and banded by horizontal lenticels (cherries, birches).
-    Lenticels,
 }
 
 /// A named colour and how Sylva draws it (sRGB, 0 to 1).

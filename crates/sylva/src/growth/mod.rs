@@ -14,6 +14,7 @@ pub mod measured;
 pub mod model;
 mod palm_ages;
 pub mod report;
+pub mod season;
 
 pub use database::{Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};
@@ -22,6 +23,7 @@ pub use habit::{Envelope, Habit, TreeForm, habit_of};
 pub use measure::{Dimensions, measure};
 pub use measured::Measured;
 pub use model::{Grower, GrowthOptions, Targets};
+pub use season::{Dress, LeafState, Month, dressed_mesh};
 
 /// What can go wrong finding or reading growth data.
 #[derive(Debug, thiserror::Error)]

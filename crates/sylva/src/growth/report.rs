@@ -31,6 +31,7 @@ pub const MAX_AGES: usize = 400;
 pub const MESH: MeshOptions = MeshOptions {
     quality: 0.6,
     sides: None,
+    bark: crate::mesh::BarkPattern::Smooth,
 };
 
 /// The ages of a run: `from` to `to` every `step` years, by default the ages the species'

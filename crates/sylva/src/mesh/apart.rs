@@ -19,6 +19,9 @@ pub(super) trait Sink {
     fn vertex(&mut self, position: Vec3, normal: Vec3, uv: [f32; 2]) -> u32;
     /// Writes triangle indices.
     fn indices(&mut self, indices: &[u32]);
+    /// Writes the shade of the next vertex whose shade is not yet written (meshes with shades
+    /// give every vertex one).
+    fn shade(&mut self, shade: f32);
 }
 
 impl Sink for Mesh {
@@ -32,6 +35,10 @@ impl Sink for Mesh {
 
     fn indices(&mut self, indices: &[u32]) {
         self.indices.extend_from_slice(indices);
+    }
+
+    fn shade(&mut self, shade: f32) {
+        self.shades.push(shade);
     }
 }
 
@@ -51,17 +58,6 @@ pub(super) struct Stretch<'a> {
 }
 
 impl Stretch<'_> {
-    /// Writes the shade of the next vertex whose shade is not yet written.
-    pub(super) fn shade(&mut self, shade: f32) {
-        match self.shades.get_mut(self.written.2) {
-            Some(slot) => {
-                slot.write(shade);
-                self.written.2 += 1;
-            }
-            None => self.overflowed = true,
-        }
-    }
-
     /// Writes `indices` each raised by `base` (a template's triangles placed at a vertex).
     pub(super) fn indices_from(&mut self, base: u32, indices: &[u32]) {
         let at = self.written.1;
@@ -105,6 +101,16 @@ impl Sink for Stretch<'_> {
 
     fn indices(&mut self, indices: &[u32]) {
         self.indices_from(0, indices);
+    }
+
+    fn shade(&mut self, shade: f32) {
+        match self.shades.get_mut(self.written.2) {
+            Some(slot) => {
+                slot.write(shade);
+                self.written.2 += 1;
+            }
+            None => self.overflowed = true,
+        }
     }
 }
 

@@ -3,11 +3,13 @@
 //! bark and one for leaves, in the skeleton's Z-up metres; exporters convert the axes.
 
 mod apart;
+mod bark;
 mod compound;
 mod leaves;
 mod leaves_apart;
 mod stems;
 
+pub use bark::BarkPattern;
 pub use compound::natural_aspect;
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
 pub(crate) use stems::ring_frame;
@@ -78,17 +80,20 @@ pub struct TreeMesh {
     pub bark: Mesh,
     /// All leaves (drawn double-sided).
     pub leaves: Mesh,
+    /// Showy flowers in their season (drawn double-sided, in a material of their own); empty
+    /// for most trees and seasons.
+    pub flowers: Mesh,
 }
 
 impl TreeMesh {
-    /// Vertices of both meshes.
+    /// Vertices of every part.
     pub fn vertex_count(&self) -> usize {
-        self.bark.vertex_count() + self.leaves.vertex_count()
+        self.bark.vertex_count() + self.leaves.vertex_count() + self.flowers.vertex_count()
     }
 
-    /// Triangles of both meshes.
+    /// Triangles of every part.
     pub fn triangle_count(&self) -> usize {
-        self.bark.triangle_count() + self.leaves.triangle_count()
+        self.bark.triangle_count() + self.leaves.triangle_count() + self.flowers.triangle_count()
     }
 }
 
@@ -100,6 +105,8 @@ pub struct MeshOptions {
     /// Vertices around every stem, whatever its level (Fields' Tessellation rule); `None`: by
     /// level and quality.
     pub sides: Option<u32>,
+    /// The bark's pattern, drawn as vertex shades; [`BarkPattern::Smooth`] gives none.
+    pub bark: BarkPattern,
 }
 
 impl Default for MeshOptions {
@@ -107,6 +114,7 @@ impl Default for MeshOptions {
         Self {
             quality: 1.0,
             sides: None,
+            bark: BarkPattern::Smooth,
         }
     }
 }
@@ -140,7 +148,7 @@ pub fn mesh_tree(skeleton: &Skeleton, options: &MeshOptions) -> TreeMesh {
 /// Like [`mesh_tree`], but reuses `mesh`'s buffers (cleared first), so re-meshing after an
 /// edit allocates nothing once warm.
 pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut TreeMesh) {
-    for part in [&mut mesh.bark, &mut mesh.leaves] {
+    for part in [&mut mesh.bark, &mut mesh.leaves, &mut mesh.flowers] {
         part.positions.clear();
         part.normals.clear();
         part.uvs.clear();
@@ -154,7 +162,7 @@ pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Tre
     mesh.leaves.reserve(v, i);
     // Bark and leaves fill buffers of their own, so they can be meshed at once on two
     // threads with the same bytes as one after the other.
-    let TreeMesh { bark, leaves } = mesh;
+    let TreeMesh { bark, leaves, .. } = mesh;
     rayon::join(
         || stems::mesh_stems(skeleton, options, bark),
         || {

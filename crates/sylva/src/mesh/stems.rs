@@ -1,7 +1,7 @@
 //! Stem tubes: one ring per cross-section, rings joined by quads, a point or a cap at the tip.
 
 use super::apart::{Sink, mesh_apart};
-use super::{Mesh, MeshOptions};
+use super::{BarkPattern, Mesh, MeshOptions};
 use crate::skeleton::{CrossSection, Skeleton, Stem};
 use glam::{Quat, Vec3};
 use std::f32::consts::TAU;
@@ -47,13 +47,72 @@ fn stem_size(skeleton: &Skeleton, stem: &Stem, options: &MeshOptions) -> (usize,
     if sections.len() < 2 {
         return (0, 0);
     }
-    let n = options.ring_vertices(stem);
+    let n = ring_count(options, stem, sections);
+    let m = refine(sections, options.bark, None);
     let (rings, tip_vertices) = if tip_is_point(sections) {
-        (sections.len() - 1, n)
+        (m - 1, n)
     } else {
-        (sections.len(), n + 2)
+        (m, n + 2)
     };
     (rings * (n + 1) + tip_vertices, (rings - 1) * n * 6 + n * 3)
+}
+
+/// Stems at least this thick (radius, m) show a bark pattern, meshed finely enough to draw it.
+const PATTERN_RADIUS: f32 = 0.05;
+/// Most distance between a patterned stem's rings, m.
+const PATTERN_ALONG: f32 = 0.08;
+/// Most distance between a patterned stem's vertices around, m (up to 48 around).
+const PATTERN_AROUND: f32 = 0.06;
+
+/// Vertices around a stem's rings: the options' count, more on a thick stem whose bark is
+/// patterned, since the pattern is drawn at the vertices.
+fn ring_count(options: &MeshOptions, stem: &Stem, sections: &[CrossSection]) -> usize {
+    let n = options.ring_vertices(stem);
+    let r = max_radius(sections);
+    if options.bark == BarkPattern::Smooth || r < PATTERN_RADIUS {
+        return n;
+    }
+    n.max(((TAU * r / PATTERN_AROUND).ceil() as usize).min(48))
+}
+
+/// The number of rings a stem is meshed with, writing them into `out` when given: its
+/// sections, with rings added between those of a thick, patterned stretch so that none is
+/// more than [`PATTERN_ALONG`] apart (each added ring on the straight segment, in its frame).
+fn refine(
+    sections: &[CrossSection],
+    bark: BarkPattern,
+    mut out: Option<&mut Vec<CrossSection>>,
+) -> usize {
+    if let Some(out) = out.as_deref_mut() {
+        out.clear();
+    }
+    let mut rings = 0;
+    for (j, c) in sections.iter().enumerate() {
+        let next = sections.get(j + 1);
+        let extra = match next {
+            Some(d) if bark != BarkPattern::Smooth && c.radius.max(d.radius) >= PATTERN_RADIUS => {
+                let gaps = (c.position.distance(d.position) / PATTERN_ALONG).ceil() as usize;
+                gaps.clamp(1, 64) - 1
+            }
+            _ => 0,
+        };
+        rings += 1 + extra;
+        if let Some(out) = out.as_deref_mut() {
+            out.push(*c);
+            if let Some(d) = next {
+                for k in 1..=extra {
+                    let t = k as f32 / (extra + 1) as f32;
+                    out.push(CrossSection {
+                        position: c.position.lerp(d.position, t),
+                        orientation: c.orientation,
+                        radius: c.radius + (d.radius - c.radius) * t,
+                        z: c.z + (d.z - c.z) * t,
+                    });
+                }
+            }
+        }
+    }
+    rings
 }
 
 fn sections_of<'a>(skeleton: &'a Skeleton, stem: &Stem) -> &'a [CrossSection] {
@@ -102,7 +161,8 @@ fn mesh_stems_apart(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh)
     if total < APART_FROM {
         return false;
     }
-    mesh_apart(mesh, runs, false, |run, out| {
+    let shaded = options.bark != BarkPattern::Smooth;
+    mesh_apart(mesh, runs, shaded, |run, out| {
         mesh_run(skeleton, run, options, out)
     })
 }
@@ -113,19 +173,26 @@ fn mesh_run(skeleton: &Skeleton, stems: &[Stem], options: &MeshOptions, out: &mu
     // each size's circle is worked out once and kept.
     let mut circles: Vec<Vec<(f32, f32)>> = Vec::new();
     let mut rim = Vec::new();
+    let mut finer = Vec::new();
     for stem in stems {
-        let sections = sections_of(skeleton, stem);
-        if sections.len() < 2 {
+        let stored = sections_of(skeleton, stem);
+        if stored.len() < 2 {
             continue;
         }
-        let n = options.ring_vertices(stem);
+        let n = ring_count(options, stem, stored);
+        let sections = if options.bark == BarkPattern::Smooth {
+            stored
+        } else {
+            refine(stored, options.bark, Some(&mut finer));
+            &finer[..]
+        };
         if circles.len() <= n {
             circles.resize(n + 1, Vec::new());
         }
         if circles[n].is_empty() {
             circle(n, &mut circles[n]);
         }
-        mesh_stem(stem, sections, &circles[n], &mut rim, out);
+        mesh_stem(stem, sections, &circles[n], options.bark, &mut rim, out);
     }
 }
 
@@ -146,10 +213,19 @@ fn mesh_stem(
     stem: &Stem,
     sections: &[CrossSection],
     unit: &[(f32, f32)],
+    bark: BarkPattern,
     rim: &mut Vec<Vec3>,
     mesh: &mut impl Sink,
 ) {
     let n = unit.len() - 1;
+    let patterned = bark != BarkPattern::Smooth;
+    let stem_key = stem.sections.start;
+    // The bark's shade at ring vertex `i` of a ring of `radius` `along` metres up the stem;
+    // the seam's repeated vertex takes the first's, so the pattern has no seam.
+    let shade_at = |i: usize, radius: f32, along: f32| {
+        let around = (i % n) as f32 / n as f32 * TAU * radius;
+        bark.shade(around, along, radius, stem_key)
+    };
     let m = sections.len();
     let base_radius = max_radius(sections);
     let v_scale = 1.0 / (TAU * base_radius);
@@ -191,6 +267,9 @@ fn mesh_stem(
             let normal = (normal_in_plane - z * slope).normalize_or(radial);
             let position = c.position + radial * r;
             mesh.vertex(position, normal, [i as f32 / n as f32, v]);
+            if patterned {
+                mesh.shade(shade_at(i, c.radius, distance));
+            }
             if j + 1 == rings && !tip_is_point {
                 rim.push(position);
             }
@@ -219,6 +298,9 @@ fn mesh_stem(
                 axis,
                 [(i as f32 + 0.5) / n as f32, distance * v_scale],
             );
+            if patterned {
+                mesh.shade(1.0);
+            }
         }
         for i in 0..n as u32 {
             mesh.indices(&[last_ring + i, last_ring + i + 1, apex + i]);
@@ -229,6 +311,12 @@ fn mesh_stem(
         let first_rim = mesh.next_vertex();
         for (&p, &(cos, sin)) in rim.iter().zip(unit) {
             mesh.vertex(p, axis, [0.5 + 0.5 * cos, 0.5 + 0.5 * sin]);
+        }
+        // A cut end shows pale wood, as the centre and rim draw it: fully lit.
+        if patterned {
+            for _ in 0..=unit.len() {
+                mesh.shade(1.0);
+            }
         }
         for i in 0..n as u32 {
             mesh.indices(&[centre, first_rim + i, first_rim + i + 1]);
@@ -361,21 +449,36 @@ mod tests {
             let last = stem.sections.end as usize - 1;
             skeleton.sections[last].radius = skeleton.sections[last].radius.max(0.01);
         }
-        let mesh_options = MeshOptions::for_species(&params, 0.4);
-        let mut in_order = Mesh::default();
-        mesh_run(&skeleton, &skeleton.stems, &mesh_options, &mut in_order);
-        let mut apart = Mesh::default();
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(3)
-            .build()
-            .expect("a pool");
-        assert!(pool.install(|| mesh_stems_apart(&skeleton, &mesh_options, &mut apart)));
-        assert!(in_order.vertex_count() > 2 * APART_FROM);
-        assert_eq!(
-            (in_order.vertex_count(), in_order.indices.len()),
-            count(&skeleton, &mesh_options)
-        );
-        assert!(apart == in_order, "the bark meshes differ");
+        // Patterned bark adds rings and vertices to thick stems and a shade to every vertex.
+        let mut smooth_vertices = 0;
+        for bark in [BarkPattern::Smooth, BarkPattern::Plates] {
+            let mesh_options = MeshOptions {
+                bark,
+                ..MeshOptions::for_species(&params, 0.4)
+            };
+            let mut in_order = Mesh::default();
+            mesh_run(&skeleton, &skeleton.stems, &mesh_options, &mut in_order);
+            let mut apart = Mesh::default();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(3)
+                .build()
+                .expect("a pool");
+            assert!(pool.install(|| mesh_stems_apart(&skeleton, &mesh_options, &mut apart)));
+            assert!(in_order.vertex_count() > 2 * APART_FROM);
+            assert_eq!(
+                (in_order.vertex_count(), in_order.indices.len()),
+                count(&skeleton, &mesh_options)
+            );
+            assert!(apart == in_order, "{bark:?}: the bark meshes differ");
+            if bark == BarkPattern::Smooth {
+                assert!(in_order.shades.is_empty());
+                smooth_vertices = in_order.vertex_count();
+            } else {
+                assert_eq!(in_order.shades.len(), in_order.vertex_count());
+                assert!(in_order.vertex_count() > smooth_vertices);
+                assert!(in_order.shades.iter().any(|&s| s < 0.6));
+            }
+        }
     }
 
     #[test]
