@@ -17,6 +17,7 @@ mod serve;
 mod shared;
 mod species;
 mod stick;
+mod sweep;
 mod view;
 mod whisk;
 mod wires;
@@ -46,6 +47,7 @@ fn main() {
         Command::Forest(args) => forest::run(&args),
         Command::Grow(args) => grow::run(&args),
         Command::Rank(args) => rank::run(&args),
+        Command::Sweep(args) => sweep::run(&args),
         Command::Wires(args) => wires::run(&args),
         Command::Serve(args) => serve::run(&args),
         Command::Fractal(args) => fractal::run(&args),

@@ -4,8 +4,10 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
 mod lines;
+mod sweep;
 
 pub use lines::*;
+pub use sweep::SweepArgs;
 
 /// Sylva creates realistic trees (Weber & Penn 1995) and writes them as GLB or OBJ.
 #[derive(Parser, Debug)]
@@ -32,6 +34,10 @@ pub enum Command {
     /// Rank a region's street tree species by net benefit over the years (grown in parallel on
     /// one site), with the year each first runs into the street.
     Rank(RankArgs),
+    /// Grow every species of every region of the database through the ages its data cover and
+    /// measure each against its equations: the count within bounds, every miss, and the
+    /// targets the data themselves limit.
+    Sweep(SweepArgs),
     /// Check the site's wire model against the Urban Tree Database's own records of wire
     /// conflicts (table TS3), per region.
     Wires(WiresArgs),

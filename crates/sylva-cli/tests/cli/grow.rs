@@ -308,3 +308,62 @@ fn seasons_dress_the_grown_tree_and_leave_its_growth_alone() {
         empty.path(),
     );
 }
+
+#[test]
+fn sweep_grows_species_of_regions_and_writes_its_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let md = dir.path().join("sweep.md");
+    let run = sylva(&[
+        "sweep",
+        "--region",
+        "InlVal,NoEast",
+        "--species",
+        "PLAC,TICO",
+        "--to",
+        "6",
+        "--json",
+        "--markdown",
+        md.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    // PLAC grows in both regions, TICO in NoEast only: three species-regions.
+    let rows: Vec<serde_json::Value> = text(&run.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let pairs: Vec<(String, String)> = rows
+        .iter()
+        .map(|r| {
+            let s = |k: &str| r[k].as_str().unwrap().to_string();
+            (s("region"), s("species"))
+        })
+        .collect();
+    assert_eq!(pairs.len(), 3, "{pairs:?}");
+    assert!(pairs.contains(&("NoEast".into(), "TICO".into())));
+    for r in &rows {
+        assert_eq!(r["ages"][1].as_u64(), Some(6), "{r}");
+        let worst = r["worst"].as_array().unwrap();
+        assert_eq!(worst.len(), 5);
+        // Within bounds exactly when no quantity is past its bound.
+        let within = r["within"].as_bool().unwrap();
+        assert_eq!(within, r["misses"].as_array().unwrap().is_empty(), "{r}");
+    }
+    let within = rows.iter().filter(|r| r["within"] == true).count();
+    let stderr = text(&run.stderr);
+    assert!(
+        stderr.contains(&format!("{within} of 3 species-regions")),
+        "{stderr}"
+    );
+    let table = std::fs::read_to_string(&md).unwrap();
+    assert!(
+        table.contains(&format!("{within} of 3 species-regions")),
+        "{table}"
+    );
+    assert!(table.contains("| region | species | quantity |"));
+    let empty = tempfile::tempdir().unwrap();
+    refuses(
+        &["sweep", "--region", "Atlantis"],
+        &["--region Atlantis", "InlVal"],
+        empty.path(),
+    );
+}

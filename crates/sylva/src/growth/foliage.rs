@@ -116,6 +116,8 @@ impl Foliage {
                 "cordate" => LeafShape::Cordate,
                 "triangular" => LeafShape::Triangle,
                 "fan" => LeafShape::Fan,
+                // The tulip tree's squarish blade, notched across its tip.
+                "lobed-truncate" => LeafShape::Fan,
                 _ => LeafShape::Oval,
             },
         }
@@ -190,6 +192,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("red", [0.75, 0.15, 0.1]),
         ("purple-red", [0.5, 0.15, 0.25]),
         ("blue-gray", [0.55, 0.6, 0.62]),
+        ("pale gray", [0.72, 0.72, 0.68]),
         ("yellow-brown", [0.62, 0.47, 0.17]),
         ("bronze", [0.6, 0.37, 0.17]),
         ("russet", [0.55, 0.24, 0.12]),
@@ -199,6 +202,8 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("bright yellow", [0.95, 0.8, 0.1]),
         ("deep pink", [0.87, 0.44, 0.62]),
         ("pink", [0.93, 0.56, 0.7]),
+        ("pink-purple", [0.8, 0.4, 0.66]),
+        ("lavender-blue", [0.56, 0.52, 0.86]),
         // Bark.
         ("light brown", [0.55, 0.45, 0.35]),
         ("light gray", [0.62, 0.61, 0.58]),
@@ -208,6 +213,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("dark brown", [0.3, 0.22, 0.16]),
         ("dark gray", [0.33, 0.33, 0.32]),
         ("reddish bronze", [0.5, 0.3, 0.22]),
+        ("creamy white", [0.86, 0.84, 0.76]),
     ];
     PALETTE
         .iter()

@@ -15,6 +15,7 @@ pub mod model;
 mod palm_ages;
 pub mod report;
 pub mod season;
+pub mod sweep;
 
 pub use database::{Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};

@@ -33,6 +33,22 @@ use crate::skeleton::{Leaf, LeafShape, Skeleton};
 use glam::Vec3;
 use std::borrow::Cow;
 
+/// The months' names, January first.
+const MONTH_NAMES: [&str; 12] = [
+    "january",
+    "february",
+    "march",
+    "april",
+    "may",
+    "june",
+    "july",
+    "august",
+    "september",
+    "october",
+    "november",
+    "december",
+];
+
 /// A month of the year, 1 (January) to 12.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Month(u8);
@@ -60,22 +76,8 @@ impl Month {
     /// A season (`spring`, `summer`, `autumn` or `fall`, `winter`), a month's number (1 to
     /// 12) or its English name or first three letters.
     pub fn parse(text: &str) -> Result<Month, String> {
-        const NAMES: [&str; 12] = [
-            "january",
-            "february",
-            "march",
-            "april",
-            "may",
-            "june",
-            "july",
-            "august",
-            "september",
-            "october",
-            "november",
-            "december",
-        ];
         let t = text.trim().to_ascii_lowercase();
-        let by_name = NAMES
+        let by_name = MONTH_NAMES
             .iter()
             .position(|n| t.len() >= 3 && n.starts_with(&t))
             .map(|i| Month(i as u8 + 1));
@@ -97,20 +99,7 @@ impl Month {
 
     /// Lower-case name (`april`).
     pub fn name(self) -> &'static str {
-        [
-            "january",
-            "february",
-            "march",
-            "april",
-            "may",
-            "june",
-            "july",
-            "august",
-            "september",
-            "october",
-            "november",
-            "december",
-        ][usize::from(self.0 - 1)]
+        MONTH_NAMES[usize::from(self.0 - 1)]
     }
 
     /// The season's name for the four months `spring`, `summer`, `autumn` and `winter`

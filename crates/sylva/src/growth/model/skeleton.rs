@@ -6,6 +6,29 @@ use rayon::prelude::*;
 /// Branches whose leaves one task lays out.
 const LEAF_RUN: usize = 64;
 
+/// The trunk's flare at the ground, Weber & Penn's (1995) `Flare` with their quaking aspen's
+/// value (appendix): the radius grows towards the ground by their exponential profile, to
+/// 1.6 times at the ground.
+const FLARE: f64 = 0.6;
+/// Shares of the flare's height the trunk gets sections at, to draw its curve (most of it
+/// lies in the lowest quarter).
+const FLARE_SECTIONS: [f32; 5] = [0.0, 0.1, 0.25, 0.5, 0.75];
+
+/// Where a trunk of `length` m read for DBH at `dbh_at` m flares: its lowest eighth, as
+/// Weber & Penn's, but never above four fifths of the height DBH is read at, so the DBH the
+/// survey would read is the trunk's own.
+fn flare_height(length: f32, dbh_at: f32) -> f32 {
+    (length / 8.0).min(0.8 * dbh_at)
+}
+
+/// The flare's multiplier at `h` m above the ground on a trunk flaring up to `top` m.
+fn flare_at(h: f32, top: f32) -> f32 {
+    if top <= 0.0 || h >= top {
+        return 1.0;
+    }
+    crate::weber_penn::equations::flare_factor(FLARE, f64::from(h.max(0.0) / top) / 8.0) as f32
+}
+
 impl Grower {
     /// The tree now as a Skeleton: one stem per live branch, sections at the segment joints
     /// and just past every side branch (the trunk also where DBH is read and every half metre),
@@ -109,6 +132,11 @@ impl Grower {
             }
             junctions.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
             let total: f32 = segs.iter().map(|(_, s)| s.length).sum();
+            let flare_top = if branch.order == 0 {
+                flare_height(total, dbh_at)
+            } else {
+                0.0
+            };
             points.clear();
             let mut run = 0.0f32;
             for &(id, s) in &segs {
@@ -127,17 +155,26 @@ impl Grower {
                 if branch.order == 0 {
                     let pieces = crate::whole::pieces(s.length / 0.5);
                     at.extend((1..pieces).map(|k| s.length * k as f32 / pieces as f32));
-                    let reading = (dbh_at - s.start.z) / s.direction.z.max(1e-6);
+                    let up = s.direction.z.max(1e-6);
+                    let reading = (dbh_at - s.start.z) / up;
                     if reading > 1e-3 && reading < s.length - 1e-3 {
                         at.push(reading);
+                    }
+                    // Sections up the flare, so its curve shows.
+                    for f in FLARE_SECTIONS {
+                        let along = (flare_top * f - s.start.z) / up;
+                        if along > 1e-3 && along < s.length - 1e-3 {
+                            at.push(along);
+                        }
                     }
                 }
                 at.sort_by(f32::total_cmp);
                 at.dedup_by(|a, b| (*a - *b).abs() < 1e-4);
                 for &along in &at {
                     let k = profile.partition_point(|p| p.0 <= along + 1e-5).max(1);
-                    let r = profile[k - 1].1;
-                    points.push((s.start + s.direction * along, s.direction, run + along, r));
+                    let p = s.start + s.direction * along;
+                    let r = profile[k - 1].1 * flare_at(p.z, flare_top);
+                    points.push((p, s.direction, run + along, r));
                 }
                 run += s.length;
             }
