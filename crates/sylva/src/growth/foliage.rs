@@ -182,6 +182,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("pale green", [0.55, 0.65, 0.42]),
         ("blue-green", [0.2, 0.36, 0.32]),
         ("dull yellow-green", [0.52, 0.56, 0.3]),
+        ("yellow-green", [0.45, 0.55, 0.2]),
         ("silvery white", [0.78, 0.81, 0.78]),
         ("rusty brown", [0.45, 0.28, 0.15]),
         ("yellow", [0.86, 0.7, 0.14]),
@@ -214,6 +215,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("dark gray", [0.33, 0.33, 0.32]),
         ("reddish bronze", [0.5, 0.3, 0.22]),
         ("creamy white", [0.86, 0.84, 0.76]),
+        ("cinnamon", [0.6, 0.38, 0.24]),
     ];
     PALETTE
         .iter()

@@ -315,10 +315,10 @@ pub fn growable_pairs(db: &Database, regions: &[String]) -> Vec<Measured> {
 mod tests {
     use super::*;
 
-    /// A fixed sample of region-species pairs across the database (a street tree of each
-    /// form, from six regions: broadleaves, a conifer, an evergreen, one with a fit that
-    /// turns over), each grown through its first fifteen years: every quantity within bounds.
-    /// The full sweep is `sylva sweep`.
+    /// A fixed sample of region-species pairs across the database, from seven regions:
+    /// broadleaves with lobed, star-lobed, heart-shaped and bipinnate leaves, an evergreen oak and
+    /// a pine, each grown through its first fifteen years: every quantity within bounds. The
+    /// full sweep is `sylva sweep`.
     #[test]
     fn a_sample_of_the_database_grows_within_bounds() {
         let db = Database::builtin();
@@ -329,6 +329,7 @@ mod tests {
             ("CenFla", "QUVI"),
             ("SoCalC", "LIST"),
             ("MidWst", "GLTR"),
+            ("NMtnPr", "PINI"),
         ];
         let mut report = Vec::new();
         for (region, code) in sample {
