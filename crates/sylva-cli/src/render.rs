@@ -101,12 +101,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let renderer = headless()?;
         let tree = renderer.upload(&mesh);
         let flowers = renderer.upload_flowers(&mesh);
-        let mut scene = Scene::new(&tree, dress.bark, dress.leaves);
-        if let (Some(f), Some(colour)) = (&flowers, dress.flowers) {
-            let mut stand = scene.stands[0].clone();
-            (stand.tree, stand.leaves) = (f, colour);
-            scene.stands.push(stand);
-        }
+        let flowers = flowers.as_ref().zip(dress.flowers);
+        let scene = Scene::flowering(&tree, flowers, dress.bark, dress.leaves);
         let picture = draw(&renderer, args, scene, (width, height))?;
         return write_picture(&args.output, &picture, mesh.triangle_count(), &renderer);
     }

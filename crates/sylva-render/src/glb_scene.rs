@@ -352,16 +352,13 @@ impl UploadedScene {
             .iter()
             .zip(&self.glb.models)
             .flat_map(|((tree, flowers), m)| {
-                let stand = |tree, leaves| Stand {
+                let stand = Stand {
                     tree,
                     bark: m.bark,
-                    leaves,
+                    leaves: m.leaves,
                     placements: Cow::Borrowed(&m.placements),
                 };
-                let flowers = flowers
-                    .as_ref()
-                    .map(|f| stand(f, m.flowers.unwrap_or([1.0; 3])));
-                std::iter::once(stand(tree, m.leaves)).chain(flowers)
+                stand.with_flowers(flowers.as_ref().map(|f| (f, m.flowers.unwrap_or([1.0; 3]))))
             })
             .collect();
         Scene {

@@ -99,7 +99,22 @@ pub struct Stand<'a> {
     pub placements: std::borrow::Cow<'a, [Placement]>,
 }
 
-impl Stand<'_> {
+impl<'a> Stand<'a> {
+    /// This stand and, where the tree has flowers (uploaded apart by
+    /// [`crate::Renderer::upload_flowers`]), a second at the same places that draws them in
+    /// their colour as its leaves.
+    pub fn with_flowers(
+        self,
+        flowers: Option<(&'a RenderTree, [f32; 3])>,
+    ) -> impl Iterator<Item = Stand<'a>> {
+        let second = flowers.map(|(tree, colour)| Stand {
+            tree,
+            leaves: colour,
+            ..self.clone()
+        });
+        std::iter::once(self).chain(second)
+    }
+
     /// Centre and radius of a sphere holding the copy at `p`.
     pub fn sphere(&self, p: &Placement) -> (Vec3, f32) {
         let t = self.tree;
@@ -159,6 +174,20 @@ impl<'a> Scene<'a> {
                 placements: std::borrow::Cow::Borrowed(std::slice::from_ref(&Placement::ORIGIN)),
             }])
         }
+    }
+
+    /// [`Scene::new`]'s tree and, where it has them, its flowers (see
+    /// [`Stand::with_flowers`]).
+    pub fn flowering(
+        tree: &'a RenderTree,
+        flowers: Option<(&'a RenderTree, [f32; 3])>,
+        bark: [f32; 3],
+        leaves: [f32; 3],
+    ) -> Self {
+        let mut scene = Self::new(tree, bark, leaves);
+        let stand = scene.stands.remove(0);
+        scene.stands = stand.with_flowers(flowers).collect();
+        scene
     }
 
     /// Many trees: the same defaults as [`Scene::new`], without the person.

@@ -31,26 +31,10 @@ pub fn tree_picture(
 ) -> Result<Picture, RenderError> {
     let tree = r.upload(mesh);
     let flowers = r.upload_flowers(mesh);
-    let mut scene = Scene::new(&tree, dress.bark, dress.leaves);
-    scene
-        .stands
-        .extend(flower_stand(flowers.as_ref(), dress, Placement::ORIGIN));
+    let flowers = flowers.as_ref().zip(dress.flowers);
+    let scene = Scene::flowering(&tree, flowers, dress.bark, dress.leaves);
     let view = fixed_view(tallest, widest + 2.0, width as f32 / height as f32);
     r.render(&scene, &view, width, height)
-}
-
-/// The stand that draws a tree's flowers (uploaded by [`Renderer::upload_flowers`]) at `p`.
-fn flower_stand<'a>(
-    flowers: Option<&'a crate::RenderTree>,
-    dress: &Dress,
-    p: Placement,
-) -> Option<Stand<'a>> {
-    Some(Stand {
-        tree: flowers?,
-        bark: dress.bark,
-        leaves: dress.flowers?,
-        placements: Cow::Owned(vec![p]),
-    })
 }
 
 /// Species side by side at one age, each dressed as `dresses` says and named under its trunk,
@@ -85,7 +69,7 @@ pub fn comparison_picture(
                 leaves: d.leaves,
                 placements: Cow::Owned(vec![*p]),
             };
-            std::iter::once(tree).chain(flower_stand(f.as_ref(), d, *p))
+            tree.with_flowers(f.as_ref().zip(d.flowers))
         })
         .collect();
     let mut scene = Scene::forest(stands);

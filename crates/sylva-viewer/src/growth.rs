@@ -232,17 +232,16 @@ impl GrowthViewer {
             .iter()
             .enumerate()
             .flat_map(|(i, (tree, flowers, dress))| {
-                let stand = |tree, leaves| Stand {
+                let stand = Stand {
                     tree,
                     bark: dress.bark,
-                    leaves,
+                    leaves: dress.leaves,
                     placements: Cow::Owned(vec![Placement {
                         position: self.position(i),
                         ..Placement::ORIGIN
                     }]),
                 };
-                let flowers = flowers.as_ref().zip(dress.flowers);
-                std::iter::once(stand(tree, dress.leaves)).chain(flowers.map(|(f, c)| stand(f, c)))
+                stand.with_flowers(flowers.as_ref().zip(dress.flowers))
             })
             .collect();
         let mut scene = Scene::forest(stands);

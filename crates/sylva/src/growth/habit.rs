@@ -48,9 +48,9 @@ pub enum Envelope {
     Cone,
     /// Widest at mid-height.
     Ellipsoid,
-    /// Widest near the top.
+    /// A vase: opening straight from a narrow base, widest three quarters of the way up.
     InvertedCone,
-    /// Widest a third of the way up, flat-topped.
+    /// An umbrella: widest above the middle, flat-topped.
     FlatEllipsoid,
     /// As wide at the top as at the base.
     Cylinder,
@@ -61,25 +61,37 @@ impl Envelope {
     /// the top), as a share of its widest radius.
     pub fn relative_radius(self, p: f32) -> f32 {
         let p = p.clamp(0.0, 1.0);
-        // An ellipse widest at `mid`, with its lower and upper halves stretched to fit.
-        let around = |mid: f32, power: f32| {
-            let q = if p < mid {
-                (mid - p) / mid
+        // A superellipse widest at `mid`, its lower and upper parts of their own powers (2:
+        // an ellipse's quarter; higher: fuller, flatter at the end).
+        let around = |mid: f32, low: f32, high: f32| {
+            let (q, power) = if p < mid {
+                ((mid - p) / mid, low)
             } else {
-                (p - mid) / (1.0 - mid)
+                ((p - mid) / (1.0 - mid), high)
             };
             (1.0 - q.min(1.0).powf(power)).powf(1.0 / power)
         };
         match self {
             Envelope::Cone => (1.0 - p).powf(0.9),
-            Envelope::Ellipsoid => around(0.45, 2.0),
-            Envelope::InvertedCone => around(0.72, 2.0),
-            // A superellipse: flat-topped and full at the sides.
-            Envelope::FlatEllipsoid => around(0.4, 2.5),
-            Envelope::Cylinder => around(0.5, 6.0),
+            Envelope::Ellipsoid => around(0.45, 2.0, 2.0),
+            // A vase: straight sides opening from a narrow base to three quarters of the
+            // way up, then a low dome.
+            Envelope::InvertedCone => {
+                if p < VASE_SHOULDER {
+                    0.3 + 0.7 * p / VASE_SHOULDER
+                } else {
+                    around(VASE_SHOULDER, 2.0, 2.0)
+                }
+            }
+            // An umbrella: full low down, widest above the middle, its top flat.
+            Envelope::FlatEllipsoid => around(0.55, 2.0, 3.0),
+            Envelope::Cylinder => around(0.5, 6.0, 6.0),
         }
     }
 }
+
+/// Where a vase's straight sides end and its dome begins, a share of the crown's height.
+const VASE_SHOULDER: f32 = 0.75;
 
 /// The habit parameters of a form.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,6 +108,9 @@ pub struct Habit {
     pub envelope: Envelope,
     /// Stems from the ground (crape myrtle and other multi-stem trees: more than 1).
     pub stems: u8,
+    /// How far each year's shoot of a limb turns aside from the last, degrees, the other way
+    /// each year: the zig-zag of a limb's annual growth.
+    pub zigzag: f32,
 }
 
 impl TreeForm {
@@ -118,6 +133,21 @@ impl TreeForm {
             tropism,
             envelope,
             stems: 1,
+            zigzag: self.zigzag(),
+        }
+    }
+
+    /// The zig-zag of the form's limbs, degrees. Decurrent crowns are sympodial: each year's
+    /// shoot grows on from a bud beside the last one's tip (the terminal bud dies or flowers),
+    /// so their limbs zig-zag most (Barthélémy & Caraglio 2007, Annals of Botany 99:375,
+    /// on monopodial and sympodial axes). An excurrent tree's axes grow on from their own
+    /// terminal buds and run straighter; a conifer's are straight. The angles are Sylva's
+    /// drawing choice, small enough that a limb's course still follows its crown.
+    fn zigzag(self) -> f32 {
+        match self {
+            TreeForm::ExcurrentConifer | TreeForm::Palm => 0.0,
+            TreeForm::Oval | TreeForm::Columnar => 7.0,
+            TreeForm::Round | TreeForm::Vase | TreeForm::Umbrella | TreeForm::Weeping => 12.0,
         }
     }
 
@@ -328,6 +358,28 @@ mod tests {
                 .iter()
                 .any(|e| e.code == code || e.code.split('_').next() == Some(code));
             assert!(known, "{code} is not in the database");
+        }
+    }
+
+    #[test]
+    fn vases_open_straight_and_umbrellas_are_flat_topped() {
+        let r = |e: Envelope, p: f32| e.relative_radius(p);
+        // A vase: narrow at the base, its sides straight to the shoulder, widest there.
+        let vase = Envelope::InvertedCone;
+        assert!((r(vase, 0.0) - 0.3).abs() < 1e-6);
+        let mid = r(vase, VASE_SHOULDER / 2.0);
+        assert!((mid - (r(vase, 0.0) + 1.0) / 2.0).abs() < 1e-5, "{mid}");
+        assert!((r(vase, VASE_SHOULDER) - 1.0).abs() < 1e-6);
+        // An umbrella is fuller than an ellipsoid near its top: a flat top.
+        let (umbrella, round) = (Envelope::FlatEllipsoid, Envelope::Ellipsoid);
+        assert!(r(umbrella, 0.9) > r(round, 0.9) + 0.15);
+        // Every profile stays within 0..1 and meets the top.
+        for e in [Envelope::Cone, round, vase, umbrella, Envelope::Cylinder] {
+            for k in 0..=20 {
+                let v = r(e, k as f32 / 20.0);
+                assert!((0.0..=1.0).contains(&v), "{e:?} {v}");
+            }
+            assert!(r(e, 1.0) < 1e-3, "{e:?}");
         }
     }
 }

@@ -514,7 +514,7 @@ fn print_ages() {
     let mut g = Grower::new(
         m,
         GrowthOptions {
-            seed: 1,
+            seed: std::env::var("SEED").map_or(1, |s| s.parse().unwrap()),
             ..Default::default()
         },
     );

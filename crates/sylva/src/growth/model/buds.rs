@@ -23,6 +23,12 @@ const MARKER_MARGIN: f32 = 1.3;
 /// Height over which a decurrent trunk hands its lead to its laterals, m: the buds in it
 /// become the tree's few codominant scaffolds.
 const FORK_ZONE: f32 = 1.0;
+/// Most lateral buds of one annual shoot of a branch that may break in a year: those most
+/// exposed. A shoot has a bud at every node, but a tree's side shoots come from a few of
+/// them (the rest stay dormant, and die after `BUD_YEARS`), so the year's resource makes a
+/// few strong laterals instead of a broom of weak ones (issue G2: fewer, stronger laterals).
+/// Sylva's choice; the trunk's buds, its scaffolds, are not limited.
+const LATERALS_PER_SHOOT: usize = 2;
 /// Share of the season in which a shoot elongates.
 pub(super) const GROWING_SEASON: f64 = 0.5;
 
@@ -94,13 +100,14 @@ impl Grower {
         let mut rng = self.key.child((1_000_000 + half_year) as u64).stream();
         let markers = Markers::scatter(&space, self.metamer_now(), &mut rng, &wood);
         let (owned, towards) = markers.perceive(&sites);
-        let q: Vec<f32> = sites
+        let mut q: Vec<f32> = sites
             .iter()
             .zip(&owned)
             .map(|(&(p, _), &n)| {
                 (n as f32 / markers.saturation).min(1.0) * self.light.light_at(p).sqrt()
             })
             .collect();
+        self.hold_dormant(&mut q[terminals.len()..]);
         let lambda = self.apical_control();
         let v = self.allocate(&terminals, &q, lambda);
         let mut plans = Vec::new();
@@ -119,6 +126,7 @@ impl Grower {
             let order = self.branches[b as usize].order;
             let (start, d) = sites[i];
             let direction = self.steer(d, towards[i], order);
+            let direction = self.zigzag(direction, b as usize);
             plans.push(Plan {
                 from: b as usize,
                 lateral: false,
@@ -321,6 +329,56 @@ impl Grower {
             out = Vec3::new(out.x, out.y, lowest).normalize();
         }
         out
+    }
+
+    /// Buds beyond the `LATERALS_PER_SHOOT` most exposed of their shoot stay dormant this
+    /// year: their exposure `q` (the buds' part of the sites) is set to nothing, so Borchert-
+    /// Honda hands their share to the axis and the buds that do break.
+    fn hold_dormant(&self, q: &mut [f32]) {
+        let mut order: Vec<usize> = (0..self.buds.len())
+            .filter(|&k| self.buds[k].branch != 0)
+            .collect();
+        order.sort_by(|&a, &b| {
+            self.buds[a]
+                .segment
+                .cmp(&self.buds[b].segment)
+                .then(q[b].total_cmp(&q[a]))
+                .then(a.cmp(&b))
+        });
+        let mut run = 0;
+        for (i, &k) in order.iter().enumerate() {
+            let same = i > 0 && self.buds[order[i - 1]].segment == self.buds[k].segment;
+            run = if same { run + 1 } else { 0 };
+            if run >= LATERALS_PER_SHOOT {
+                q[k] = 0.0;
+            }
+        }
+    }
+
+    /// A branch's new shoot turned aside from the one before it, the other way each year
+    /// (by the habit's `zigzag`): a limb that zig-zags at every year's growth, as a tree's
+    /// do where each year's shoot grows on from a bud beside the last one's tip (sympodial
+    /// growth) or is bent by the bud's side.
+    fn zigzag(&mut self, d: Vec3, b: usize) -> Vec3 {
+        let turn = self.habit.zigzag;
+        if turn <= 0.0 {
+            return d;
+        }
+        // Aside in the horizontal: a level limb's shoots turn left and right, a rising one's
+        // lean from side to side.
+        let side = d.cross(Vec3::Z);
+        let side = if side.length_squared() > 0.04 {
+            side.normalize()
+        } else {
+            d.any_orthogonal_vector().normalize()
+        };
+        let sign = if self.branches[b].segments.len().is_multiple_of(2) {
+            1.0
+        } else {
+            -1.0
+        };
+        let angle = (turn + self.rng.var(turn as f64 * 0.3) as f32).to_radians();
+        (d + side * sign * angle.tan()).normalize_or(d)
     }
 
     /// Length of a metamer this year: a sapling's internodes are short, so its small crown

@@ -37,3 +37,77 @@ fn a_street_tree_grows_the_same_on_one_thread_or_three() {
     assert_eq!(bits(&one_light.density), bits(&three_light.density));
     assert_eq!(bits(&one_light.light), bits(&three_light.light));
 }
+
+fn grown(region: &str, code: &str, years: f64) -> Grower {
+    let measured = Database::builtin().find(region, code).expect("built in");
+    let mut grower = Grower::new(measured, GrowthOptions::default());
+    let first = grower.age();
+    grower.advance_to(first + years);
+    grower
+}
+
+/// Turns between a live branch's successive annual shoots, degrees, signed by which side of
+/// the last shoot the next turns to (about the horizontal perpendicular `zigzag` uses).
+fn turns(g: &Grower) -> Vec<f32> {
+    let mut out = Vec::new();
+    for b in g.branches.iter().filter(|b| b.alive && b.order >= 1) {
+        let dirs: Vec<Vec3> = b
+            .segments
+            .iter()
+            .map(|&s| g.segments[s as usize])
+            .filter(|s| s.length > 0.05)
+            .map(|s| s.direction)
+            .collect();
+        for w in dirs.windows(2) {
+            let side = w[0].cross(Vec3::Z).normalize_or(Vec3::X);
+            let angle = w[0].angle_between(w[1]).to_degrees();
+            out.push(angle.copysign(w[1].dot(side)));
+        }
+    }
+    out
+}
+
+#[test]
+fn limbs_zig_zag_from_year_to_year_and_a_conifers_run_straight() {
+    // A London plane (round, sympodial): its shoots turn about the habit's 12 degrees, the
+    // other way each year, so successive turns mostly change side.
+    let plane = grown("InlVal", "PLAC", 8.0);
+    assert_eq!(plane.habit.zigzag, 12.0);
+    let t = turns(&plane);
+    assert!(t.len() > 100, "{} turns", t.len());
+    let mut size: Vec<f32> = t.iter().map(|a| a.abs()).collect();
+    size.sort_by(f32::total_cmp);
+    let median = size[size.len() / 2];
+    assert!((7.0..25.0).contains(&median), "median turn {median}");
+    // Conifers' axes run on from their terminal buds: no zig-zag.
+    let pine = grown("NoEast", "PIST", 8.0);
+    assert_eq!(pine.habit.zigzag, 0.0);
+    let mut size: Vec<f32> = turns(&pine).iter().map(|a| a.abs()).collect();
+    size.sort_by(f32::total_cmp);
+    let pine_median = size[size.len() / 2];
+    assert!(
+        pine_median < median * 0.6,
+        "pine {pine_median}, plane {median}"
+    );
+}
+
+#[test]
+fn a_shoot_gives_at_most_two_laterals_a_year() {
+    // The laterals of a branch's annual shoot that broke in one flush: at most
+    // LATERALS_PER_SHOOT (the trunk's, its scaffolds, are not limited).
+    let g = grown("InlVal", "CESI4", 10.0);
+    let mut per: std::collections::HashMap<(u32, i64), usize> = Default::default();
+    for b in &g.branches {
+        if let Some((p, seg)) = b.parent {
+            if p == 0 {
+                continue;
+            }
+            let born = g.segments[b.segments[0] as usize].born;
+            *per.entry((seg, (born * 4.0).round() as i64)).or_default() += 1;
+        }
+    }
+    assert!(per.len() > 200, "{} shoots with laterals", per.len());
+    let most = per.values().copied().max().unwrap_or(0);
+    assert!(most <= 2, "a shoot gave {most} laterals in one flush");
+    assert!(per.values().any(|&n| n == 2), "some shoots give two");
+}
