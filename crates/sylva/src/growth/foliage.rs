@@ -1,6 +1,7 @@
 //! What each street tree wears: its leaves (kind, size, outline, arrangement, colours through
 //! the year), its flowers where they are showy, and its bark, one row per species of the
-//! Urban Tree Database in `foliage.csv`, each row naming its sources.
+//! Urban Tree Database in `foliage.csv`, each row naming its sources. Palms need no row: they
+//! carry their fronds (`model/palm.rs`). A species without a row wears a generic leaf.
 //!
 //! The table keeps the sources' words and ranges: sizes in centimetres as published (ranges
 //! drawn at their middle), colours as named (a colour word becomes a colour in
@@ -118,6 +119,9 @@ impl Foliage {
                 "fan" => LeafShape::Fan,
                 // The tulip tree's squarish blade, notched across its tip.
                 "lobed-truncate" => LeafShape::Fan,
+                // A white oak's rounded lobes: Sylva has no outline for them yet, so the
+                // blade is drawn as an oval of its measured length and width.
+                "lobed-rounded" => LeafShape::Oval,
                 _ => LeafShape::Oval,
             },
         }
@@ -180,7 +184,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("bright green", [0.33, 0.53, 0.17]),
         ("light green", [0.42, 0.58, 0.24]),
         ("pale green", [0.55, 0.65, 0.42]),
-        ("blue-green", [0.2, 0.36, 0.32]),
+        ("blue-green", [0.2, 0.35, 0.26]),
         ("dull yellow-green", [0.52, 0.56, 0.3]),
         ("yellow-green", [0.45, 0.55, 0.2]),
         ("silvery white", [0.78, 0.81, 0.78]),
@@ -348,13 +352,15 @@ mod tests {
         assert!(rows.len() >= 20);
         let db = Database::builtin();
         for f in rows {
-            let entry = db.species().iter().find(|s| s.code == f.code);
-            let entry = entry.unwrap_or_else(|| panic!("{} is not a database species", f.code));
-            // The database's tree type says deciduous (D) or evergreen (E) too.
-            let evergreen = entry.tree_type.get(1..2) == Some("E");
-            assert_eq!(
-                f.persistence == Persistence::Evergreen,
-                evergreen,
+            let entries: Vec<_> = db.species().iter().filter(|s| s.code == f.code).collect();
+            assert!(!entries.is_empty(), "{} is not a database species", f.code);
+            // The database's tree type says deciduous (D) or evergreen (E) too; where its
+            // regions disagree (the tardily deciduous water oak), the row agrees with one.
+            let evergreen = f.persistence == Persistence::Evergreen;
+            assert!(
+                entries
+                    .iter()
+                    .any(|e| (e.tree_type.get(1..2) == Some("E")) == evergreen),
                 "{}",
                 f.code
             );
