@@ -165,15 +165,7 @@ impl<'a> Scene<'a> {
     /// One tree at the origin, with ground, person, leaves and an afternoon sun from the
     /// south-west.
     pub fn new(tree: &'a RenderTree, bark: [f32; 3], leaves: [f32; 3]) -> Self {
-        Self {
-            show_person: true,
-            ..Self::forest(vec![Stand {
-                tree,
-                bark,
-                leaves,
-                placements: std::borrow::Cow::Borrowed(std::slice::from_ref(&Placement::ORIGIN)),
-            }])
-        }
+        Self::flowering(tree, None, bark, leaves)
     }
 
     /// [`Scene::new`]'s tree and, where it has them, its flowers (see
@@ -184,10 +176,16 @@ impl<'a> Scene<'a> {
         bark: [f32; 3],
         leaves: [f32; 3],
     ) -> Self {
-        let mut scene = Self::new(tree, bark, leaves);
-        let stand = scene.stands.remove(0);
-        scene.stands = stand.with_flowers(flowers).collect();
-        scene
+        let stand = Stand {
+            tree,
+            bark,
+            leaves,
+            placements: std::borrow::Cow::Borrowed(std::slice::from_ref(&Placement::ORIGIN)),
+        };
+        Self {
+            show_person: true,
+            ..Self::forest(stand.with_flowers(flowers).collect())
+        }
     }
 
     /// Many trees: the same defaults as [`Scene::new`], without the person.
