@@ -125,6 +125,7 @@ impl LeafShape {
             .chain([
                 LeafShape::Lobed5,
                 LeafShape::Cordate,
+                LeafShape::Fan,
                 LeafShape::PointedLobes,
             ])
             .chain(counts(PINNATE_LEAFLETS).map(LeafShape::Pinnate))

@@ -522,6 +522,21 @@ mod tests {
         }
     }
 
+    /// Each shape finds its own template: the slot a shape names is where `every` builds it,
+    /// and a compound leaf draws as many blades as it has leaflets, pinnae or needles.
+    #[test]
+    fn every_shape_draws_its_own_template() {
+        for (i, shape) in LeafShape::every().enumerate() {
+            assert_eq!(shape.slot(), i, "{shape:?}");
+        }
+        let blades = |s| leaf_template(s).indices.len() / 3;
+        assert_eq!(blades(LeafShape::Pinnate(5)), 5);
+        assert_eq!(blades(LeafShape::Needles(2)), 2);
+        assert_eq!(blades(LeafShape::Bipinnate(7)), 7);
+        let fan = build(LeafShape::Fan);
+        assert_eq!(leaf_template(LeafShape::Fan).positions, fan.positions);
+    }
+
     #[test]
     fn lobed_shapes_are_not_convex_and_oval_is() {
         // A lobed leaf covers clearly less of its bounding box than an oval does.

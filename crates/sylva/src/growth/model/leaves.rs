@@ -122,12 +122,14 @@ impl Grower {
             placed += n;
         }
         // A sapling with too little shoot for its measured leaf area carries larger leaves
-        // (at most eight times the area).
-        self.leaf_boost = if placed > 0 && placed < wanted {
-            (wanted as f32 / placed as f32).min(8.0)
-        } else {
-            1.0
-        };
+        // (at most eight times the area), but none longer than its crown allows: leaves that
+        // outgrow the crown would hang above the top or below the base and be left off, and a
+        // whip whose data ask for more leaf than its shoots can hold would stand bare.
+        self.leaf_boost = 1.0;
+        if placed > 0 && placed < wanted {
+            let fits = (self.longest_leaf() / self.drawn_leaf_size().0).powi(2);
+            self.leaf_boost = (wanted as f32 / placed as f32).min(8.0).min(fits).max(1.0);
+        }
     }
 
     /// Length and width of a leaf as drawn, m.
@@ -141,12 +143,24 @@ impl Grower {
     /// The species' leaf, on a sapling no longer than the generic 14 cm leaf or a sixteenth of
     /// the crown's measured width, whichever is longer: a goldenrain tree's 28 cm leaves on a
     /// crown 1.5 m wide would hang a tenth of its width outside it, so a young tree's leaves
-    /// grow to their full size as its crown widens (a drawing rule, not a measurement).
+    /// grow to their full size as its crown widens (a drawing rule, not a measurement). Nor is
+    /// it longer than the crown's height allows ([`Grower::longest_leaf`]).
     fn leaf_size_now(&self) -> (f32, f32) {
         let (l, w) = self.leaf_size;
-        let longest = (self.targets_now().crown_diameter as f32 / 16.0).max(0.14);
+        let longest = (self.targets_now().crown_diameter as f32 / 16.0)
+            .max(0.14)
+            .min(self.longest_leaf());
         let k = (longest / l).min(1.0);
         (l * k, w * k)
+    }
+
+    /// The longest leaf a crown of the measured height can wear: two fifths of it. Tilted off
+    /// a shoot in the crown's upper part, such a leaf still ends between the crown base and
+    /// the top; one much longer would be left off (see `for_each_leaf`), and a whip whose
+    /// data ask for more leaf than its few shoots can hold would stand bare (a drawing rule,
+    /// not a measurement: it binds only on crowns under about a metre tall).
+    fn longest_leaf(&self) -> f32 {
+        (self.targets_now().crown_height as f32 * 0.4).max(0.01)
     }
 
     /// Area of one leaf as drawn, m² (larger than life when the leaf budget is reached, or
@@ -269,8 +283,14 @@ impl Grower {
                 turn += DIVERGENCE;
                 let turned = (turns.next().copied()).unwrap_or_else(|| turn.to_radians().sin_cos());
                 let tilt = 50.0 + rng.var(10.0) as f32;
-                let q = leaf_frame(base, turned, tilt.to_radians());
-                let tip = (q * Vec3::Z).z * length + p.z;
+                let mut q = leaf_frame(base, turned, tilt.to_radians());
+                let mut tip = (q * Vec3::Z).z * length + p.z;
+                // A leaf that would reach past the top hangs down from its node instead, as
+                // the top leaves of a whip do; one that fits neither way is left off.
+                if tip > top {
+                    q = leaf_frame(base, turned, (180.0 - tilt).to_radians());
+                    tip = (q * Vec3::Z).z * length + p.z;
+                }
                 if tip <= top && tip.min(p.z) >= floor {
                     f(p, q);
                 }

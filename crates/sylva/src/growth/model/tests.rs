@@ -111,3 +111,34 @@ fn a_shoot_gives_at_most_two_laterals_a_year() {
     assert!(most <= 2, "a shoot gave {most} laterals in one flush");
     assert!(per.values().any(|&n| n == 2), "some shoots give two");
 }
+
+/// A first-year whip whose data ask for far more leaf than its few shoots can hold (a live
+/// oak of Charleston at 0.66 m with 0.7 m² of leaf on a crown 0.29 m tall) still wears
+/// leaves inside its crown: larger-than-life leaves on it are kept short enough to fit, not
+/// drawn so long that every one is left off above its top.
+#[test]
+fn a_whip_with_more_leaf_than_shoot_is_not_bare() {
+    for (region, code) in [("GulfCo", "QUVI"), ("InlEmp", "FRUH"), ("NMtnPr", "GYDI")] {
+        let g = grown(region, code, 0.0);
+        let t = g.targets_now();
+        let sk = g.skeleton();
+        assert!(
+            sk.leaves.len() >= 3,
+            "{region} {code}: {} leaves",
+            sk.leaves.len()
+        );
+        let (length, _) = g.drawn_leaf_size();
+        assert!(
+            length <= 0.4 * t.crown_height as f32 + 1e-4,
+            "{region} {code}: leaves {length} m long on a crown {} m tall",
+            t.crown_height
+        );
+        for l in &sk.leaves {
+            let tip = l.position + l.orientation * Vec3::Z * l.length;
+            assert!(
+                tip.z <= t.height as f32 + 1e-3,
+                "{region} {code}: a leaf above the top"
+            );
+        }
+    }
+}
