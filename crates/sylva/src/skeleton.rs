@@ -90,6 +90,10 @@ pub enum LeafShape {
     Palmate(u8),
     /// A bundle (fascicle) of this many needles from one sheath: pines. 1 to 5.
     Needles(u8),
+    /// A twig set with single needles in two ranks: spruces, firs, Douglas fir, redwood.
+    NeedleSpray,
+    /// A flat spray of branchlets clad in scale leaves: junipers, arborvitae, incense cedar.
+    ScaleSpray,
 }
 
 /// Leaflet, pinna and needle counts a [`LeafShape`] may carry (inclusive); outside them the
@@ -132,6 +136,7 @@ impl LeafShape {
             .chain(counts(BIPINNATE_PINNAE).map(LeafShape::Bipinnate))
             .chain(counts(PALMATE_LEAFLETS).map(LeafShape::Palmate))
             .chain(counts(BUNDLE_NEEDLES).map(LeafShape::Needles))
+            .chain([LeafShape::NeedleSpray, LeafShape::ScaleSpray])
     }
 
     /// This shape with its count brought within its bounds (see [`PINNATE_LEAFLETS`]).
@@ -164,6 +169,8 @@ impl LeafShape {
             LeafShape::Bipinnate(n) => fixed + p + usize::from(n - BIPINNATE_PINNAE.0),
             LeafShape::Palmate(n) => fixed + p + b + usize::from(n - PALMATE_LEAFLETS.0),
             LeafShape::Needles(n) => fixed + p + b + m + usize::from(n - BUNDLE_NEEDLES.0),
+            LeafShape::NeedleSpray => fixed + p + b + m + span(BUNDLE_NEEDLES),
+            LeafShape::ScaleSpray => fixed + p + b + m + span(BUNDLE_NEEDLES) + 1,
             indexed => Self::ALL.iter().position(|&s| s == indexed).unwrap_or(0),
         }
     }
@@ -193,6 +200,8 @@ impl LeafShape {
             LeafShape::Bipinnate(_) => "bipinnate",
             LeafShape::Palmate(_) => "palmate",
             LeafShape::Needles(_) => "needles",
+            LeafShape::NeedleSpray => "needle-spray",
+            LeafShape::ScaleSpray => "scale-spray",
         }
     }
 }

@@ -13,7 +13,7 @@
 //! taken geometrically).
 
 pub use crate::mesh::BarkPattern;
-use crate::mesh::natural_aspect;
+use crate::mesh::{NEEDLE_SPRAY_LENGTH, natural_aspect};
 use crate::skeleton::LeafShape;
 use std::sync::OnceLock;
 
@@ -28,8 +28,10 @@ pub enum LeafKind {
     Bipinnate,
     /// Leaflets spread from the petiole's tip.
     Palmate,
-    /// Needles in bundles.
+    /// Needles in bundles, or singly (a bundle of one, drawn as a spray of them).
     Needles,
+    /// Scale leaves clasping flat sprays of branchlets.
+    Scales,
 }
 
 /// How leaves stand on the shoot.
@@ -110,15 +112,19 @@ impl Foliage {
             LeafKind::Pinnate => LeafShape::Pinnate(n).clamped(),
             LeafKind::Bipinnate => LeafShape::Bipinnate(n).clamped(),
             LeafKind::Palmate => LeafShape::Palmate(n).clamped(),
+            // Single needles are too small to draw one by one: a twig of them is the leaf.
+            LeafKind::Needles if n == 1 => LeafShape::NeedleSpray,
             LeafKind::Needles => LeafShape::Needles(n).clamped(),
+            LeafKind::Scales => LeafShape::ScaleSpray,
             LeafKind::Simple => match self.outline.as_str() {
                 "lobed-palmate" => LeafShape::Lobed5,
                 "lobed-pointed" => LeafShape::PointedLobes,
                 "cordate" => LeafShape::Cordate,
                 "triangular" => LeafShape::Triangle,
                 "fan" => LeafShape::Fan,
-                // The tulip tree's squarish blade, notched across its tip.
-                "lobed-truncate" => LeafShape::Fan,
+                // The tulip tree's squarish blade, notched across its tip, and the orchid
+                // tree's two rounded lobes, cleft at the tip: both widest near a notched tip.
+                "lobed-truncate" | "bilobed" => LeafShape::Fan,
                 // A white oak's rounded lobes: Sylva has no outline for them yet, so the
                 // blade is drawn as an oval of its measured length and width.
                 "lobed-rounded" => LeafShape::Oval,
@@ -129,7 +135,8 @@ impl Foliage {
 
     /// Length and width of a leaf as drawn at full size, m: a simple blade as measured; a
     /// compound leaf as long as measured (a palmate one as its longest leaflet and petiole)
-    /// and as wide as its leaflets make it; a bundle as long as its needles.
+    /// and as wide as its leaflets make it; a bundle as long as its needles; a spray of single
+    /// needles [`NEEDLE_SPRAY_LENGTH`] needles long; a scale spray as its sources give it.
     pub fn leaf_size(&self) -> (f32, f32) {
         let mid = |(lo, hi): (f32, f32)| (lo + hi) / 2.0 / 100.0;
         let shape = self.shape();
@@ -139,7 +146,13 @@ impl Foliage {
             }
             // The middle leaflet is 0.7 of a palmate template's length (see mesh::compound).
             LeafKind::Palmate => self.length_cm.map_or(0.0, mid) / 0.7,
+            LeafKind::Needles if self.count == Some(1) => {
+                self.length_cm.map_or(0.0, mid) * NEEDLE_SPRAY_LENGTH
+            }
             LeafKind::Needles | LeafKind::Simple => self.length_cm.map_or(0.0, mid),
+            // A spray as long as the sources say, or Sylva's drawing choice where they give
+            // only the scales.
+            LeafKind::Scales => self.leaf_cm.map_or(SCALE_SPRAY_CM / 100.0, mid),
         };
         let width = match (natural_aspect(shape), self.width_cm) {
             (Some(aspect), _) => length * aspect,
@@ -149,6 +162,10 @@ impl Foliage {
         (length, width)
     }
 }
+
+/// Length of a scale-leaved spray where the sources give only its scales, cm: Sylva's
+/// drawing choice, about a hand's length of an arborvitae's or juniper's foliage.
+const SCALE_SPRAY_CM: f32 = 10.0;
 
 /// Length over width of an outline named without a width (see the module's note).
 fn length_to_width(outline: &str) -> f32 {
@@ -187,6 +204,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("blue-green", [0.2, 0.35, 0.26]),
         ("dull yellow-green", [0.52, 0.56, 0.3]),
         ("yellow-green", [0.45, 0.55, 0.2]),
+        ("gray-green", [0.42, 0.5, 0.4]),
         ("silvery white", [0.78, 0.81, 0.78]),
         ("rusty brown", [0.45, 0.28, 0.15]),
         ("yellow", [0.86, 0.7, 0.14]),
@@ -220,6 +238,9 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("reddish bronze", [0.5, 0.3, 0.22]),
         ("creamy white", [0.86, 0.84, 0.76]),
         ("cinnamon", [0.6, 0.38, 0.24]),
+        ("red-brown", [0.44, 0.26, 0.18]),
+        ("whitish", [0.8, 0.79, 0.75]),
+        ("orange-brown", [0.6, 0.4, 0.25]),
     ];
     PALETTE
         .iter()
@@ -266,11 +287,19 @@ fn parse(text: &str) -> Result<Vec<Foliage>, String> {
             "bipinnate" => LeafKind::Bipinnate,
             "palmate" => LeafKind::Palmate,
             "needles" => LeafKind::Needles,
-            _ => return Err(bad(2, "simple, pinnate, bipinnate, palmate or needles")),
+            "scales" => LeafKind::Scales,
+            _ => {
+                return Err(bad(
+                    2,
+                    "simple, pinnate, bipinnate, palmate, needles or scales",
+                ));
+            }
         };
         let count = match (kind, field(3)) {
-            (LeafKind::Simple, "") => None,
-            (LeafKind::Simple, _) => return Err(bad(3, "empty for a simple leaf")),
+            (LeafKind::Simple | LeafKind::Scales, "") => None,
+            (LeafKind::Simple | LeafKind::Scales, _) => {
+                return Err(bad(3, "empty for a simple leaf or scales"));
+            }
             (_, t) => Some(t.parse::<u8>().map_err(|_| bad(3, "a count of parts"))?),
         };
         let arrangement = match field(8) {
@@ -372,7 +401,8 @@ mod tests {
                 );
             }
             assert!(f.source.len() > 40, "{}: a source", f.code);
-            assert_eq!(f.count.is_some(), f.kind != LeafKind::Simple, "{}", f.code);
+            let counted = !matches!(f.kind, LeafKind::Simple | LeafKind::Scales);
+            assert_eq!(f.count.is_some(), counted, "{}", f.code);
         }
     }
 
@@ -394,6 +424,17 @@ mod tests {
         let pine = of("PIST").unwrap();
         assert_eq!(pine.shape(), LeafShape::Needles(5));
         assert!((pine.leaf_size().0 - 0.1025).abs() < 1e-6);
+        // Blue spruce: single needles of 2-3 cm, drawn as a twig of them four needles long.
+        let spruce = of("PIPU").unwrap();
+        assert_eq!(spruce.shape(), LeafShape::NeedleSpray);
+        assert!((spruce.leaf_size().0 - 0.025 * NEEDLE_SPRAY_LENGTH).abs() < 1e-6);
+        // Eastern redcedar: scales of 2-4 mm on sprays drawn 10 cm long (no spray size sourced).
+        let cedar = of("JUVI").unwrap();
+        assert_eq!(
+            (cedar.kind, cedar.shape()),
+            (LeafKind::Scales, LeafShape::ScaleSpray)
+        );
+        assert!((cedar.leaf_size().0 - 0.10).abs() < 1e-6);
         assert!(of("NOPE").is_none());
     }
 

@@ -46,6 +46,8 @@ fn blades(shape: LeafShape) -> Option<Blades> {
         LeafShape::Bipinnate(n) => feather(n, pinna_length(n / 2), 0.3),
         LeafShape::Palmate(n) => palmate(n),
         LeafShape::Needles(n) => needles(n),
+        LeafShape::NeedleSpray => needle_spray(),
+        LeafShape::ScaleSpray => scale_spray(),
         _ => return None,
     })
 }
@@ -143,6 +145,43 @@ fn needles(count: u8) -> Blades {
         .collect()
 }
 
+/// Needles a spray of single needles carries, in two ranks and one at its tip.
+const SPRAY_NEEDLES: u8 = 17;
+
+/// A spray's length in needle lengths: a spruce's needles stand about a quarter of a
+/// year's shoot long (Sylva's drawing choice: a twig that reads as a bottle brush from a few
+/// metres away).
+pub const NEEDLE_SPRAY_LENGTH: f32 = 4.0;
+
+/// Single needles in two ranks along a twig, each as wide at its base as a tenth of its
+/// length (a 2.5 cm spruce needle drawn 2.5 mm across, about as it is).
+fn needle_spray() -> Blades {
+    feather(SPRAY_NEEDLES, 1.0 / NEEDLE_SPRAY_LENGTH, 0.1)
+}
+
+/// A flat spray of scale-leaved branchlets: four pairs of side branchlets and a leading one
+/// along an axis, each branchlet forking twice more on alternate sides, every branchlet a
+/// narrow blade (the scales themselves, a millimetre or two, are far below what a street
+/// tree is seen at).
+fn scale_spray() -> Blades {
+    let main = feather(9, 0.4, 0.15);
+    let mut blades = main.clone();
+    for (k, [a, b, apex]) in main.into_iter().enumerate() {
+        let base = (a + b) / 2.0;
+        let along = apex - base;
+        for (i, t) in [0.35f32, 0.65].into_iter().enumerate() {
+            // Alternate sides along each branchlet, and from one branchlet to the next.
+            let side = if (i + k) % 2 == 0 { 1.0 } else { -1.0 };
+            let at = base + along * t;
+            let (s, c) = (side * 45f32.to_radians()).sin_cos();
+            let twig = Vec2::new(along.x * c - along.y * s, along.x * s + along.y * c) * 0.4;
+            let half = Vec2::new(-twig.y, twig.x).normalize_or_zero() * along.length() * 0.03;
+            blades.push([at - half, at + half, at + twig]);
+        }
+    }
+    blades
+}
+
 fn bounds(blades: &Blades) -> (Vec2, Vec2) {
     blades.iter().flatten().fold(
         (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN)),
@@ -206,6 +245,27 @@ mod tests {
         assert_eq!(verts(LeafShape::Pinnate(10)), 20);
         assert_eq!(verts(LeafShape::Palmate(7)), 22);
         assert_eq!(verts(LeafShape::Needles(5)), 15);
+        // A spray of single needles: two ranks and a tip needle; a scale spray: nine
+        // branchlets, each forking twice.
+        assert_eq!(tris(LeafShape::NeedleSpray), 17);
+        assert_eq!(tris(LeafShape::ScaleSpray), 27);
+    }
+
+    /// A spray of needles is a narrow twig, its needles a quarter of it; a scale spray is
+    /// a frond about half as wide as long.
+    #[test]
+    fn sprays_have_their_proportions() {
+        // Two ranks of needles at 55 degrees to the twig, each a quarter of its length.
+        let (lo, hi) = bounds(&needle_spray());
+        let want = 2.0 * (55f32.to_radians().sin() / NEEDLE_SPRAY_LENGTH);
+        assert!(
+            (hi.x - lo.x - want).abs() < 0.01,
+            "{} vs {want}",
+            hi.x - lo.x
+        );
+        assert!((hi.y - 1.0).abs() < 1e-4, "the tip needle ends the twig");
+        let scales = natural_aspect(LeafShape::ScaleSpray).unwrap();
+        assert!((0.5..1.0).contains(&scales), "{scales}");
     }
 
     #[test]

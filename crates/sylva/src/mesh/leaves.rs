@@ -409,7 +409,9 @@ fn build(shape: LeafShape) -> LeafTemplate {
         LeafShape::Pinnate(_)
         | LeafShape::Bipinnate(_)
         | LeafShape::Palmate(_)
-        | LeafShape::Needles(_) => flat(&[(None, ellipse(0.5))]),
+        | LeafShape::Needles(_)
+        | LeafShape::NeedleSpray
+        | LeafShape::ScaleSpray => flat(&[(None, ellipse(0.5))]),
     }
 }
 

@@ -10,7 +10,7 @@ mod leaves_apart;
 mod stems;
 
 pub use bark::BarkPattern;
-pub use compound::natural_aspect;
+pub use compound::{NEEDLE_SPRAY_LENGTH, natural_aspect};
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
 pub(crate) use stems::ring_frame;
 pub use stems::ring_vertices;

@@ -122,13 +122,13 @@ impl Grower {
             placed += n;
         }
         // A sapling with too little shoot for its measured leaf area carries larger leaves
-        // (at most eight times the area), but none longer than its crown allows: leaves that
+        // (at most sixteen times the area), but none longer than its crown allows: leaves that
         // outgrow the crown would hang above the top or below the base and be left off, and a
         // whip whose data ask for more leaf than its shoots can hold would stand bare.
         self.leaf_boost = 1.0;
         if placed > 0 && placed < wanted {
             let fits = (self.longest_leaf() / self.drawn_leaf_size().0).powi(2);
-            self.leaf_boost = (wanted as f32 / placed as f32).min(8.0).min(fits).max(1.0);
+            self.leaf_boost = (wanted as f32 / placed as f32).min(16.0).min(fits).max(1.0);
         }
     }
 
