@@ -169,10 +169,16 @@ impl Grower {
         let t = crate::mesh::leaf_template(self.leaf_shape);
         let (l, w) = self.leaf_size_now();
         let mut natural = l * w * t.area();
-        if let Some(cap) = self.leaf_vertex_cap {
-            // Vertices allowed: the cap's density over the crown, or over the free area.
+        if let Some((cap, generic_area)) = self.leaf_vertex_cap {
+            // Vertices allowed: the cap's density over the crown (or over the free area),
+            // but over no more leaf than the generic tree draws at its own size: past the leaf
+            // budget the generic leaves are drawn larger, not more, and a species' own leaves
+            // must follow, or a large conifer in needle sprays would cost five times its
+            // generic model (a Douglas fir at 30).
             let leaf_area = self.targets_now().leaf_area as f32;
-            let allowed = cap * leaf_area.max(super::LEAF_VERTEX_FREE_AREA);
+            let covered = (leaf_area.max(super::LEAF_VERTEX_FREE_AREA))
+                .min(self.options.max_leaves as f32 * generic_area);
+            let allowed = cap * covered;
             natural = natural.max(t.positions.len() as f32 * leaf_area / allowed);
         }
         let t = self.targets_now();

@@ -260,9 +260,9 @@ pub struct Grower {
     /// Leaf blade length and width, m, and area of one leaf, m².
     leaf_size: (f32, f32),
     leaf_shape: LeafShape,
-    /// Most leaf vertices per m² of leaf as drawn (see [`leaf_vertex_allowance`]); none for
-    /// the generic leaf.
-    leaf_vertex_cap: Option<f32>,
+    /// Most leaf vertices per m² of leaf as drawn (see [`leaf_vertex_allowance`]), and the
+    /// generic leaf's area as it would be drawn, m²; none for the generic leaf.
+    leaf_vertex_cap: Option<(f32, f32)>,
     /// Least distance between leaves along a shoot, m.
     leaf_spacing: f32,
     /// Leaves per segment, from the last allocation.
@@ -313,8 +313,13 @@ impl Grower {
         // species' model stays about the size of the generic tree's.
         let ((gl, gw), gs) = generic;
         // (The generic leaf itself is never capped: its trees grow as they always have.)
-        let leaf_vertex_cap =
-            own.map(|_| leaf_vertex_allowance(leaf_shape) * vertices_per_area(gl, gw, gs));
+        let leaf_vertex_cap = own.map(|_| {
+            let generic_area = gl * gw * crate::mesh::leaf_template(gs).area();
+            (
+                leaf_vertex_allowance(leaf_shape) * vertices_per_area(gl, gw, gs),
+                generic_area,
+            )
+        });
         // Refitted to the tree's bounds every step: cells outside a crown are empty, so
         // light there needs no walking.
         let light = LightGrid::new(Vec3::ZERO, Vec3::ONE, options.light_cell, MAX_LIGHT_CELLS);
