@@ -300,7 +300,10 @@ pub fn form_of_type(tree_type: &str) -> TreeForm {
 }
 
 /// The habit of a species: its own row where the table has one, else its tree type's. Multi-
-/// stem species (crape myrtle, desert willow) grow three stems.
+/// stem species grow three stems: the crape myrtle ("several stems", the growth-architecture
+/// spec's habit notes) and the desert willow ("often multi-trunked, but can be trained to a
+/// single-trunk tree": C. Vadheim's native-plant notes on Chilopsis linearis; a "multi-trunk
+/// tree", the Contra Costa water-saving plant list); three is Sylva's count for "several".
 pub fn habit_of(code: &str, tree_type: &str) -> Habit {
     let base = code.split('_').next().unwrap_or(code);
     let row = SPECIES

@@ -64,21 +64,7 @@ pub fn measure(skeleton: &Skeleton) -> Dimensions {
             hi = hi.max(p);
         }
     }
-    let dbh = skeleton
-        .stems
-        .first()
-        .map(|_| {
-            let s = skeleton.sections_of(crate::StemId(0));
-            let at = diameter_height(top);
-            let i = s.partition_point(|c| c.position.z < at);
-            if i == 0 || i >= s.len() {
-                return s.first().map_or(0.0, |c| c.radius) * 2.0;
-            }
-            let (a, b) = (s[i - 1], s[i]);
-            let f = (at - a.position.z) / (b.position.z - a.position.z).max(1e-6);
-            (a.radius + (b.radius - a.radius) * f) * 2.0
-        })
-        .unwrap_or(0.0);
+    let dbh = trunk_diameter(skeleton, diameter_height(top));
     let crown_diameter = if lo.x <= hi.x {
         ((hi.x - lo.x) + (hi.y - lo.y)) as f64 / 2.0
     } else {
@@ -94,5 +80,37 @@ pub fn measure(skeleton: &Skeleton) -> Dimensions {
         crown_diameter,
         dbh: dbh as f64 * 100.0,
         leaf_area,
+    }
+}
+
+/// The trunk's diameter at height `at`, m: on a multi-stem tree (several level-0 stems
+/// crossing `at`), the diameter of one stem with their basal area together, as the Urban Tree
+/// Database measured such trees and the growth model holds them to f_DBH
+/// (`Grower::diameter_carried`). A trunk that does not reach `at` is read at its base.
+fn trunk_diameter(skeleton: &Skeleton, at: f32) -> f32 {
+    let read = |stem: &crate::skeleton::Stem| {
+        let s = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
+        let i = s.partition_point(|c| c.position.z < at);
+        if i == 0 || i >= s.len() {
+            return None;
+        }
+        let (a, b) = (s[i - 1], s[i]);
+        let f = (at - a.position.z) / (b.position.z - a.position.z).max(1e-6);
+        Some((a.radius + (b.radius - a.radius) * f) * 2.0)
+    };
+    let mut read = skeleton
+        .stems
+        .iter()
+        .filter(|s| s.level == 0)
+        .filter_map(read);
+    let Some(first) = read.next() else {
+        return skeleton.sections.first().map_or(0.0, |c| c.radius) * 2.0;
+    };
+    match read.next() {
+        None => first,
+        Some(second) => {
+            let squares: f32 = read.map(|d| d * d).sum();
+            (first * first + second * second + squares).sqrt()
+        }
     }
 }

@@ -27,7 +27,7 @@ const FORK_ZONE: f32 = 1.0;
 /// exposed. A shoot has a bud at every node, but a tree's side shoots come from a few of
 /// them (the rest stay dormant, and die after `BUD_YEARS`), so the year's resource makes a
 /// few strong laterals instead of a broom of weak ones (issue G2: fewer, stronger laterals).
-/// Sylva's choice; the trunk's buds, its scaffolds, are not limited.
+/// Sylva's choice; the trunk's buds (and a multi-stem tree's stems'), its scaffolds, are not limited.
 const LATERALS_PER_SHOOT: usize = 2;
 /// Share of the season in which a shoot elongates.
 pub(super) const GROWING_SEASON: f64 = 0.5;
@@ -123,7 +123,9 @@ impl Grower {
             if n < 1.0 {
                 continue;
             }
-            let order = self.branches[b as usize].order;
+            // A multi-stem tree's stems steer as its scaffolds do (the habit's pull, not the
+            // trunk's), so they keep opening into a vase.
+            let order = self.branches[b as usize].order.max(1);
             let (start, d) = sites[i];
             let direction = self.steer(d, towards[i], order);
             let direction = self.zigzag(direction, b as usize);
@@ -174,7 +176,9 @@ impl Grower {
             } else {
                 branch.anchor
             };
-            b == 0 || anchor >= floor
+            // The trunk and stems are never shed, nor are shoots from them cut at the floor
+            // here (`prune_buds` has already dropped their buds below it).
+            branch.order == 0 || anchor >= floor
         });
         // Shoots low in the crown sag as far as the crown must reach down.
         let sag = self.fit_sag(&plans, &next);
@@ -229,6 +233,9 @@ impl Grower {
     /// axis is lifted to reach it, so one of the codominant limbs holds the top.
     fn hold_height(&mut self, plans: &mut Vec<Plan>, next: &Targets, leader_holds: bool) {
         let top = next.height as f32;
+        if self.habit.stems > 1 {
+            self.hold_stems(plans, next);
+        }
         if leader_holds || self.habit.form == TreeForm::Palm {
             let apex = self.apex_segment(0);
             let rise = top - apex.end().z;
@@ -289,12 +296,48 @@ impl Grower {
         p.direction = (heading * (1.0 - rise * rise).sqrt()).extend(rise);
     }
 
+    /// A multi-stem tree's stems are its trunk: each is held on up to the fork zone above
+    /// next year's crown base, as a decurrent trunk is held to its fork, and only there opens
+    /// into the crown. Left to the allocation, a stem whose tip the rising crown base passes
+    /// sees nothing of the crown's space and stops, and one stem carries the whole crown.
+    fn hold_stems(&mut self, plans: &mut Vec<Plan>, next: &Targets) {
+        let fork = (next.crown_base() as f32 + FORK_ZONE).min(next.height as f32);
+        for b in 1..self.branches.len() {
+            let branch = &self.branches[b];
+            if !branch.alive || branch.order != 0 {
+                continue;
+            }
+            let apex = self.apex_segment(b);
+            let start = apex.end();
+            if fork - start.z <= 0.02 {
+                continue;
+            }
+            // On in the stem's own lean, straight: its first shoot's direction.
+            let direction = self.segments[branch.segments[0] as usize].direction;
+            let length = (fork - start.z) / direction.z.max(0.2);
+            match plans.iter_mut().find(|p| !p.lateral && p.from == b) {
+                Some(p) => {
+                    p.direction = direction;
+                    p.length = p.length.max(length);
+                }
+                None => plans.push(Plan {
+                    from: b,
+                    lateral: false,
+                    start,
+                    direction,
+                    length,
+                }),
+            }
+        }
+    }
+
     /// Apical control now. A decurrent species keeps a leader until its trunk reaches the
     /// grown tree's crown base (street trees are trained so), then forks within `FORK_ZONE`:
     /// its codominant limbs then leave the trunk where pruning never reaches.
     pub(super) fn apical_control(&self) -> f32 {
         let own = self.habit.apical_control;
-        if own >= 0.5 {
+        // A multi-stem tree has no leader to hand over: its stems share the top from the start.
+        if own >= 0.5 || self.habit.stems > 1 {
             return own;
         }
         let young = 0.56;
@@ -336,7 +379,7 @@ impl Grower {
     /// Honda hands their share to the axis and the buds that do break.
     fn hold_dormant(&self, q: &mut [f32]) {
         let mut order: Vec<usize> = (0..self.buds.len())
-            .filter(|&k| self.buds[k].branch != 0)
+            .filter(|&k| self.branches[self.buds[k].branch as usize].order != 0)
             .collect();
         order.sort_by(|&a, &b| {
             self.buds[a]
@@ -433,10 +476,12 @@ impl Grower {
             .map(|b| {
                 // Until then the trunk's buds stay dormant for good: they sprout again where
                 // shed limbs leave light near the crown base (epicormic shoots).
-                let trunk = b.branch == 0;
+                // A multi-stem tree's stems keep theirs the same way, at any height: they
+                // have no fork above which the crown is carried.
+                let trunk = self.branches[b.branch as usize].order == 0;
                 self.branches[b.branch as usize].alive
                     && (if trunk {
-                        !forked || self.bud_position(b).z >= fork
+                        b.branch != 0 || !forked || self.bud_position(b).z >= fork
                     } else {
                         age - b.born <= BUD_YEARS
                     })

@@ -26,7 +26,8 @@ impl Grower {
     pub(super) fn shed(&mut self) {
         let base = self.targets_now().crown_base() as f32;
         for b in 1..self.branches.len() {
-            if !self.branches[b].alive {
+            // The stems of a multi-stem tree stay, like the trunk.
+            if !self.branches[b].alive || self.branches[b].order == 0 {
                 continue;
             }
             // Scaffolds go when the crown base passes where they leave the trunk; smaller

@@ -61,6 +61,12 @@ pub fn diameter_height(height: f32) -> f32 {
         BREAST_HEIGHT
     }
 }
+/// Height of a multi-stem tree's collar, where its stems part, m: they rise from the root
+/// collar, as nursery-grown crape myrtles' do (Sylva's choice of a height just above it).
+const STEM_COLLAR: f32 = 0.2;
+/// How far a multi-stem tree's stems lean out from the vertical, degrees: they open into a
+/// vase (Sylva's choice, under the 20-35 degrees the spec gives a vase's scaffolds).
+const STEM_LEAN: f32 = 15.0;
 /// Most light cells along an axis.
 const MAX_LIGHT_CELLS: usize = 28;
 /// Divergence between successive lateral buds of a branch, degrees: the golden angle's
@@ -148,6 +154,7 @@ impl Default for GrowthOptions {
 /// What one branch is.
 #[derive(Clone, Debug)]
 struct Branch {
+    /// 0 for the trunk and, on a multi-stem tree, the stems rising from its collar.
     order: u8,
     /// Parent branch and the segment it grows from.
     parent: Option<(u32, u32)>,
@@ -356,7 +363,18 @@ impl Grower {
             measured,
         };
         let t = g.targets(start);
-        // The trunk: order 0, one segment, growing straight up.
+        let stems = if g.habit.form == TreeForm::Palm {
+            1
+        } else {
+            g.habit.stems.max(1)
+        };
+        // The trunk: order 0, one segment, growing straight up; on a multi-stem tree only
+        // its collar, from which the stems rise.
+        let trunk = if stems > 1 {
+            STEM_COLLAR
+        } else {
+            t.height as f32
+        };
         g.branches.push(Branch {
             order: 0,
             parent: None,
@@ -373,14 +391,59 @@ impl Grower {
             branch: 0,
             start: Vec3::ZERO,
             direction: Vec3::Z,
-            length: t.height as f32,
-            goal: t.height as f32,
+            length: trunk,
+            goal: trunk,
             born: start,
         });
-        g.set_buds(0, 0);
+        if stems > 1 {
+            g.raise_stems(stems, t.height as f32);
+        } else {
+            g.set_buds(0, 0);
+        }
         g.refresh_radii();
         g.update_light();
         g
+    }
+
+    /// A multi-stem tree's `n` stems, rising from the trunk's collar to `height`: order-0
+    /// axes like the trunk (never shed, not counted in the crown, read together for DBH),
+    /// spread evenly around it and leaning out by `STEM_LEAN`.
+    fn raise_stems(&mut self, n: u8, height: f32) {
+        let collar = Vec3::new(0.0, 0.0, STEM_COLLAR);
+        let lean = STEM_LEAN.to_radians();
+        let length = ((height - STEM_COLLAR) / lean.cos()).max(0.05);
+        let turn = self.rng.unit() as f32 * std::f32::consts::TAU;
+        for k in 0..n {
+            let azimuth = turn + k as f32 * std::f32::consts::TAU / n as f32;
+            let direction = Vec3::new(
+                lean.sin() * azimuth.cos(),
+                lean.sin() * azimuth.sin(),
+                lean.cos(),
+            );
+            let id = self.branches.len() as u32;
+            self.branches[0].children.push(id);
+            self.branches.push(Branch {
+                order: 0,
+                parent: Some((0, 0)),
+                segments: vec![self.segments.len() as u32],
+                next_azimuth: (self.rng.unit() * 360.0) as f32,
+                alive: true,
+                children: Vec::new(),
+                finished: 0.0,
+                offset: STEM_COLLAR,
+                anchor: 0.0,
+                shaded_years: 0,
+            });
+            self.segments.push(Segment {
+                branch: id,
+                start: collar,
+                direction,
+                length,
+                goal: length,
+                born: self.age,
+            });
+            self.set_buds(id as usize, self.segments.len() as u32 - 1);
+        }
     }
 
     /// The measured functions this tree follows.

@@ -132,7 +132,8 @@ impl Grower {
             }
             junctions.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
             let total: f32 = segs.iter().map(|(_, s)| s.length).sum();
-            let flare_top = if branch.order == 0 {
+            // The trunk flares at the ground; a multi-stem tree's stems leave its collar.
+            let flare_top = if b == 0 {
                 flare_height(total, dbh_at)
             } else {
                 0.0

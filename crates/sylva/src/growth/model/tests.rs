@@ -142,3 +142,41 @@ fn a_whip_with_more_leaf_than_shoot_is_not_bare() {
         }
     }
 }
+
+#[test]
+fn a_crape_myrtle_grows_three_stems_held_together_to_its_dbh() {
+    // The spec's vase habit (growth-architecture section 3): crape myrtle, several stems. Each
+    // stem must reach up into the crown (left to the allocation, all but one stopped under the
+    // rising crown base), and the stems together must read as the measured DBH.
+    for (region, code) in [("GulfCo", "LAIN"), ("InterW", "CHLI")] {
+        let g = grown(region, code, 15.0);
+        let t = g.targets_now();
+        let stems: Vec<&Branch> = g.branches[1..].iter().filter(|b| b.order == 0).collect();
+        assert_eq!(stems.len(), 3, "{code}: three stems");
+        for b in &stems {
+            let tip = g.segments[*b.segments.last().expect("a segment") as usize].end();
+            assert!(b.alive, "{code}: a stem died");
+            assert!(
+                tip.z as f64 > t.crown_base() + 0.5,
+                "{code}: a stem stops at {} m, under the crown ({} m to {} m)",
+                tip.z,
+                t.crown_base(),
+                t.height
+            );
+        }
+        let sk = g.skeleton();
+        assert_eq!(sk.stems.iter().filter(|s| s.level == 0).count(), 4);
+        let d = crate::growth::measure(&sk);
+        assert!(
+            (d.dbh / t.dbh - 1.0).abs() < 0.05,
+            "{code}: DBH {} cm from three stems, {} cm measured",
+            d.dbh,
+            t.dbh
+        );
+        // No one stem is the tree's trunk: the thickest has less than 80% of the basal area.
+        let r: Vec<f32> = stems.iter().map(|b| g.radius_of(b.segments[0])).collect();
+        let total: f32 = r.iter().map(|r| r * r).sum();
+        let most = r.iter().fold(0.0f32, |m, r| m.max(r * r));
+        assert!(most < 0.8 * total, "{code}: stems {r:?}");
+    }
+}
