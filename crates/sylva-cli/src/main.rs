@@ -5,6 +5,7 @@
 mod args;
 mod bench;
 mod chart;
+mod city;
 mod draw;
 mod forest;
 mod fractal;
@@ -48,6 +49,8 @@ fn main() {
         Command::Grow(args) => grow::run(&args),
         Command::Rank(args) => rank::run(&args),
         Command::Sweep(args) => sweep::run(&args),
+        Command::City(args) => city::run(&args),
+        Command::CityDemo(args) => city::demo(&args),
         Command::Wires(args) => wires::run(&args),
         Command::Serve(args) => serve::run(&args),
         Command::Fractal(args) => fractal::run(&args),

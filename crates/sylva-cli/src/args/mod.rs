@@ -3,9 +3,11 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
+mod city;
 mod lines;
 mod sweep;
 
+pub use city::{CityArgs, CityDemoArgs, DemoLayoutArg};
 pub use lines::*;
 pub use sweep::SweepArgs;
 
@@ -38,6 +40,13 @@ pub enum Command {
     /// measure each against its equations: the count within bounds, every miss, and the
     /// targets the data themselves limit.
     Sweep(SweepArgs),
+    /// A city's street-tree inventory (CSV, GeoJSON or GeoPackage) grown and written as OGC 3D
+    /// Tiles: every tree instanced from shared grown trees, with its attributes, one tileset
+    /// per epoch.
+    City(Box<CityArgs>),
+    /// Write a synthetic street-tree inventory (a region's species mix and DBH classes along a
+    /// street grid, with dead trees, stumps, sites and a few broken rows) for `sylva city`.
+    CityDemo(CityDemoArgs),
     /// Check the site's wire model against the Urban Tree Database's own records of wire
     /// conflicts (table TS3), per region.
     Wires(WiresArgs),

@@ -61,8 +61,8 @@ impl Default for Materials {
     }
 }
 
-struct Builder<'a> {
-    root: json::Root,
+pub(super) struct Builder<'a> {
+    pub(super) root: json::Root,
     /// The binary chunk's views in order, each with the zero bytes that align it to 4.
     pieces: Vec<(usize, Piece<'a>)>,
     /// Bytes of the binary chunk so far.
@@ -72,8 +72,10 @@ struct Builder<'a> {
 
 /// A buffer view's bytes, left where the mesh holds them until the file is written: a GLB is
 /// written straight from the mesh's buffers, never gathered into a copy of itself.
-enum Piece<'a> {
+pub(super) enum Piece<'a> {
     Bytes(&'a [u8]),
+    /// Bytes made for the file (instances' transforms, property tables).
+    Owned(Vec<u8>),
     /// Positions or normals, turned Y up as they are written.
     YUp(&'a [[f32; 3]]),
     /// Leaf or bark shades, written as grey colours of four normalised bytes (RGBA; a vertex
@@ -85,6 +87,7 @@ impl Piece<'_> {
     fn len(&self) -> usize {
         match self {
             Piece::Bytes(b) => b.len(),
+            Piece::Owned(b) => b.len(),
             Piece::YUp(v) => std::mem::size_of_val(*v),
             Piece::Shades(s) => s.len() * 4,
         }
@@ -106,6 +109,7 @@ impl Piece<'_> {
         };
         match self {
             Piece::Bytes(b) => w.write_all(b),
+            Piece::Owned(b) => w.write_all(b),
             Piece::YUp(v) => out(&mut v.iter().map(|p| y_up(*p))),
             Piece::Shades(s) => {
                 let mut grey: Vec<[u8; 4]> = Vec::with_capacity(AT_ONCE.min(s.len()));
@@ -125,7 +129,7 @@ impl Piece<'_> {
 
 impl<'a> Builder<'a> {
     /// Adds `piece` as a buffer view (4-byte aligned) and returns it.
-    fn view(
+    pub(super) fn view(
         &mut self,
         piece: Piece<'a>,
         target: impl Into<Option<json::buffer::Target>>,
@@ -148,7 +152,7 @@ impl<'a> Builder<'a> {
         })
     }
 
-    fn accessor(
+    pub(super) fn accessor(
         &mut self,
         view: json::Index<json::buffer::View>,
         count: usize,
@@ -227,12 +231,17 @@ impl<'a> Builder<'a> {
 
 /// Little-endian bytes of plain numeric arrays: glTF wants little-endian, which this machine
 /// is (checked at compile time), so the arrays go out as they lie in memory.
-fn bytes_of<T: bytemuck::Pod>(items: &[T]) -> &[u8] {
+pub(super) fn bytes_of<T: bytemuck::Pod>(items: &[T]) -> &[u8] {
     const _: () = assert!(cfg!(target_endian = "little"));
     bytemuck::cast_slice(items)
 }
 
-fn material(name: &str, colour: [f32; 4], double_sided: bool, roughness: f32) -> json::Material {
+pub(super) fn material(
+    name: &str,
+    colour: [f32; 4],
+    double_sided: bool,
+    roughness: f32,
+) -> json::Material {
     json::Material {
         name: Some(name.into()),
         double_sided,
@@ -412,7 +421,7 @@ pub fn to_glb_lod(
 }
 
 impl<'a> Builder<'a> {
-    fn new() -> Self {
+    pub(super) fn new() -> Self {
         let mut b = Builder {
             root: json::Root::default(),
             pieces: Vec::new(),
@@ -435,7 +444,7 @@ impl<'a> Builder<'a> {
     }
 
     /// A tree's mesh: bark and leaf primitives with their materials.
-    fn tree_mesh(
+    pub(super) fn tree_mesh(
         &mut self,
         name: &str,
         mesh: &'a TreeMesh,
@@ -531,7 +540,7 @@ impl<'a> Builder<'a> {
     }
 
     /// Closes the buffer and makes the default scene of `nodes`.
-    fn scene(&mut self, nodes: Vec<json::Index<json::Node>>) {
+    pub(super) fn scene(&mut self, nodes: Vec<json::Index<json::Node>>) {
         let pad = self.bin_len.next_multiple_of(4) - self.bin_len;
         if pad > 0 {
             self.pieces.push((pad, Piece::Bytes(&[])));
@@ -578,7 +587,7 @@ impl Glb<'_> {
 }
 
 /// Closes the JSON and lays out the chunks of a GLB file.
-fn finish(b: Builder<'_>) -> Result<Glb<'_>, ExportError> {
+pub(super) fn finish(b: Builder<'_>) -> Result<Glb<'_>, ExportError> {
     let mut json_bytes = b
         .root
         .to_vec()

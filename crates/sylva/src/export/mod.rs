@@ -7,11 +7,16 @@
 
 mod atomic;
 mod glb;
+mod instanced;
 mod obj;
 
 pub use atomic::{write_atomically, write_atomically_with};
 pub use glb::{
     Glb, Instance, Materials, glb_scene, to_glb, to_glb_lod, to_glb_scene, tree_glb, write_glb,
+};
+pub use instanced::{
+    Column, InstancedGroup, InstancedMesh, MeshSource, Metadata, PropertyTable, SharedMesh,
+    instanced_glb,
 };
 pub use obj::{to_obj, write_obj};
 

@@ -86,7 +86,15 @@ pub struct SpeciesEntry {
     /// The database's tree type: B/C (broadleaf, conifer), D/E (deciduous, evergreen), S/M/L
     /// (mature size); palms are `PES`, `PEM`, ...
     pub tree_type: String,
+    /// Trees the survey measured in each of the nine DBH classes ([`DBH_CLASS_EDGES_CM`]);
+    /// all 0 for a species with equations but no line in TS2.
+    pub trees_by_dbh_class: [u32; 9],
 }
+
+/// Upper edges of table TS2's nine DBH classes, cm: 3, 6, 12, 18, 24, 30, 36 and 42 inches,
+/// the last class open. (Checked against the raw data: TS3's London planes of Modesto binned at
+/// these edges give TS2's counts, 2, 0, 10, 7, 5, 3.)
+pub const DBH_CLASS_EDGES_CM: [f64; 8] = [7.62, 15.24, 30.48, 45.72, 60.96, 76.2, 91.44, 106.68];
 
 /// A climate region of table TS1.
 #[derive(Clone, Debug, PartialEq)]
@@ -255,14 +263,27 @@ impl Database {
                 fitted_to: None,
             });
         }
-        for (_, r) in records(ts2, &format!("{source}/{TS2}"))? {
+        for (line, r) in records(ts2, &format!("{source}/{TS2}"))? {
             let f = |i: usize| r.get(i).map(str::trim).unwrap_or("").to_string();
+            // Empty class cells hold no trees; a count that is not a whole number is an error.
+            let mut trees_by_dbh_class = [0u32; 9];
+            for (k, n) in trees_by_dbh_class.iter_mut().enumerate() {
+                let cell = f(5 + k);
+                if !cell.is_empty() {
+                    *n = cell.parse().map_err(|_| GrowthError::Syntax {
+                        file: format!("{source}/{TS2}"),
+                        line,
+                        message: format!("Dbh_class{} is `{cell}`, expected a count", k + 1),
+                    })?;
+                }
+            }
             db.species.push(SpeciesEntry {
                 region: f(0).replace(' ', ""),
                 scientific: f(1),
                 common: f(2),
                 code: f(3),
                 tree_type: f(4),
+                trees_by_dbh_class,
             });
         }
         // A few species have equations but no TS2 line (the palm WARO in InlVal): list them
@@ -280,6 +301,7 @@ impl Database {
                     scientific: r.scientific.clone(),
                     common: r.scientific.clone(),
                     tree_type: String::new(),
+                    trees_by_dbh_class: [0; 9],
                 });
             }
         }

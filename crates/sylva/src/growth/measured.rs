@@ -98,6 +98,29 @@ impl Measured {
         e.raw(self.age(t)).clamp(e.range.0, e.range.1)
     }
 
+    /// The age at which f_DBH reaches `dbh` cm: f_DBH inverted by bisection (it rises over
+    /// the fitted ages), clamped to those ages: a trunk thinner than the data's first age is
+    /// that age, one thicker than its last is the last.
+    pub fn age_at_dbh(&self, dbh: f64) -> f64 {
+        let (mut lo, mut hi) = self.ages;
+        // A NaN is no DBH: the first age.
+        if dbh.is_nan() || dbh <= self.dbh(lo) {
+            return lo;
+        }
+        if dbh >= self.dbh(hi) {
+            return hi;
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if self.dbh(mid) < dbh {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
     fn of_dbh(&self, which: usize, t: f64) -> f64 {
         let e = &self.equations[which];
         let dbh = self.dbh(t).min(self.dbh_caps[which - 1]);

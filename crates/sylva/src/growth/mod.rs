@@ -17,7 +17,7 @@ pub mod report;
 pub mod season;
 pub mod sweep;
 
-pub use database::{Database, Quantity, Region, SpeciesEntry};
+pub use database::{DBH_CLASS_EDGES_CM, Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};
 pub use form::{FormMeasures, measure_form};
 pub use habit::{Envelope, Habit, TreeForm, habit_of};

@@ -231,6 +231,46 @@ fn a_broken_table_names_its_file_and_line() {
     assert!(e.contains("line 3") && e.contains("`one`"), "{e}");
 }
 
+#[test]
+fn the_age_of_a_dbh_inverts_the_age_to_dbh_equation_within_its_ages() {
+    let m = Database::builtin().find("InlVal", "PLAC").unwrap();
+    for t in [m.ages.0 + 0.5, 10.0, 25.0, m.ages.1 - 0.5] {
+        let back = m.age_at_dbh(m.dbh(t));
+        assert!((back - t).abs() < 1e-6, "{t} -> {} cm -> {back}", m.dbh(t));
+    }
+    assert_eq!(m.age_at_dbh(0.01), m.ages.0);
+    assert_eq!(m.age_at_dbh(f64::NAN), m.ages.0);
+    assert_eq!(m.age_at_dbh(10_000.0), m.ages.1);
+}
+
+#[test]
+fn trees_are_counted_by_dbh_class_as_table_ts2_counts_them() {
+    let db = Database::builtin();
+    let plane = db
+        .species()
+        .iter()
+        .find(|s| s.region == "InlVal" && s.code == "PLAC")
+        .expect("listed");
+    assert_eq!(plane.trees_by_dbh_class, [2, 0, 10, 7, 5, 3, 0, 0, 0]);
+    // TS2's grand totals add up to the 14,487 trees of the survey.
+    let all: u32 = db
+        .species()
+        .iter()
+        .map(|s| s.trees_by_dbh_class.iter().sum::<u32>())
+        .sum();
+    assert_eq!(all, 14_487);
+    let ts2 = "Region,Scientific Name,Common Name,SpCode,Tree Type,Dbh_class1\nInlVal,X y,x,XY,BDL,many\n";
+    let ts6 = "Region,Scientific Name,SpCode,Independent variable,Predicts component ,Units,Model weight,EqName,a,b,c,d,e,Apps min,Apps max\n\
+               InlVal,X y,XY,age,dbh,cm,1,lin,1,2,,,,1,50\n";
+    let e = Database::parse(ts6, ts2, "", "mydb")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("mydb/TS2") && e.contains("line 2") && e.contains("`many`"),
+        "{e}"
+    );
+}
+
 /// What one fidelity run found.
 pub(crate) struct Fidelity {
     /// Worst relative error per quantity (height, DBH, crown diameter, crown height, leaf

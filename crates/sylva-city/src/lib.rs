@@ -1,0 +1,19 @@
+//! A city's street trees: an inventory in, OGC 3D Tiles out.
+
+mod error;
+pub mod geo;
+pub mod inventory;
+pub mod regions;
+pub mod species;
+
+pub use error::CityError;
+pub mod plan;
+pub mod prototypes;
+pub mod run;
+pub mod tiles;
+
+pub use inventory::{Layout, LengthUnit};
+pub use plan::CityOptions;
+pub use run::{CityRun, Progress, Quiet, tile_city};
+pub mod demo;
+mod gpkg_write;

@@ -1,0 +1,321 @@
+//! The grown trees a city shares: each species, region and seed variant grown once, through
+//! its age classes in rising order, and each class meshed at three levels of detail, written
+//! once as a binary file that every tile drawing it refers to.
+
+use crate::CityError;
+use crate::plan::ProtoKey;
+use rayon::prelude::*;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+use sylva::export::{Materials, SharedMesh};
+use sylva::growth::season::dressed_skeleton;
+use sylva::growth::{Grower, GrowthOptions, Measured, measure};
+use sylva::lod::{Choice, LodTree};
+use sylva::mesh::{MeshOptions, TreeMesh};
+
+/// Most triangles of a tree at each level of detail (Sylva's choice): a leaf tile's trees
+/// (the nearest) at 10,000, so a leaf tile's 250 trees draw 2.5 million; its parent's at
+/// 2,000; every coarser tile's at 400, a trunk, its limbs and the crown's leaf area in some
+/// hundred cards, so a city of 10^5 trees seen whole draws some 4 x 10^7.
+pub const LOD_TRIANGLES: [usize; 3] = [10_000, 2_000, 400];
+
+/// The meshes' options: the growth pictures' ring resolution.
+const MESH: MeshOptions = MeshOptions {
+    quality: 0.6,
+    sides: None,
+    bark: sylva::mesh::BarkPattern::Smooth,
+};
+
+/// A grown tree, meshed and written.
+#[derive(Clone, Debug)]
+pub struct Prototype {
+    /// What it is.
+    pub key: ProtoKey,
+    /// Its height as grown, m.
+    pub height: f32,
+    /// Its crown diameter as grown, m.
+    pub crown_diameter: f32,
+    /// Its materials.
+    pub materials: Materials,
+    /// Its levels of detail, most detailed first, each in its own file.
+    pub lods: [SharedMesh; 3],
+    /// How far each level's surface lies from the whole tree's, m: the one-sided distance from
+    /// the whole tree's vertices to the level's (their largest), never less than the level
+    /// before's.
+    pub errors: [f32; 3],
+}
+
+/// Grows and meshes every prototype of `keys`, writing each level to
+/// `dir/<code>-<region>-<age>-<variant>-L<k>.bin`; `uri_prefix` is how a tile's GLB refers to
+/// `dir`. `done` is called with the number of prototypes finished so far.
+pub fn grow_all(
+    keys: &[ProtoKey],
+    measured: &HashMap<(String, String), Measured>,
+    seed: u64,
+    dir: &Path,
+    done: &(dyn Fn(usize) + Sync),
+) -> Result<HashMap<ProtoKey, Prototype>, CityError> {
+    std::fs::create_dir_all(dir).map_err(|e| CityError::Write {
+        path: dir.into(),
+        message: e.to_string(),
+    })?;
+    // Each species, region and variant is grown once, its classes taken on the way up.
+    let mut runs: BTreeMap<(String, String, u32), Vec<u32>> = BTreeMap::new();
+    for k in keys {
+        runs.entry((k.region.clone(), k.code.clone(), k.variant))
+            .or_default()
+            .push(k.age);
+    }
+    let finished = std::sync::atomic::AtomicUsize::new(0);
+    let grown: Vec<Vec<Prototype>> = runs
+        .into_par_iter()
+        .map(|((region, code, variant), mut ages)| {
+            ages.sort_unstable();
+            ages.dedup();
+            let m = measured
+                .get(&(region.clone(), code.clone()))
+                .ok_or_else(|| CityError::Growth(format!("{code} in {region} was not planned")))?;
+            let options = GrowthOptions {
+                seed: seed.wrapping_add(variant as u64),
+                ..Default::default()
+            };
+            let mut grower = Grower::new(m.clone(), options);
+            let mut out = Vec::with_capacity(ages.len());
+            for age in ages {
+                grower.advance_to(age as f64);
+                let key = ProtoKey {
+                    region: region.clone(),
+                    code: code.clone(),
+                    age,
+                    variant,
+                };
+                out.push(prototype(key, m, &grower.skeleton(), dir)?);
+                let n = finished.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                done(n);
+            }
+            Ok(out)
+        })
+        .collect::<Result<_, CityError>>()?;
+    Ok(grown
+        .into_iter()
+        .flatten()
+        .map(|p| (p.key.clone(), p))
+        .collect())
+}
+
+/// One grown tree dressed for summer, meshed at each level and written.
+fn prototype(
+    key: ProtoKey,
+    m: &Measured,
+    skeleton: &sylva::Skeleton,
+    dir: &Path,
+) -> Result<Prototype, CityError> {
+    let dims = measure(skeleton);
+    let dress = m.dress(None);
+    let tree = dressed_skeleton(skeleton, dress.state);
+    let options = MeshOptions {
+        bark: dress.bark_pattern,
+        ..MESH
+    };
+    let lod = LodTree::build(&tree, &options);
+    let whole = lod.full_mesh();
+    let meshes: Vec<TreeMesh> = LOD_TRIANGLES
+        .iter()
+        .map(|&budget| lod.engine_mesh(shares_within(&lod, budget)))
+        .collect();
+    let mut errors = [0.0f32; 3];
+    let mut worst = 0.0f32;
+    for (k, mesh) in meshes.iter().enumerate() {
+        worst = worst.max(distance_to(&whole, mesh));
+        errors[k] = worst;
+    }
+    let mut lods = Vec::with_capacity(3);
+    for (k, mesh) in meshes.iter().enumerate() {
+        let name = format!("{}-L{k}.bin", key.file_stem());
+        let (shared, bytes) = SharedMesh::new(mesh, name.clone());
+        let path = dir.join(&name);
+        sylva::export::write_atomically(&path, &bytes).map_err(|e| CityError::Write {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
+        lods.push(shared);
+    }
+    Ok(Prototype {
+        key,
+        height: dims.height as f32,
+        crown_diameter: dims.crown_diameter as f32,
+        materials: dress.materials(),
+        lods: lods.try_into().expect("three levels"),
+        errors,
+    })
+}
+
+/// The most of a tree that an engine mesh of at most `budget` triangles draws: twigs and
+/// leaves by one share f, the branches by 4f and the trunk by 8f (each at most whole), the
+/// largest f that fits, found by bisection; the leaves that remain grow to keep the crown's
+/// leaf area. The trunk and limbs go last, as the paper's degradation drops them last.
+fn shares_within(lod: &LodTree, budget: usize) -> [f64; 4] {
+    let x = |f: f64| -> [f64; 4] {
+        let m = |i: usize| lod.lists[i].mass as f64;
+        [
+            m(0) * (8.0 * f).min(1.0),
+            m(1) * (4.0 * f).min(1.0),
+            m(2) * f,
+            m(3) * f,
+        ]
+    };
+    let triangles = |x: [f64; 4]| {
+        lod.primitives(&Choice {
+            x: x.map(|v| (v, v)),
+            leaf_grow: 1.0,
+            outline: None,
+            blade_pixels: None,
+        })
+    };
+    if triangles(x(1.0)) <= budget {
+        return x(1.0);
+    }
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for _ in 0..30 {
+        let mid = 0.5 * (lo + hi);
+        if triangles(x(mid)) <= budget {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    x(lo)
+}
+
+/// The largest distance from a vertex of `whole` (at most some 4,000 of them, evenly taken) to
+/// the nearest vertex of `part`, m: how far the part's surface is from the whole's.
+fn distance_to(whole: &TreeMesh, part: &TreeMesh) -> f32 {
+    let targets: Vec<glam::Vec3> = [&part.bark, &part.leaves]
+        .iter()
+        .flat_map(|m| m.positions.iter().map(|&p| glam::Vec3::from(p)))
+        .collect();
+    let sources: Vec<glam::Vec3> = [&whole.bark, &whole.leaves]
+        .iter()
+        .flat_map(|m| m.positions.iter().map(|&p| glam::Vec3::from(p)))
+        .collect();
+    if targets.is_empty() || sources.is_empty() {
+        return 0.0;
+    }
+    let step = sources.len().div_ceil(4000);
+    let grid = Grid::new(&targets);
+    sources
+        .iter()
+        .step_by(step)
+        .map(|&p| grid.nearest(p, &targets))
+        .fold(0.0, f32::max)
+}
+
+/// Points binned in cubic cells, for nearest-point queries.
+struct Grid {
+    lo: glam::Vec3,
+    cell: f32,
+    cells: HashMap<(i32, i32, i32), Vec<u32>>,
+}
+
+impl Grid {
+    fn new(points: &[glam::Vec3]) -> Self {
+        let (lo, hi) = points.iter().fold(
+            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        // About 8 points a cell on average, over the points' box.
+        let volume = (hi - lo).max(glam::Vec3::splat(0.01)).element_product();
+        let cell = (volume * 8.0 / points.len() as f32).cbrt().max(0.02);
+        let mut g = Grid {
+            lo,
+            cell,
+            cells: HashMap::new(),
+        };
+        for (i, &p) in points.iter().enumerate() {
+            g.cells.entry(g.key(p)).or_default().push(i as u32);
+        }
+        g
+    }
+
+    fn key(&self, p: glam::Vec3) -> (i32, i32, i32) {
+        let k = ((p - self.lo) / self.cell).floor();
+        (k.x as i32, k.y as i32, k.z as i32)
+    }
+
+    /// Distance from `p` to the nearest of `points`: shells of cells around p's, outward,
+    /// until the next shell lies farther than the nearest found.
+    fn nearest(&self, p: glam::Vec3, points: &[glam::Vec3]) -> f32 {
+        let (cx, cy, cz) = self.key(p);
+        let mut best = f32::INFINITY;
+        for r in 0i32..1024 {
+            if (r as f32 - 1.0) * self.cell > best {
+                break;
+            }
+            for dx in -r..=r {
+                for dy in -r..=r {
+                    for dz in -r..=r {
+                        if dx.abs().max(dy.abs()).max(dz.abs()) != r {
+                            continue;
+                        }
+                        if let Some(ids) = self.cells.get(&(cx + dx, cy + dy, cz + dz)) {
+                            for &i in ids {
+                                best = best.min(points[i as usize].distance(p));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_keep_their_budgets_and_their_errors_grow() {
+        let db = sylva::growth::Database::builtin();
+        let m = db.find("InlVal", "PYCA_B").unwrap();
+        let key = ProtoKey {
+            region: "InlVal".into(),
+            code: "PYCA_B".into(),
+            age: 12,
+            variant: 0,
+        };
+        let measured = HashMap::from([(("InlVal".to_string(), "PYCA_B".to_string()), m)]);
+        let dir = tempfile::tempdir().unwrap();
+        let grown = grow_all(std::slice::from_ref(&key), &measured, 0, dir.path(), &|_| {}).unwrap();
+        let p = &grown[&key];
+        for (k, lod) in p.lods.iter().enumerate() {
+            assert!(
+                lod.triangles() <= LOD_TRIANGLES[k],
+                "L{k}: {}",
+                lod.triangles()
+            );
+            assert!(
+                lod.triangles() > LOD_TRIANGLES[k] / 4,
+                "L{k}: {}",
+                lod.triangles()
+            );
+            let file = dir.path().join(&lod.uri);
+            assert_eq!(
+                std::fs::metadata(file).unwrap().len() as usize,
+                lod.byte_length
+            );
+        }
+        assert!(
+            p.errors[0] <= p.errors[1] && p.errors[1] <= p.errors[2],
+            "{:?}",
+            p.errors
+        );
+        // The coarsest level misses the crown by some tens of centimetres, never by the tree.
+        assert!(
+            p.errors[2] > 0.05 && p.errors[2] < p.height * 0.5,
+            "{:?}",
+            p.errors
+        );
+        assert!(p.height > 3.0, "{}", p.height);
+    }
+}

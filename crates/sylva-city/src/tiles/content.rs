@@ -1,0 +1,207 @@
+//! One tile's content: a GLB drawing each of its trees as an instance of its grown tree's mesh
+//! at the tile's level of detail (`EXT_mesh_gpu_instancing`, the meshes read from the shared
+//! prototype files), each tree a feature with a row of attributes (`EXT_instance_features`,
+//! `EXT_structural_metadata`).
+
+use crate::plan::{Kind, Planned, ProtoKey};
+use crate::prototypes::Prototype;
+use glam::DVec3;
+use serde_json::json;
+use std::collections::{BTreeMap, HashMap};
+use sylva::export::{
+    Column, InstancedGroup, InstancedMesh, Materials, MeshSource, Metadata, PropertyTable,
+    SharedMesh, instanced_glb,
+};
+
+/// What a tree's row of attributes says beyond its plan: its inventory id and the species as
+/// the inventory names it, and its species' names.
+pub struct Labels<'a> {
+    /// Inventory id, by row.
+    pub id: &'a (dyn Fn(usize) -> String + Sync),
+    /// The species as the inventory writes it, by row.
+    pub written: &'a (dyn Fn(usize) -> String + Sync),
+    /// Common and scientific names of a species code in a region.
+    pub names: &'a (dyn Fn(&str, &str) -> (String, String) + Sync),
+}
+
+/// The schema of every tile's property tables: one class, a street tree.
+pub fn schema() -> serde_json::Value {
+    let text = json!({ "type": "STRING" });
+    let number = |description: &str| json!({ "type": "SCALAR", "componentType": "FLOAT32", "description": description });
+    json!({
+        "id": "sylva_city",
+        "classes": { "tree": {
+            "name": "Street tree",
+            "description": "A tree of the inventory, grown by Sylva from the USDA Urban Tree Database's equations",
+            "properties": {
+                "id": { "type": "STRING", "description": "The inventory's id of the tree (or its line)" },
+                "species_written": { "type": "STRING", "description": "The species as the inventory names it" },
+                "species": { "type": "STRING", "description": "Urban Tree Database species code it is grown as" },
+                "common_name": text,
+                "scientific_name": text,
+                "region": { "type": "STRING", "description": "Urban Tree Database climate region whose equations grow it" },
+                "dbh_cm": number("Trunk diameter at breast height, cm"),
+                "age_years": number("Age, years since planting"),
+                "height_m": number("Height, m"),
+                "crown_diameter_m": number("Crown diameter, m"),
+            }
+        }}
+    })
+}
+
+/// The tile's GLB: its trees (`trees`, each at `at - centre` in the city's frame) at level of
+/// detail `lod`, the meshes read from `prefix` + each level's file name.
+pub fn tile_glb(
+    trees: &[&Planned],
+    centre: DVec3,
+    lod: usize,
+    prototypes: &HashMap<ProtoKey, Prototype>,
+    stump: &SharedMesh,
+    prefix: &str,
+    labels: &Labels<'_>,
+) -> Result<Vec<u8>, sylva::ExportError> {
+    // Trees by what they are drawn as, in a stable order.
+    let mut groups: BTreeMap<Option<&ProtoKey>, Vec<&Planned>> = BTreeMap::new();
+    for t in trees {
+        let key = match &t.kind {
+            Kind::Tree(k) => Some(k),
+            Kind::Stump => None,
+        };
+        groups.entry(key).or_default().push(t);
+    }
+    let mut shared: Vec<(String, SharedMesh, Materials)> = Vec::with_capacity(groups.len());
+    for key in groups.keys() {
+        let (name, mesh, materials) = match key {
+            Some(k) => {
+                let p = &prototypes[*k];
+                (
+                    format!("{}-L{lod}", k.file_stem()),
+                    &p.lods[lod],
+                    p.materials,
+                )
+            }
+            None => ("stump".to_string(), stump, stump_materials()),
+        };
+        let mut mesh = mesh.clone();
+        mesh.uri = format!("{prefix}{}", mesh.uri);
+        shared.push((name, mesh, materials));
+    }
+    let meshes: Vec<InstancedMesh<'_>> = shared
+        .iter()
+        .map(|(name, mesh, materials)| InstancedMesh {
+            name,
+            source: MeshSource::Shared(mesh),
+            materials: *materials,
+        })
+        .collect();
+    // Each group's positions, turns and scales.
+    type Placement = (Vec<[f32; 3]>, Vec<f32>, Vec<f32>);
+    let mut placed: Vec<Placement> = Vec::with_capacity(groups.len());
+    let mut tables = Vec::with_capacity(groups.len());
+    for trees in groups.values() {
+        placed.push((
+            trees
+                .iter()
+                .map(|t| (t.at - centre).as_vec3().to_array())
+                .collect(),
+            trees.iter().map(|t| t.turn).collect(),
+            trees.iter().map(|t| t.scale).collect(),
+        ));
+        tables.push(table(trees, labels));
+    }
+    let groups: Vec<InstancedGroup<'_>> = placed
+        .iter()
+        .enumerate()
+        .map(|(k, (positions, turns, scales))| InstancedGroup {
+            mesh: k,
+            positions,
+            turns,
+            scales,
+            table: Some(k),
+        })
+        .collect();
+    let metadata = Metadata {
+        schema: schema(),
+        tables,
+    };
+    instanced_glb(&meshes, &groups, Some(&metadata))
+}
+
+/// The rows of a group's trees.
+fn table(trees: &[&Planned], labels: &Labels<'_>) -> PropertyTable {
+    let text = |f: &dyn Fn(&Planned) -> String| Column::Text(trees.iter().map(|t| f(t)).collect());
+    let number =
+        |f: &dyn Fn(&Planned) -> f32| Column::Float32(trees.iter().map(|t| f(t)).collect());
+    let key = |t: &Planned| match &t.kind {
+        Kind::Tree(k) => (k.code.clone(), k.region.clone()),
+        Kind::Stump => ("stump".into(), String::new()),
+    };
+    let names = |t: &Planned| {
+        let (code, region) = key(t);
+        (labels.names)(&code, &region)
+    };
+    PropertyTable {
+        class: "tree".into(),
+        columns: vec![
+            ("id".into(), text(&|t| (labels.id)(t.row))),
+            ("species_written".into(), text(&|t| (labels.written)(t.row))),
+            ("species".into(), text(&|t| key(t).0)),
+            ("common_name".into(), text(&|t| names(t).0)),
+            ("scientific_name".into(), text(&|t| names(t).1)),
+            ("region".into(), text(&|t| key(t).1)),
+            ("dbh_cm".into(), number(&|t| t.dbh)),
+            ("age_years".into(), number(&|t| t.age)),
+            ("height_m".into(), number(&|t| t.height)),
+            ("crown_diameter_m".into(), number(&|t| t.crown_diameter)),
+        ],
+    }
+}
+
+/// A stump's bark: the grey-brown of weathered wood.
+fn stump_materials() -> Materials {
+    Materials::from_srgb([0.42, 0.36, 0.30], [0.42, 0.36, 0.30])
+}
+
+/// Height of a stump over its diameter (Sylva's choice: a stump cut a little above the root
+/// flare).
+pub const STUMP_HEIGHT: f32 = 0.8;
+
+/// A stump one metre across (scaled by each stump's DBH in metres): a closed cylinder of 16
+/// sides, `STUMP_HEIGHT` tall.
+pub fn stump_mesh() -> sylva::mesh::TreeMesh {
+    let mut m = sylva::mesh::Mesh::default();
+    let sides = 16u32;
+    for k in 0..=sides {
+        let a = k as f32 / sides as f32 * std::f32::consts::TAU;
+        let (s, c) = a.sin_cos();
+        for (z, v) in [(0.0, 0.0), (STUMP_HEIGHT, 1.0)] {
+            m.positions.push([0.5 * c, 0.5 * s, z]);
+            m.normals.push([c, s, 0.0]);
+            m.uvs.push([k as f32 / sides as f32, v]);
+        }
+    }
+    for k in 0..sides {
+        let (a, b) = (2 * k, 2 * k + 2);
+        m.indices.extend_from_slice(&[a, b, a + 1, a + 1, b, b + 1]);
+    }
+    // The cut face.
+    let centre = m.positions.len() as u32;
+    m.positions.push([0.0, 0.0, STUMP_HEIGHT]);
+    m.normals.push([0.0, 0.0, 1.0]);
+    m.uvs.push([0.5, 0.5]);
+    for k in 0..sides {
+        let a = k as f32 / sides as f32 * std::f32::consts::TAU;
+        let (s, c) = a.sin_cos();
+        m.positions.push([0.5 * c, 0.5 * s, STUMP_HEIGHT]);
+        m.normals.push([0.0, 0.0, 1.0]);
+        m.uvs.push([0.5 + 0.5 * c, 0.5 + 0.5 * s]);
+    }
+    for k in 0..sides {
+        let (a, b) = (centre + 1 + k, centre + 1 + (k + 1) % sides);
+        m.indices.extend_from_slice(&[centre, a, b]);
+    }
+    sylva::mesh::TreeMesh {
+        bark: m,
+        ..Default::default()
+    }
+}

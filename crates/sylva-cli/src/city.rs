@@ -1,0 +1,186 @@
+//! `sylva city` and `sylva city-demo`: flags to a layout and options, the library's run, a
+//! progress bar and the summary.
+
+use crate::args::{CityArgs, CityDemoArgs, DemoLayoutArg};
+use anyhow::{Result, bail};
+use sylva_city::demo::{DemoLayout, demo_city};
+use sylva_city::{CityOptions, Layout, LengthUnit, Progress, tile_city};
+
+/// A progress bar per stage.
+struct Bar {
+    bar: indicatif::ProgressBar,
+    stage: std::sync::Mutex<String>,
+}
+
+impl Progress for Bar {
+    fn step(&self, stage: &str, done: usize, total: usize) {
+        let mut s = self.stage.lock().unwrap_or_else(|e| e.into_inner());
+        if *s != stage {
+            *s = stage.to_string();
+            self.bar.reset();
+            self.bar.set_message(stage.to_string());
+        }
+        if total > 0 {
+            self.bar.set_length(total as u64);
+        } else {
+            self.bar.set_length(done as u64);
+        }
+        self.bar.set_position(done as u64);
+    }
+}
+
+pub fn run(args: &CityArgs) -> Result<()> {
+    let unit = |flag: &str, v: &Option<String>| -> Result<Option<LengthUnit>> {
+        Ok(v.as_deref()
+            .map(|s| LengthUnit::parse(flag, s))
+            .transpose()?)
+    };
+    let crs = match &args.crs {
+        None => None,
+        Some(c) => {
+            let code = c.trim().to_ascii_uppercase();
+            let code = code.strip_prefix("EPSG:").unwrap_or(&code);
+            match code.parse::<u32>() {
+                Ok(n) => Some(n),
+                Err(_) => bail!("--crs: `{c}` is not an EPSG code; expected e.g. EPSG:2263"),
+            }
+        }
+    };
+    let layout = Layout {
+        id: args.id_col.clone(),
+        species: args.species_col.clone(),
+        dbh: args.dbh_col.clone(),
+        dbh_unit: unit("--dbh-unit", &args.dbh_unit)?,
+        circumference: args.circumference_col.clone(),
+        circumference_unit: unit("--circumference-unit", &args.circumference_unit)?,
+        lon_lat: args.lon_col.clone().zip(args.lat_col.clone()),
+        xy: args.x_col.clone().zip(args.y_col.clone()),
+        crs,
+        height: args.height_col.clone(),
+        height_unit: unit("--height-unit", &args.height_unit)?,
+        planted: args.planted_col.clone(),
+        status: args.status_col.clone(),
+        ground: args.ground_col.clone(),
+        name: String::new(),
+    };
+    if args.variants == 0 || args.variants > 16 {
+        bail!("--variants {}: expected 1 to 16", args.variants);
+    }
+    if args.years.len() > 20 || args.years.iter().any(|&y| y > 200) {
+        bail!("--years: at most 20 epochs, each at most 200 years on");
+    }
+    let mut years = args.years.clone();
+    years.sort_unstable();
+    years.dedup();
+    let options = CityOptions {
+        region: args.region.clone(),
+        variants: args.variants,
+        stumps: args.stumps,
+        years,
+        base_year: args.year,
+        ground: args.ground,
+        seed: args.seed,
+    };
+    let bar = Bar {
+        bar: indicatif::ProgressBar::new(0),
+        stage: std::sync::Mutex::new(String::new()),
+    };
+    bar.bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} [{elapsed}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let started = std::time::Instant::now();
+    let run = tile_city(
+        &args.inventory,
+        args.layer.as_deref(),
+        &layout,
+        &options,
+        &args.output,
+        &bar,
+    )?;
+    bar.bar.finish_and_clear();
+    let seconds = started.elapsed().as_secs_f64();
+    let s = &run.summary;
+    println!(
+        "{}: {} rows read as {}",
+        args.inventory.display(),
+        s.rows,
+        s.layout
+    );
+    println!("  {} trees drawn, {} stumps drawn", s.trees, s.stumps);
+    for (why, n) in &s.skipped {
+        println!("  {n} {why}");
+    }
+    println!("  {} rows unreadable:", s.rejected.len());
+    for r in s.rejected.iter().take(10) {
+        println!("    line {}: {}", r.line, r.reason);
+    }
+    if s.rejected.len() > 10 {
+        println!("    ... (all of them in summary.json)");
+    }
+    let mut by_fallback = std::collections::BTreeMap::new();
+    for line in s.species.values() {
+        for ((_, how), n) in &line.grown_as {
+            *by_fallback.entry(how.words()).or_insert(0usize) += n;
+        }
+    }
+    println!("  {} species names; trees grown as:", s.species.len());
+    for (how, n) in by_fallback {
+        println!("    {n} {how}");
+    }
+    let trees: usize = run.epochs.first().map_or(0, |e| e.2.trees);
+    let bytes: u64 =
+        run.prototype_bytes + run.epochs.iter().map(|e| e.2.content_bytes).sum::<u64>();
+    for (years, dir, r, later) in &run.epochs {
+        println!(
+            "  year +{years}: {} ({} tiles, depth {}, {} trees, {:.1} MB of tiles{})",
+            dir.join("tileset.json").display(),
+            r.tiles,
+            r.depth,
+            r.trees,
+            r.content_bytes as f64 / 1e6,
+            if *later > 0 {
+                format!(", {later} not yet planted")
+            } else {
+                String::new()
+            }
+        );
+    }
+    println!(
+        "  {} grown trees shared ({:.1} MB); {:.0} trees/s; {:.0} bytes per tree; {:.1} s \
+         (plan {:.1}, grow {:.1}, tiles {:.1})",
+        run.prototypes,
+        run.prototype_bytes as f64 / 1e6,
+        trees as f64 / seconds,
+        bytes as f64 / trees.max(1) as f64 / run.epochs.len().max(1) as f64,
+        seconds,
+        run.seconds[0],
+        run.seconds[1],
+        run.seconds[2]
+    );
+    Ok(())
+}
+
+pub fn demo(args: &CityDemoArgs) -> Result<()> {
+    if args.trees == 0 || args.trees > 2_000_000 {
+        bail!("--trees {}: expected 1 to 2,000,000", args.trees);
+    }
+    let city = demo_city(&args.region, args.trees, args.seed, args.year)?;
+    let layout = match args.layout {
+        DemoLayoutArg::Census => DemoLayout::Census,
+        DemoLayoutArg::Gis => DemoLayout::Gis,
+    };
+    city.write(&args.output, layout)?;
+    println!(
+        "wrote {}: {} rows around {} ({}), positions also in EPSG:{}",
+        args.output.display(),
+        city.trees.len(),
+        sylva_city::regions::REFERENCE_CITIES
+            .iter()
+            .find(|r| r.0 == city.region)
+            .map_or("", |r| r.1),
+        city.region,
+        city.epsg
+    );
+    Ok(())
+}

@@ -1,0 +1,457 @@
+//! GLB whose meshes are drawn many times over by the GPU (`EXT_mesh_gpu_instancing`), each copy
+//! a feature with a row in a property table (`EXT_instance_features` with
+//! `EXT_structural_metadata`): the content of a 3D Tiles tile of street trees. The meshes are
+//! written once however many copies stand; a copy costs its translation, rotation and scale
+//! (40 bytes) and its row.
+
+use super::glb::{Builder, Materials, Piece, bytes_of, finish, material};
+use super::y_up;
+use crate::error::ExportError;
+use crate::mesh::TreeMesh;
+use gltf_json as json;
+use json::accessor::{ComponentType as C, Type as T};
+use json::validation::Checked::Valid;
+use json::validation::USize64;
+use serde_json::{Map, Value, json};
+use std::collections::BTreeMap;
+
+/// A mesh's geometry in a binary file of its own, which many GLB files refer to: a city's tiles
+/// share each grown tree's mesh instead of each holding a copy. Made with [`SharedMesh::new`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct SharedMesh {
+    /// The binary file's URI, relative to the GLB files that refer to it.
+    pub uri: String,
+    /// Its length, bytes.
+    pub byte_length: usize,
+    primitives: Vec<SharedPrimitive>,
+}
+
+/// Where one primitive's arrays lie in a shared mesh's file.
+#[derive(Clone, Debug, PartialEq)]
+struct SharedPrimitive {
+    /// 0 bark, 1 leaves, 2 flowers.
+    material: usize,
+    vertices: usize,
+    indices: usize,
+    /// Byte offsets of positions, normals, UVs, colours (if any) and indices.
+    offsets: [usize; 5],
+    /// Indices as 16-bit numbers (under 65,536 vertices), else 32-bit.
+    short: bool,
+    colours: bool,
+    bounds: ([f32; 3], [f32; 3]),
+}
+
+impl SharedMesh {
+    /// `mesh` laid out for a file of its own at `uri`: the layout, and the file's bytes
+    /// (positions and normals Y up, UVs, shades as RGBA bytes, 32-bit indices; each array on a
+    /// 4-byte boundary).
+    pub fn new(mesh: &TreeMesh, uri: impl Into<String>) -> (SharedMesh, Vec<u8>) {
+        let mut bytes = Vec::new();
+        let mut put = |b: &[u8]| {
+            let at = bytes.len();
+            bytes.extend_from_slice(b);
+            while !bytes.len().is_multiple_of(4) {
+                bytes.push(0);
+            }
+            at
+        };
+        let mut primitives = Vec::new();
+        for (material, m) in [&mesh.bark, &mesh.leaves, &mesh.flowers]
+            .into_iter()
+            .enumerate()
+        {
+            if m.indices.is_empty() {
+                continue;
+            }
+            let n = m.positions.len();
+            let up: Vec<[f32; 3]> = m.positions.iter().map(|&p| y_up(p)).collect();
+            let bounds = bounds_of(&up);
+            let normals: Vec<[f32; 3]> = m.normals.iter().map(|&p| y_up(p)).collect();
+            let colours = m.shades.len() == n;
+            let grey: Vec<[u8; 4]> = if colours {
+                m.shades
+                    .iter()
+                    .map(|&s| {
+                        let g = (s.clamp(0.0, 1.0) * 255.0).round() as u8;
+                        [g, g, g, 255]
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            // A tree's levels of detail have some thousands of vertices: 16-bit indices
+            // halve the indices' bytes.
+            let short = n <= u16::MAX as usize;
+            let indices: Vec<u16> = if short {
+                m.indices.iter().map(|&i| i as u16).collect()
+            } else {
+                Vec::new()
+            };
+            let offsets = [
+                put(bytes_of(&up)),
+                put(bytes_of(&normals)),
+                put(bytes_of(&m.uvs)),
+                if colours { put(bytes_of(&grey)) } else { 0 },
+                if short {
+                    put(bytes_of(&indices))
+                } else {
+                    put(bytes_of(&m.indices))
+                },
+            ];
+            primitives.push(SharedPrimitive {
+                material,
+                vertices: n,
+                indices: m.indices.len(),
+                offsets,
+                short,
+                colours,
+                bounds,
+            });
+        }
+        let shared = SharedMesh {
+            uri: uri.into(),
+            byte_length: bytes.len(),
+            primitives,
+        };
+        (shared, bytes)
+    }
+
+    /// Triangles it draws.
+    pub fn triangles(&self) -> usize {
+        self.primitives.iter().map(|p| p.indices / 3).sum()
+    }
+}
+
+/// The smallest box around `points`.
+fn bounds_of(points: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    points
+        .iter()
+        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
+            (
+                std::array::from_fn(|i| lo[i].min(p[i])),
+                std::array::from_fn(|i| hi[i].max(p[i])),
+            )
+        })
+}
+
+/// Where a mesh of an instanced file comes from.
+#[derive(Clone, Copy, Debug)]
+pub enum MeshSource<'a> {
+    /// Written into the file.
+    Inline(&'a TreeMesh),
+    /// Read from its own binary file ([`SharedMesh`]).
+    Shared(&'a SharedMesh),
+}
+
+/// A mesh of an instanced file: its name, where it comes from and its materials.
+#[derive(Clone, Copy, Debug)]
+pub struct InstancedMesh<'a> {
+    /// The mesh's (and its nodes') name.
+    pub name: &'a str,
+    /// Its geometry.
+    pub source: MeshSource<'a>,
+    /// Its materials' colours.
+    pub materials: Materials,
+}
+
+/// Copies of one mesh: one node of the file.
+#[derive(Clone, Copy, Debug)]
+pub struct InstancedGroup<'a> {
+    /// Index into the file's meshes.
+    pub mesh: usize,
+    /// Where each copy stands (the base of the tree), metres, Z up, relative to the file's
+    /// origin.
+    pub positions: &'a [[f32; 3]],
+    /// Turn of each copy about the vertical, radians.
+    pub turns: &'a [f32],
+    /// Uniform scale of each copy.
+    pub scales: &'a [f32],
+    /// The property table whose rows are these copies in order (the feature id of a copy is
+    /// its index), if any.
+    pub table: Option<usize>,
+}
+
+/// One property's values, a row per feature.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Column {
+    /// `FLOAT32` scalars.
+    Float32(Vec<f32>),
+    /// `UINT32` scalars.
+    UInt32(Vec<u32>),
+    /// `UINT16` scalars, or the values of an enum whose `valueType` is `UINT16`.
+    UInt16(Vec<u16>),
+    /// `STRING`s, with `UINT32` offsets.
+    Text(Vec<String>),
+}
+
+impl Column {
+    fn len(&self) -> usize {
+        match self {
+            Column::Float32(v) => v.len(),
+            Column::UInt32(v) => v.len(),
+            Column::UInt16(v) => v.len(),
+            Column::Text(v) => v.len(),
+        }
+    }
+}
+
+/// A property table of `EXT_structural_metadata`: a row per feature of its class.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PropertyTable {
+    /// Its class in the schema.
+    pub class: String,
+    /// Its properties, each named as the class names it.
+    pub columns: Vec<(String, Column)>,
+}
+
+/// The schema (`EXT_structural_metadata`'s `schema` object, classes and enums) and the tables.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Metadata {
+    /// The schema as JSON.
+    pub schema: Value,
+    /// The property tables.
+    pub tables: Vec<PropertyTable>,
+}
+
+/// Encodes `meshes` (each once: bark, leaf and flower primitives with their materials) and a
+/// node per group that draws its mesh at every copy's place, with `metadata`'s tables in the
+/// file. Rows of a table must be as many as the copies of every group that points at it.
+pub fn instanced_glb(
+    meshes: &[InstancedMesh<'_>],
+    groups: &[InstancedGroup<'_>],
+    metadata: Option<&Metadata>,
+) -> Result<Vec<u8>, ExportError> {
+    let bad = |m: String| Err(ExportError::Format(m));
+    let tables = metadata.map_or(&[][..], |m| &m.tables[..]);
+    for (k, t) in tables.iter().enumerate() {
+        let rows = t.columns.first().map_or(0, |c| c.1.len());
+        if let Some((name, _)) = t.columns.iter().find(|c| c.1.len() != rows) {
+            return bad(format!(
+                "property table {k}: `{name}` has a different number of rows"
+            ));
+        }
+    }
+    for (g, group) in groups.iter().enumerate() {
+        let n = group.positions.len();
+        if group.mesh >= meshes.len() {
+            return bad(format!(
+                "group {g} draws mesh {} of {}",
+                group.mesh,
+                meshes.len()
+            ));
+        }
+        if n == 0 || group.turns.len() != n || group.scales.len() != n {
+            return bad(format!(
+                "group {g}: {n} positions, {} turns, {} scales (all equal and more than 0)",
+                group.turns.len(),
+                group.scales.len()
+            ));
+        }
+        if let Some(t) = group.table {
+            let rows = tables
+                .get(t)
+                .and_then(|t| t.columns.first())
+                .map(|c| c.1.len());
+            if rows != Some(n) {
+                return bad(format!("group {g}: table {t} has no {n} rows"));
+            }
+        }
+    }
+    let mut b = Builder::new();
+    let gltf_meshes: Vec<_> = meshes
+        .iter()
+        .map(|m| match m.source {
+            MeshSource::Inline(mesh) => b.tree_mesh(m.name, mesh, &m.materials),
+            MeshSource::Shared(shared) => shared_mesh(&mut b, m.name, shared, &m.materials),
+        })
+        .collect();
+    let mut nodes = Vec::with_capacity(groups.len());
+    for group in groups {
+        let attributes = instance_attributes(&mut b, group);
+        let mut others = Map::new();
+        others.insert(
+            "EXT_mesh_gpu_instancing".into(),
+            json!({ "attributes": attributes }),
+        );
+        if let Some(t) = group.table {
+            others.insert(
+                "EXT_instance_features".into(),
+                json!({ "featureIds": [{
+                    "featureCount": group.positions.len(),
+                    "propertyTable": t,
+                }]}),
+            );
+        }
+        nodes.push(b.root.push(json::Node {
+            mesh: Some(gltf_meshes[group.mesh]),
+            name: Some(meshes[group.mesh].name.into()),
+            extensions: Some(json::extensions::scene::Node { others }),
+            ..Default::default()
+        }));
+    }
+    let mut used = vec!["EXT_mesh_gpu_instancing".to_string()];
+    if let Some(m) = metadata {
+        let tables: Vec<Value> = m.tables.iter().map(|t| table_json(&mut b, t)).collect();
+        let mut others = Map::new();
+        others.insert(
+            "EXT_structural_metadata".into(),
+            json!({ "schema": m.schema, "propertyTables": tables }),
+        );
+        b.root.extensions = Some(json::extensions::root::Root { others });
+        used.push("EXT_structural_metadata".into());
+        if groups.iter().any(|g| g.table.is_some()) {
+            used.push("EXT_instance_features".into());
+        }
+    }
+    // A viewer without instancing would draw each mesh once, at the origin: required.
+    b.root.extensions_required = vec!["EXT_mesh_gpu_instancing".into()];
+    b.root.extensions_used = used;
+    b.scene(nodes);
+    Ok(finish(b)?.to_vec())
+}
+
+/// A shared mesh as a mesh of the file: a buffer of its own (its URI), views and accessors on
+/// it, and materials as [`Builder::tree_mesh`] makes them.
+fn shared_mesh(
+    b: &mut Builder<'_>,
+    name: &str,
+    shared: &SharedMesh,
+    materials: &Materials,
+) -> json::Index<json::Mesh> {
+    let buffer = b.root.push(json::Buffer {
+        byte_length: USize64::from(shared.byte_length),
+        name: None,
+        uri: Some(shared.uri.clone()),
+        extensions: None,
+        extras: Default::default(),
+    });
+    let mut primitives = Vec::new();
+    for p in &shared.primitives {
+        let (material_name, colour, double_sided, roughness) = match p.material {
+            0 => ("bark", materials.bark, false, 0.95),
+            1 => ("leaves", materials.leaves, true, 0.6),
+            _ => ("flowers", materials.flowers, true, 0.6),
+        };
+        let material = b
+            .root
+            .push(material(material_name, colour, double_sided, roughness));
+        type Bounds = Option<([f32; 3], [f32; 3])>;
+        let mut accessor = |at: usize, length: usize, count: usize, c: C, t: T, bounds: Bounds| {
+            let indices = matches!(t, T::Scalar);
+            let view = b.root.push(json::buffer::View {
+                buffer,
+                byte_length: USize64::from(length),
+                byte_offset: Some(USize64::from(at)),
+                byte_stride: None,
+                name: None,
+                target: Some(Valid(if indices {
+                    json::buffer::Target::ElementArrayBuffer
+                } else {
+                    json::buffer::Target::ArrayBuffer
+                })),
+                extensions: None,
+                extras: Default::default(),
+            });
+            b.accessor(view, count, c, t, bounds)
+        };
+        let (n, o) = (p.vertices, p.offsets);
+        let pos = accessor(o[0], n * 12, n, C::F32, T::Vec3, Some(p.bounds));
+        let nor = accessor(o[1], n * 12, n, C::F32, T::Vec3, None);
+        let uv = accessor(o[2], n * 8, n, C::F32, T::Vec2, None);
+        let colour = p
+            .colours
+            .then(|| accessor(o[3], n * 4, n, C::U8, T::Vec4, None));
+        let idx = if p.short {
+            accessor(o[4], p.indices * 2, p.indices, C::U16, T::Scalar, None)
+        } else {
+            accessor(o[4], p.indices * 4, p.indices, C::U32, T::Scalar, None)
+        };
+        let mut attributes = BTreeMap::new();
+        attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
+        attributes.insert(Valid(json::mesh::Semantic::Normals), nor);
+        attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), uv);
+        if let Some(colour) = colour {
+            b.root.accessors[colour.value()].normalized = true;
+            attributes.insert(Valid(json::mesh::Semantic::Colors(0)), colour);
+        }
+        primitives.push(json::mesh::Primitive {
+            attributes,
+            extensions: None,
+            extras: Default::default(),
+            indices: Some(idx),
+            material: Some(material),
+            mode: Valid(json::mesh::Mode::Triangles),
+            targets: None,
+        });
+    }
+    b.root.push(json::Mesh {
+        extensions: None,
+        extras: Default::default(),
+        name: Some(name.into()),
+        primitives,
+        weights: None,
+    })
+}
+
+/// The TRANSLATION, ROTATION and SCALE accessors of a group's copies, Y up.
+fn instance_attributes(b: &mut Builder<'_>, group: &InstancedGroup<'_>) -> Value {
+    let n = group.positions.len();
+    let translations: Vec<[f32; 3]> = group.positions.iter().map(|&p| y_up(p)).collect();
+    let bounds = bounds_of(&translations);
+    // A turn about Z (up) in the model is a turn about Y (up) in the file.
+    let rotations: Vec<[f32; 4]> = group
+        .turns
+        .iter()
+        .map(|&t| {
+            let (s, c) = (t / 2.0).sin_cos();
+            [0.0, s, 0.0, c]
+        })
+        .collect();
+    let scales: Vec<[f32; 3]> = group.scales.iter().map(|&s| [s; 3]).collect();
+    let mut attribute = |bytes: Vec<u8>, ty: T, bounds| {
+        let v = b.view(Piece::Owned(bytes), None);
+        b.accessor(v, n, C::F32, ty, bounds).value()
+    };
+    let t = attribute(bytes_of(&translations).to_vec(), T::Vec3, Some(bounds));
+    let r = attribute(bytes_of(&rotations).to_vec(), T::Vec4, None);
+    let s = attribute(bytes_of(&scales).to_vec(), T::Vec3, None);
+    json!({ "TRANSLATION": t, "ROTATION": r, "SCALE": s })
+}
+
+/// A property table's JSON, its columns added as buffer views (each 4-byte aligned, which every
+/// component type here needs).
+fn table_json(b: &mut Builder<'_>, t: &PropertyTable) -> Value {
+    let mut properties = Map::new();
+    for (name, column) in &t.columns {
+        let mut view = |bytes: Vec<u8>| b.view(Piece::Owned(bytes), None).value();
+        let property = match column {
+            Column::Float32(v) => json!({ "values": view(bytes_of(v).to_vec()) }),
+            Column::UInt32(v) => json!({ "values": view(bytes_of(v).to_vec()) }),
+            Column::UInt16(v) => json!({ "values": view(bytes_of(v).to_vec()) }),
+            Column::Text(v) => {
+                let mut offsets = Vec::with_capacity(v.len() + 1);
+                let mut text = Vec::new();
+                for s in v {
+                    offsets.push(text.len() as u32);
+                    text.extend_from_slice(s.as_bytes());
+                }
+                offsets.push(text.len() as u32);
+                // A buffer view holds at least one byte; past the last offset it is unread.
+                if text.is_empty() {
+                    text.push(b' ');
+                }
+                json!({
+                    "values": view(text),
+                    "stringOffsets": view(bytes_of(&offsets).to_vec()),
+                    "stringOffsetType": "UINT32",
+                })
+            }
+        };
+        properties.insert(name.clone(), property);
+    }
+    json!({
+        "class": t.class,
+        "count": t.columns.first().map_or(0, |c| c.1.len()),
+        "properties": properties,
+    })
+}
