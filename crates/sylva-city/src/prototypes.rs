@@ -286,7 +286,14 @@ mod tests {
         };
         let measured = HashMap::from([(("InlVal".to_string(), "PYCA_B".to_string()), m)]);
         let dir = tempfile::tempdir().unwrap();
-        let grown = grow_all(std::slice::from_ref(&key), &measured, 0, dir.path(), &|_| {}).unwrap();
+        let grown = grow_all(
+            std::slice::from_ref(&key),
+            &measured,
+            0,
+            dir.path(),
+            &|_| {},
+        )
+        .unwrap();
         let p = &grown[&key];
         for (k, lod) in p.lods.iter().enumerate() {
             assert!(

@@ -1,0 +1,218 @@
+//! A demo city through `sylva city`'s library: every form and layout gives the same trees,
+//! every row is accounted for, and the tiles pass the structural checks.
+
+use std::collections::HashMap;
+use std::path::Path;
+use sylva_city::demo::{DemoCity, DemoLayout, demo_city};
+use sylva_city::inventory::{self, Layout};
+use sylva_city::plan::{CityOptions, Kind, Plan, plan};
+use sylva_city::tiles::check::check_tileset;
+use sylva_city::{Quiet, tile_city};
+
+fn planned(path: &Path, layout: &Layout) -> Plan {
+    let inv = inventory::load(path, None, layout).unwrap();
+    plan(&inv, &CityOptions::default()).unwrap()
+}
+
+fn city(n: usize) -> DemoCity {
+    demo_city("PacfNW", n, 3, 2026).unwrap()
+}
+
+#[test]
+fn every_form_and_layout_gives_the_same_trees() {
+    let c = city(1000);
+    let dir = tempfile::tempdir().unwrap();
+    let files = [
+        ("census.csv", DemoLayout::Census, None),
+        ("gis.csv", DemoLayout::Gis, Some(c.epsg)),
+        ("census.geojson", DemoLayout::Census, None),
+        ("gis.gpkg", DemoLayout::Gis, None),
+    ];
+    let mut plans = Vec::new();
+    for (name, layout, crs) in files {
+        let path = dir.path().join(name);
+        c.write(&path, layout).unwrap();
+        let l = Layout {
+            crs,
+            ..Default::default()
+        };
+        plans.push((
+            name,
+            planned(&path, &l),
+            inventory::load(&path, None, &l).unwrap(),
+        ));
+    }
+    let (_, first, first_inv) = &plans[0];
+    // Every row counted, by what became of it.
+    let s = &first.summary;
+    let skipped: usize = s.skipped.values().sum();
+    assert_eq!(s.rows, 1000);
+    assert_eq!(
+        s.trees + s.stumps + skipped + s.rejected.len(),
+        1000,
+        "{s:?}"
+    );
+    assert!(
+        s.rejected.len() >= 5,
+        "the demo's broken rows: {:?}",
+        s.rejected
+    );
+    assert!(
+        s.skipped.keys().any(|k| k.contains("dead")),
+        "{:?}",
+        s.skipped
+    );
+    assert!(
+        s.skipped.keys().any(|k| k.contains("sites")),
+        "{:?}",
+        s.skipped
+    );
+    let ids = |inv: &inventory::Inventory,
+               p: &Plan|
+     -> HashMap<String, (glam::DVec3, String, f32, f32, f32)> {
+        p.epochs[0]
+            .trees
+            .iter()
+            .map(|t| {
+                let code = match &t.kind {
+                    // The age class is left out: DBH rounded to inches or to cm can put an age
+                    // on either side of a class boundary; the ages are compared below.
+                    Kind::Tree(k) => format!("{} {}", k.code, k.region),
+                    Kind::Stump => "stump".into(),
+                };
+                (
+                    inv.trees[t.row].id.clone(),
+                    (t.at, code, t.dbh, t.age, t.height),
+                )
+            })
+            .collect()
+    };
+    let reference = ids(first_inv, first);
+    assert!(reference.len() > 950, "{}", reference.len());
+    for (name, p, inv) in &plans[1..] {
+        assert_eq!(p.summary.rejected.len(), s.rejected.len(), "{name}");
+        assert_eq!(p.summary.skipped, s.skipped, "{name}");
+        assert_eq!(p.summary.trees, s.trees, "{name}");
+        let other = ids(inv, p);
+        assert_eq!(other.len(), reference.len(), "{name}");
+        for (id, (at, code, dbh, age, height)) in &reference {
+            let (at2, code2, dbh2, age2, height2) = &other[id];
+            // Positions through UTM and back agree within centimetres of the census's
+            // degrees (8 decimals: a millimetre); GeoPackage and GeoJSON hold the same.
+            assert!(at.distance(*at2) < 0.05, "{name} {id}: {at} vs {at2}");
+            assert_eq!(code, code2, "{name} {id}");
+            // DBH written as inches with 2 decimals, or cm with 1.
+            assert!((dbh - dbh2).abs() < 0.1, "{name} {id}: {dbh} vs {dbh2}");
+            // Ages from DBHs that differ by that rounding: old trees add little DBH a year.
+            assert!((age - age2).abs() < 0.5, "{name} {id}: {age} vs {age2}");
+            assert!(
+                (height / height2 - 1.0).abs() < 0.01,
+                "{name} {id}: {height} vs {height2}"
+            );
+        }
+    }
+}
+
+#[test]
+fn units_circumference_and_broken_rows_are_read_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("trees.csv");
+    std::fs::write(
+        &path,
+        "id,species,circumference_cm,lat,lon,status\n\
+         a,Platanus x acerifolia,94.25,37.64,-120.99,Alive\n\
+         b,PLAC,not a number,37.64,-120.99,Alive\n\
+         c,PLAC,50,95.0,-120.99,Alive\n\
+         d,PLAC,50,0,0,Alive\n\
+         e,,,37.64,-120.99,Stump\n\
+         f,\"Acer rubrum,37.64\n",
+    )
+    .unwrap();
+    let inv = inventory::load(&path, None, &Layout::default()).unwrap();
+    // 94.25 cm around is 30 cm across.
+    assert_eq!(inv.trees.len(), 2, "{inv:?}");
+    assert!((inv.trees[0].dbh.unwrap() - 30.0).abs() < 0.01);
+    let lines: Vec<usize> = inv.rejected.iter().map(|r| r.line).collect();
+    assert_eq!(lines, [3, 4, 5, 7], "{:?}", inv.rejected);
+    assert!(
+        inv.rejected[0].reason.contains("circumference_cm")
+            && inv.rejected[0].reason.contains("not a number")
+    );
+    assert!(inv.rejected[1].reason.contains("latitude"));
+    // Inches by default; cm when asked.
+    let path = dir.path().join("inches.csv");
+    std::fs::write(&path, "id,species,dbh,lat,lon\na,PLAC,10,37.64,-120.99\n").unwrap();
+    let inv = inventory::load(&path, None, &Layout::default()).unwrap();
+    assert!((inv.trees[0].dbh.unwrap() - 25.4).abs() < 1e-9);
+    let cm = Layout {
+        dbh_unit: Some(sylva_city::LengthUnit::Cm),
+        ..Default::default()
+    };
+    let inv = inventory::load(&path, None, &cm).unwrap();
+    assert!((inv.trees[0].dbh.unwrap() - 10.0).abs() < 1e-9);
+    // Projected columns without a system: the flag to give is named.
+    let path = dir.path().join("xy.csv");
+    std::fs::write(&path, "id,species,dbh,x,y\na,PLAC,10,500000,4100000\n").unwrap();
+    let e = inventory::load(&path, None, &Layout::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("--crs"), "{e}");
+    let e = inventory::load(&dir.path().join("trees.shp"), None, &Layout::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains(".shp") && e.contains(".gpkg"), "{e}");
+}
+
+#[test]
+fn a_demo_city_tiles_and_passes_the_structural_checks() {
+    let c = city(1000);
+    let dir = tempfile::tempdir().unwrap();
+    let inventory = dir.path().join("city.csv");
+    c.write(&inventory, DemoLayout::Census).unwrap();
+    let out = dir.path().join("tiles");
+    let options = CityOptions {
+        variants: 1,
+        stumps: true,
+        ..Default::default()
+    };
+    let run = tile_city(&inventory, None, &Layout::default(), &options, &out, &Quiet).unwrap();
+    let checked = check_tileset(&out).unwrap_or_else(|p| panic!("{}", p.join("\n")));
+    let drawn = run.summary.trees + run.summary.stumps - run.epochs[0].3;
+    assert_eq!(checked.root_instances, drawn);
+    assert_eq!(checked.leaf_instances, drawn);
+    assert!(checked.tiles > 4, "{checked:?}");
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["rows"], 1000);
+    // Every shared mesh a tile names is there.
+    let glb = std::fs::read(out.join("content/0/0-0.glb")).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    for b in doc["buffers"].as_array().unwrap().iter().skip(1) {
+        let uri = b["uri"].as_str().unwrap();
+        let file = out.join("content/0").join(uri);
+        assert_eq!(
+            std::fs::metadata(&file).unwrap().len(),
+            b["byteLength"].as_u64().unwrap()
+        );
+    }
+    // A folder holding other files is refused and left as it was.
+    let other = dir.path().join("mine");
+    std::fs::create_dir(&other).unwrap();
+    std::fs::write(other.join("notes.txt"), "keep").unwrap();
+    let e = tile_city(
+        &inventory,
+        None,
+        &Layout::default(),
+        &options,
+        &other,
+        &Quiet,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("-o") && e.contains("notes.txt"), "{e}");
+    assert_eq!(
+        std::fs::read_to_string(other.join("notes.txt")).unwrap(),
+        "keep"
+    );
+}
