@@ -142,6 +142,7 @@ pub fn demo_city(region: &str, n: usize, seed: u64, year: i32) -> Result<DemoCit
         }
     }
     let mut trees = Vec::with_capacity(n);
+    let mut measured = std::collections::HashMap::new();
     for (i, &(x, y)) in spots.iter().enumerate() {
         let (lon, lat) = utm
             .lon_lat(x, y)
@@ -199,9 +200,13 @@ pub fn demo_city(region: &str, n: usize, seed: u64, year: i32) -> Result<DemoCit
             status,
             fault: None,
         };
-        let m = db
-            .find(&region, &chosen.code)
-            .map_err(|e| CityError::Growth(e.to_string()))?;
+        let m = match measured.entry(chosen.code.clone()) {
+            std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
+            std::collections::hash_map::Entry::Vacant(v) => v.insert(
+                db.find(&region, &chosen.code)
+                    .map_err(|e| CityError::Growth(e.to_string()))?,
+            ),
+        };
         let age = m.age_at_dbh(t.dbh_cm);
         let roll = rng.unit();
         if t.status == DemoStatus::Alive && roll < 0.2 {

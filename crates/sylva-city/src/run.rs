@@ -104,6 +104,14 @@ fn write_all(
             Kind::Tree(k) => Some(k.clone()),
             Kind::Stump => None,
         })
+        // Coarse levels draw each class's first variant (`content::tile_glb`).
+        .flat_map(|k| {
+            let first = ProtoKey {
+                variant: 0,
+                ..k.clone()
+            };
+            [k, first]
+        })
         .collect::<BTreeSet<_>>()
         .into_iter()
         .collect();

@@ -228,7 +228,6 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
         .as_array()
         .cloned()
         .unwrap_or_default();
-    let classes = &metadata["schema"]["classes"];
     // The bytes of a view of the GLB's own buffer.
     let view_bytes = |i: &Value| -> Option<&[u8]> {
         let v = views.get(i.as_u64()? as usize)?;
@@ -238,8 +237,16 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
         let at = v["byteOffset"].as_u64().unwrap_or(0) as usize;
         bin.get(at..at + v["byteLength"].as_u64()? as usize)
     };
+    let floats = |a: &Value| -> Option<Vec<f32>> {
+        let b = view_bytes(&a["bufferView"])?;
+        Some(
+            b.chunks_exact(4)
+                .map(|c| f32::from_le_bytes(c.try_into().unwrap_or([0; 4])))
+                .collect(),
+        )
+    };
     let mut instances = 0;
-    let mut rows = 0;
+    let mut used_tables = std::collections::BTreeSet::new();
     for (n, node) in doc["nodes"].as_array().into_iter().flatten().enumerate() {
         let ext = &node["extensions"];
         for name in ext.as_object().into_iter().flat_map(|o| o.keys()) {
@@ -268,14 +275,11 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
             }
         }
         // Every tree stands in the tile's box (glTF's Y up turned back to Z up).
-        if let Some(b) = view_bytes(&t["bufferView"]) {
-            for p in b.chunks_exact(12) {
-                let f =
-                    |i: usize| f32::from_le_bytes(p[i..i + 4].try_into().unwrap_or([0; 4])) as f64;
-                if !inside(bx, DVec3::new(f(0), -f(8), f(4)), 0.01) {
-                    problems.push(format!("node {n}: a tree stands outside the tile's box"));
-                    break;
-                }
+        if let Some(p) = floats(t) {
+            if p.chunks_exact(3)
+                .any(|p| !inside(bx, DVec3::new(p[0] as f64, -p[2] as f64, p[1] as f64), 0.01))
+            {
+                problems.push(format!("node {n}: a tree stands outside the tile's box"));
             }
         }
         instances += count;
@@ -285,47 +289,65 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
                 "node {n}: featureCount is not its {count} instances"
             ));
         }
-        let Some(table) = features["propertyTable"]
-            .as_u64()
-            .and_then(|k| tables.get(k as usize))
-        else {
+        let Some(k) = features["propertyTable"].as_u64().map(|k| k as usize) else {
             problems.push(format!("node {n}: no property table"));
             continue;
         };
-        if table["count"].as_u64() != Some(count as u64) {
-            problems.push(format!(
-                "node {n}: its table has {} rows, not {count}",
-                table["count"]
-            ));
+        let Some(table) = tables.get(k) else {
+            problems.push(format!("node {n}: property table {k} is not there"));
+            continue;
+        };
+        used_tables.insert(k);
+        let rows = table["count"].as_u64().unwrap_or(0) as f32;
+        // Each instance's row: its _FEATURE_ID_<attribute>, a whole number under the rows.
+        let id = format!(
+            "_FEATURE_ID_{}",
+            features["attribute"].as_u64().unwrap_or(0)
+        );
+        match get(&id)
+            .filter(|a| a["count"].as_u64() == Some(count as u64))
+            .and_then(floats)
+        {
+            Some(ids) if ids.len() == count => {
+                if let Some(bad) = ids
+                    .iter()
+                    .find(|&&i| i < 0.0 || i.fract() != 0.0 || i >= rows)
+                {
+                    problems.push(format!("node {n}: feature id {bad} is no row of table {k}"));
+                }
+            }
+            _ => problems.push(format!("node {n}: no {count} float {id}")),
         }
-        let class = &classes[table["class"].as_str().unwrap_or("")];
+    }
+    let mut rows = 0;
+    for &k in &used_tables {
+        let table = &tables[k];
+        let count = table["count"].as_u64().unwrap_or(0) as usize;
+        let class = &metadata["schema"]["classes"][table["class"].as_str().unwrap_or("")];
         for (name, p) in table["properties"].as_object().into_iter().flatten() {
             let def = &class["properties"][name];
             if def.is_null() {
-                problems.push(format!("node {n}: property {name} is not in its class"));
+                problems.push(format!("table {k}: property {name} is not in its class"));
                 continue;
             }
             let values = view_bytes(&p["values"]);
             match def["type"].as_str() {
-                Some("STRING") => {
-                    let offsets = view_bytes(&p["stringOffsets"]);
-                    match (values, offsets) {
-                        (Some(v), Some(o)) if o.len() == (count + 1) * 4 => {
-                            let off: Vec<u32> = o
-                                .chunks_exact(4)
-                                .map(|c| u32::from_le_bytes(c.try_into().unwrap_or([0; 4])))
-                                .collect();
-                            if off.windows(2).any(|w| w[1] < w[0]) || off[count] as usize > v.len()
-                            {
-                                problems.push(format!(
-                                    "node {n}: {name}'s string offsets are out of order or range"
-                                ));
-                            }
+                Some("STRING") => match (values, view_bytes(&p["stringOffsets"])) {
+                    (Some(v), Some(o)) if o.len() == (count + 1) * 4 => {
+                        let off: Vec<u32> = o
+                            .chunks_exact(4)
+                            .map(|c| u32::from_le_bytes(c.try_into().unwrap_or([0; 4])))
+                            .collect();
+                        if off.windows(2).any(|w| w[1] < w[0]) || off[count] as usize > v.len() {
+                            problems.push(format!(
+                                "table {k}: {name}'s string offsets are out of order or range"
+                            ));
                         }
-                        _ => problems
-                            .push(format!("node {n}: {name} has no {count}+1 string offsets")),
                     }
-                }
+                    _ => {
+                        problems.push(format!("table {k}: {name} has no {count}+1 string offsets"))
+                    }
+                },
                 Some("SCALAR") => {
                     let size = match def["componentType"].as_str() {
                         Some("FLOAT32" | "UINT32" | "INT32") => 4,
@@ -334,14 +356,17 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
                     };
                     if values.map(<[u8]>::len) != Some(count * size) {
                         problems.push(format!(
-                            "node {n}: {name} is not {count} values of {size} bytes"
+                            "table {k}: {name} is not {count} values of {size} bytes"
                         ));
                     }
                 }
-                _ => problems.push(format!("node {n}: {name} has a type not checked here")),
+                _ => problems.push(format!("table {k}: {name} has a type not checked here")),
             }
         }
         rows += count;
+    }
+    if rows != instances {
+        problems.push(format!("{rows} table rows for {instances} trees"));
     }
     if problems.is_empty() {
         Ok((instances, rows))

@@ -9,8 +9,8 @@ use glam::DVec3;
 use serde_json::json;
 use std::collections::{BTreeMap, HashMap};
 use sylva::export::{
-    Column, InstancedGroup, InstancedMesh, Materials, MeshSource, Metadata, PropertyTable,
-    SharedMesh, instanced_glb,
+    Column, Features, InstancedGroup, InstancedMesh, Materials, MeshSource, Metadata,
+    PropertyTable, SharedMesh, instanced_glb,
 };
 
 /// What a tree's row of attributes says beyond its plan: its inventory id and the species as
@@ -50,7 +50,9 @@ pub fn schema() -> serde_json::Value {
 }
 
 /// The tile's GLB: its trees (`trees`, each at `at - centre` in the city's frame) at level of
-/// detail `lod`, the meshes read from `prefix` + each level's file name.
+/// detail `lod`, the meshes read from `prefix` + each level's file name. Coarse levels draw
+/// every tree as its class's first seed variant (variants differ in detail a coarse level does
+/// not show), so a parent tile holds fewer meshes.
 pub fn tile_glb(
     trees: &[&Planned],
     centre: DVec3,
@@ -60,20 +62,24 @@ pub fn tile_glb(
     prefix: &str,
     labels: &Labels<'_>,
 ) -> Result<Vec<u8>, sylva::ExportError> {
-    // Trees by what they are drawn as, in a stable order.
-    let mut groups: BTreeMap<Option<&ProtoKey>, Vec<&Planned>> = BTreeMap::new();
-    for t in trees {
+    // Trees by what they are drawn as, in a stable order; each keeps its row in the table.
+    let mut groups: BTreeMap<Option<ProtoKey>, Vec<u32>> = BTreeMap::new();
+    for (row, t) in trees.iter().enumerate() {
         let key = match &t.kind {
-            Kind::Tree(k) => Some(k),
+            Kind::Tree(k) if lod > 0 => Some(ProtoKey {
+                variant: 0,
+                ..k.clone()
+            }),
+            Kind::Tree(k) => Some(k.clone()),
             Kind::Stump => None,
         };
-        groups.entry(key).or_default().push(t);
+        groups.entry(key).or_default().push(row as u32);
     }
     let mut shared: Vec<(String, SharedMesh, Materials)> = Vec::with_capacity(groups.len());
     for key in groups.keys() {
         let (name, mesh, materials) = match key {
             Some(k) => {
-                let p = &prototypes[*k];
+                let p = &prototypes[k];
                 (
                     format!("{}-L{lod}", k.file_stem()),
                     &p.lods[lod],
@@ -94,40 +100,48 @@ pub fn tile_glb(
             materials: *materials,
         })
         .collect();
-    // Each group's positions, turns and scales.
+    // Each group's positions, turns and scales: each tree scaled to its height from the
+    // height of the tree drawn for it.
     type Placement = (Vec<[f32; 3]>, Vec<f32>, Vec<f32>);
-    let mut placed: Vec<Placement> = Vec::with_capacity(groups.len());
-    let mut tables = Vec::with_capacity(groups.len());
-    for trees in groups.values() {
-        placed.push((
-            trees
-                .iter()
-                .map(|t| (t.at - centre).as_vec3().to_array())
-                .collect(),
-            trees.iter().map(|t| t.turn).collect(),
-            trees.iter().map(|t| t.scale).collect(),
-        ));
-        tables.push(table(trees, labels));
-    }
+    let placed: Vec<Placement> = groups
+        .iter()
+        .map(|(key, rows)| {
+            let drawn = key.as_ref().map(|k| prototypes[k].height.max(0.01));
+            let of = |r: &u32| trees[*r as usize];
+            (
+                rows.iter()
+                    .map(|r| (of(r).at - centre).as_vec3().to_array())
+                    .collect(),
+                rows.iter().map(|r| of(r).turn).collect(),
+                rows.iter()
+                    .map(|r| match drawn {
+                        Some(h) => (of(r).height / h).clamp(0.05, 20.0),
+                        None => of(r).scale,
+                    })
+                    .collect(),
+            )
+        })
+        .collect();
     let groups: Vec<InstancedGroup<'_>> = placed
         .iter()
+        .zip(groups.values())
         .enumerate()
-        .map(|(k, (positions, turns, scales))| InstancedGroup {
+        .map(|(k, ((positions, turns, scales), rows))| InstancedGroup {
             mesh: k,
             positions,
             turns,
             scales,
-            table: Some(k),
+            features: Some(Features { table: 0, rows }),
         })
         .collect();
     let metadata = Metadata {
         schema: schema(),
-        tables,
+        tables: vec![table(trees, labels)],
     };
     instanced_glb(&meshes, &groups, Some(&metadata))
 }
 
-/// The rows of a group's trees.
+/// The rows of a tile's trees, in their order.
 fn table(trees: &[&Planned], labels: &Labels<'_>) -> PropertyTable {
     let text = |f: &dyn Fn(&Planned) -> String| Column::Text(trees.iter().map(|t| f(t)).collect());
     let number =

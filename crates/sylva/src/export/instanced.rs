@@ -13,7 +13,7 @@ use json::accessor::{ComponentType as C, Type as T};
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 use serde_json::{Map, Value, json};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// A mesh's geometry in a binary file of its own, which many GLB files refer to: a city's tiles
 /// share each grown tree's mesh instead of each holding a copy. Made with [`SharedMesh::new`].
@@ -166,9 +166,18 @@ pub struct InstancedGroup<'a> {
     pub turns: &'a [f32],
     /// Uniform scale of each copy.
     pub scales: &'a [f32],
-    /// The property table whose rows are these copies in order (the feature id of a copy is
-    /// its index), if any.
-    pub table: Option<usize>,
+    /// The rows of the copies in a property table, if any: each copy a feature.
+    pub features: Option<Features<'a>>,
+}
+
+/// Which property table rows a group's copies are (`EXT_instance_features`, through the
+/// `_FEATURE_ID_0` instance attribute): a tile's trees of every mesh share one table.
+#[derive(Clone, Copy, Debug)]
+pub struct Features<'a> {
+    /// The table.
+    pub table: usize,
+    /// Each copy's row, in the copies' order.
+    pub rows: &'a [u32],
 }
 
 /// One property's values, a row per feature.
@@ -247,22 +256,31 @@ pub fn instanced_glb(
                 group.scales.len()
             ));
         }
-        if let Some(t) = group.table {
+        if let Some(f) = group.features {
             let rows = tables
-                .get(t)
+                .get(f.table)
                 .and_then(|t| t.columns.first())
                 .map(|c| c.1.len());
-            if rows != Some(n) {
-                return bad(format!("group {g}: table {t} has no {n} rows"));
+            let Some(rows) = rows else {
+                return bad(format!("group {g}: there is no table {}", f.table));
+            };
+            if f.rows.len() != n || f.rows.iter().any(|&r| r as usize >= rows) {
+                return bad(format!(
+                    "group {g}: {} rows given for {n} copies, each under the table's {rows}",
+                    f.rows.len()
+                ));
             }
         }
     }
     let mut b = Builder::new();
+    let mut materials = HashMap::new();
     let gltf_meshes: Vec<_> = meshes
         .iter()
         .map(|m| match m.source {
             MeshSource::Inline(mesh) => b.tree_mesh(m.name, mesh, &m.materials),
-            MeshSource::Shared(shared) => shared_mesh(&mut b, m.name, shared, &m.materials),
+            MeshSource::Shared(shared) => {
+                shared_mesh(&mut b, m.name, shared, &m.materials, &mut materials)
+            }
         })
         .collect();
     let mut nodes = Vec::with_capacity(groups.len());
@@ -273,12 +291,13 @@ pub fn instanced_glb(
             "EXT_mesh_gpu_instancing".into(),
             json!({ "attributes": attributes }),
         );
-        if let Some(t) = group.table {
+        if let Some(f) = group.features {
             others.insert(
                 "EXT_instance_features".into(),
                 json!({ "featureIds": [{
                     "featureCount": group.positions.len(),
-                    "propertyTable": t,
+                    "attribute": 0,
+                    "propertyTable": f.table,
                 }]}),
             );
         }
@@ -299,7 +318,7 @@ pub fn instanced_glb(
         );
         b.root.extensions = Some(json::extensions::root::Root { others });
         used.push("EXT_structural_metadata".into());
-        if groups.iter().any(|g| g.table.is_some()) {
+        if groups.iter().any(|g| g.features.is_some()) {
             used.push("EXT_instance_features".into());
         }
     }
@@ -317,6 +336,7 @@ fn shared_mesh(
     name: &str,
     shared: &SharedMesh,
     materials: &Materials,
+    made: &mut HashMap<(usize, [u32; 4]), json::Index<json::Material>>,
 ) -> json::Index<json::Mesh> {
     let buffer = b.root.push(json::Buffer {
         byte_length: USize64::from(shared.byte_length),
@@ -332,9 +352,13 @@ fn shared_mesh(
             1 => ("leaves", materials.leaves, true, 0.6),
             _ => ("flowers", materials.flowers, true, 0.6),
         };
-        let material = b
-            .root
-            .push(material(material_name, colour, double_sided, roughness));
+        // One material per kind and colour in a file: a species' trees of every age share it.
+        let material = *made
+            .entry((p.material, colour.map(f32::to_bits)))
+            .or_insert_with(|| {
+                b.root
+                    .push(material(material_name, colour, double_sided, roughness))
+            });
         type Bounds = Option<([f32; 3], [f32; 3])>;
         let mut accessor = |at: usize, length: usize, count: usize, c: C, t: T, bounds: Bounds| {
             let indices = matches!(t, T::Scalar);
@@ -415,7 +439,16 @@ fn instance_attributes(b: &mut Builder<'_>, group: &InstancedGroup<'_>) -> Value
     let t = attribute(bytes_of(&translations).to_vec(), T::Vec3, Some(bounds));
     let r = attribute(bytes_of(&rotations).to_vec(), T::Vec4, None);
     let s = attribute(bytes_of(&scales).to_vec(), T::Vec3, None);
-    json!({ "TRANSLATION": t, "ROTATION": r, "SCALE": s })
+    match group.features {
+        // Feature ids as floats: exact to 2^24 rows, and a type every reader takes for an
+        // attribute.
+        Some(f) => {
+            let ids: Vec<f32> = f.rows.iter().map(|&r| r as f32).collect();
+            let id = attribute(bytes_of(&ids).to_vec(), T::Scalar, None);
+            json!({ "TRANSLATION": t, "ROTATION": r, "SCALE": s, "_FEATURE_ID_0": id })
+        }
+        None => json!({ "TRANSLATION": t, "ROTATION": r, "SCALE": s }),
+    }
 }
 
 /// A property table's JSON, its columns added as buffer views (each 4-byte aligned, which every

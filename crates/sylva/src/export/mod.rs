@@ -15,8 +15,8 @@ pub use glb::{
     Glb, Instance, Materials, glb_scene, to_glb, to_glb_lod, to_glb_scene, tree_glb, write_glb,
 };
 pub use instanced::{
-    Column, InstancedGroup, InstancedMesh, MeshSource, Metadata, PropertyTable, SharedMesh,
-    instanced_glb,
+    Column, Features, InstancedGroup, InstancedMesh, MeshSource, Metadata, PropertyTable,
+    SharedMesh, instanced_glb,
 };
 pub use obj::{to_obj, write_obj};
 
