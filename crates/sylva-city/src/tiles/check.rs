@@ -275,12 +275,10 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
             }
         }
         // Every tree stands in the tile's box (glTF's Y up turned back to Z up).
-        if let Some(p) = floats(t) {
-            if p.chunks_exact(3)
-                .any(|p| !inside(bx, DVec3::new(p[0] as f64, -p[2] as f64, p[1] as f64), 0.01))
-            {
-                problems.push(format!("node {n}: a tree stands outside the tile's box"));
-            }
+        let outside =
+            |p: &[f32]| !inside(bx, DVec3::new(p[0] as f64, -p[2] as f64, p[1] as f64), 0.01);
+        if floats(t).is_some_and(|p| p.chunks_exact(3).any(outside)) {
+            problems.push(format!("node {n}: a tree stands outside the tile's box"));
         }
         instances += count;
         let features = &ext["EXT_instance_features"]["featureIds"][0];
