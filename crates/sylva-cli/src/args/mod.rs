@@ -497,6 +497,11 @@ pub struct BenchArgs {
     /// range, then released) and report trees per second.
     #[arg(long, value_name = "N")]
     pub throughput: Option<u32>,
+
+    /// Also tile a demo city of this many trees, and one of a tenth as many as the baseline:
+    /// trees per second, tiles, bytes per tree and peak memory of each, and how they grow.
+    #[arg(long, value_name = "TREES")]
+    pub city: Option<usize>,
 }
 
 /// Parses `WxH`, each side 16..=`max` pixels.

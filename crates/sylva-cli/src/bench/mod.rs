@@ -2,6 +2,7 @@
 //! figure beside a baseline timed in the same run (these machines are shared and noisy).
 //! `--forest`, `--throughput` and `--growth` are in `forest.rs` and `growth.rs` beside this.
 
+mod city;
 mod forest;
 mod growth;
 
@@ -82,6 +83,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     if args.street {
         growth::bench_street()?;
+    }
+    if let Some(n) = args.city {
+        city::bench_city(n)?;
     }
     Ok(())
 }
