@@ -409,12 +409,31 @@ impl DemoCity {
     /// Writes the city as a GeoPackage layer `trees`: UTM points and the GIS layout's
     /// columns (positions in the geometry only).
     pub fn write_gpkg(&self, path: &Path) -> Result<(), CityError> {
-        crate::gpkg_write::write(path, self)
-    }
-
-    /// The GIS layout's columns and rows (for the GeoPackage writer).
-    pub(crate) fn gis_rows(&self) -> (Vec<&'static str>, Vec<Vec<String>>) {
-        self.rows(DemoLayout::Gis)
+        let (header, rows) = self.rows(DemoLayout::Gis);
+        // Positions in the geometry only.
+        let keep: Vec<usize> = (0..header.len())
+            .filter(|&k| !matches!(header[k], "POINT_X" | "POINT_Y"))
+            .collect();
+        let columns: Vec<&str> = keep.iter().map(|&k| header[k]).collect();
+        let rows: Vec<Vec<String>> = rows
+            .iter()
+            .map(|r| keep.iter().map(|&k| r[k].clone()).collect())
+            .collect();
+        let points: Vec<Option<(f64, f64)>> = self
+            .trees
+            .iter()
+            .map(|t| (t.fault != Some(Fault::NoPosition)).then_some((t.x, t.y)))
+            .collect();
+        crate::gpkg_write::write(
+            path,
+            &crate::gpkg_write::Layer {
+                epsg: self.epsg,
+                year: self.year,
+                columns: &columns,
+                rows: &rows,
+                points: &points,
+            },
+        )
     }
 }
 

@@ -1,16 +1,27 @@
-//! Writes a demo city as a GeoPackage (OGC 12-128r18): the SQLite tables a reader needs
-//! (`gpkg_spatial_ref_sys`, `gpkg_contents`, `gpkg_geometry_columns`) and a features layer
-//! `trees` whose points are GeoPackage binary geometries (a `GP` header and WKB).
+//! Writes points with columns of text as a GeoPackage (OGC 12-128r18): the SQLite tables a
+//! reader needs (`gpkg_spatial_ref_sys`, `gpkg_contents`, `gpkg_geometry_columns`) and a
+//! features layer `trees` whose points are GeoPackage binary geometries (a `GP` header and
+//! WKB). The demo city's GeoPackage form.
 
 use crate::CityError;
-use crate::demo::{DemoCity, Fault};
 use rusqlite::Connection;
 use std::path::Path;
 
 /// The layer's name.
 pub const LAYER: &str = "trees";
 
-pub fn write(path: &Path, city: &DemoCity) -> Result<(), CityError> {
+/// A layer to write: its coordinate system, the year it describes, its columns and rows, and
+/// each row's point (none: an empty geometry).
+pub struct Layer<'a> {
+    pub epsg: u32,
+    pub year: i32,
+    pub columns: &'a [&'a str],
+    pub rows: &'a [Vec<String>],
+    pub points: &'a [Option<(f64, f64)>],
+}
+
+/// Writes `layer` to `path` (through a file beside it, renamed into place).
+pub fn write(path: &Path, layer: &Layer<'_>) -> Result<(), CityError> {
     let err = |e: &dyn std::fmt::Display| CityError::Write {
         path: path.into(),
         message: e.to_string(),
@@ -19,9 +30,17 @@ pub fn write(path: &Path, city: &DemoCity) -> Result<(), CityError> {
     let _ = std::fs::remove_file(&partial);
     {
         let db = Connection::open(&partial).map_err(|e| err(&e))?;
-        let def = crs_definitions::from_code(city.epsg as u16)
-            .ok_or_else(|| err(&format!("EPSG:{} unknown", city.epsg)))?;
-        let srs = city.epsg as i64;
+        let def = u16::try_from(layer.epsg)
+            .ok()
+            .and_then(crs_definitions::from_code)
+            .ok_or_else(|| err(&format!("EPSG:{} unknown", layer.epsg)))?;
+        let srs = layer.epsg as i64;
+        let quoted: Vec<String> = layer
+            .columns
+            .iter()
+            .map(|c| format!("\"{}\"", c.replace('"', "")))
+            .collect();
+        let columns: String = quoted.iter().map(|c| format!(", {c} TEXT")).collect();
         db.execute_batch(&format!(
             "PRAGMA application_id = 1196444487;
              PRAGMA user_version = 10300;
@@ -35,9 +54,7 @@ pub fn write(path: &Path, city: &DemoCity) -> Result<(), CityError> {
              CREATE TABLE gpkg_geometry_columns (table_name TEXT NOT NULL, column_name TEXT NOT NULL,
                geometry_type_name TEXT NOT NULL, srs_id INTEGER NOT NULL, z TINYINT NOT NULL,
                m TINYINT NOT NULL, CONSTRAINT pk_geom_cols PRIMARY KEY (table_name, column_name));
-             CREATE TABLE \"{LAYER}\" (fid INTEGER PRIMARY KEY AUTOINCREMENT, geom POINT,
-               OBJECTID TEXT, BOTANICAL TEXT, COMMON TEXT, DBH_CM TEXT, STATUS TEXT,
-               HEIGHT_M REAL, PLANTED INTEGER);"
+             CREATE TABLE \"{LAYER}\" (fid INTEGER PRIMARY KEY AUTOINCREMENT, geom POINT{columns});"
         ))
         .map_err(|e| err(&e))?;
         let wgs84 = crs_definitions::from_code(4326).map_or("", |d| d.wkt);
@@ -54,20 +71,16 @@ pub fn write(path: &Path, city: &DemoCity) -> Result<(), CityError> {
                 .map_err(|e| err(&e))?;
         }
         drop(put);
-        let placed = city
-            .trees
-            .iter()
-            .filter(|t| t.fault != Some(Fault::NoPosition));
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-        for t in placed {
-            lo = [lo[0].min(t.x), lo[1].min(t.y)];
-            hi = [hi[0].max(t.x), hi[1].max(t.y)];
+        for &(x, y) in layer.points.iter().flatten() {
+            lo = [lo[0].min(x), lo[1].min(y)];
+            hi = [hi[0].max(x), hi[1].max(y)];
         }
         db.execute(
             "INSERT INTO gpkg_contents VALUES (?1, 'features', ?1, 'street trees', ?2, ?3, ?4, ?5, ?6, ?7)",
             rusqlite::params![
                 LAYER,
-                format!("{}-01-01T00:00:00.000Z", city.year),
+                format!("{}-01-01T00:00:00.000Z", layer.year),
                 lo[0],
                 lo[1],
                 hi[0],
@@ -81,20 +94,30 @@ pub fn write(path: &Path, city: &DemoCity) -> Result<(), CityError> {
             rusqlite::params![LAYER, srs],
         )
         .map_err(|e| err(&e))?;
-        let (_, rows) = city.gis_rows();
         db.execute_batch("BEGIN").map_err(|e| err(&e))?;
+        let marks: Vec<String> = (2..=layer.columns.len() + 1)
+            .map(|k| format!("?{k}"))
+            .collect();
         let mut insert = db
             .prepare(&format!(
-                "INSERT INTO \"{LAYER}\" (geom, OBJECTID, BOTANICAL, COMMON, DBH_CM, STATUS, HEIGHT_M, PLANTED)
-                 VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)"
+                "INSERT INTO \"{LAYER}\" (geom, {}) VALUES (?1, {})",
+                quoted.join(", "),
+                marks.join(", ")
             ))
             .map_err(|e| err(&e))?;
-        for (t, r) in city.trees.iter().zip(&rows) {
-            let geom = (t.fault != Some(Fault::NoPosition)).then(|| blob(srs as i32, t.x, t.y));
+        for (row, point) in layer.rows.iter().zip(layer.points) {
+            let geom = point.map(|(x, y)| blob(srs as i32, x, y));
+            let mut values: Vec<Box<dyn rusqlite::ToSql>> = vec![Box::new(geom)];
+            // Empty cells as NULL, as GIS exports leave them.
+            for v in row {
+                values.push(if v.is_empty() {
+                    Box::new(Option::<String>::None)
+                } else {
+                    Box::new(v.clone())
+                });
+            }
             insert
-                .execute(rusqlite::params![
-                    geom, r[0], r[1], r[2], r[3], r[4], t.height_m, t.planted
-                ])
+                .execute(rusqlite::params_from_iter(values.iter()))
                 .map_err(|e| err(&e))?;
         }
         drop(insert);

@@ -1,5 +1,6 @@
 //! A city's street trees: an inventory in, OGC 3D Tiles out.
 
+pub mod benefits;
 mod error;
 pub mod geo;
 pub mod inventory;

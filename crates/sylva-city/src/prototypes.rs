@@ -12,6 +12,7 @@ use sylva::growth::season::dressed_skeleton;
 use sylva::growth::{Grower, GrowthOptions, Measured, measure};
 use sylva::lod::{Choice, LodTree};
 use sylva::mesh::{MeshOptions, TreeMesh};
+use sylva::street::crown::{Crown, leaves_of};
 
 /// Most triangles of a tree at each level of detail (Sylva's choice): a leaf tile's trees
 /// (the nearest) at 10,000, so a leaf tile's 250 trees draw 2.5 million; its parent's at
@@ -37,6 +38,9 @@ pub struct Prototype {
     pub crown_diameter: f32,
     /// Its materials.
     pub materials: Materials,
+    /// Its one-sided leaf area, bark (stem silhouette) area and crown projection, m², as the
+    /// street accounts measure them (`sylva::street::crown::Crown`).
+    pub surfaces: (f64, f64, f64),
     /// Its levels of detail, most detailed first, each in its own file.
     pub lods: [SharedMesh; 3],
     /// How far each level's surface lies from the whole tree's, m: the one-sided distance from
@@ -111,6 +115,7 @@ fn prototype(
     dir: &Path,
 ) -> Result<Prototype, CityError> {
     let dims = measure(skeleton);
+    let crown = Crown::with_leaves(skeleton, &leaves_of(skeleton));
     let dress = m.dress(None);
     let tree = dressed_skeleton(skeleton, dress.state);
     let options = MeshOptions {
@@ -145,6 +150,7 @@ fn prototype(
         height: dims.height as f32,
         crown_diameter: dims.crown_diameter as f32,
         materials: dress.materials(),
+        surfaces: (crown.leaf_area, crown.bark_area, crown.projection),
         lods: lods.try_into().expect("three levels"),
         errors,
     })

@@ -170,9 +170,11 @@ fn write_all(
             ));
         }
         let stage = format!("writing tiles (year {})", e.years);
+        let years = crate::benefits::years(&e.trees, &plan.measured, &protos);
         let report = tiles::write(
             &edir,
             &e.trees,
+            &years,
             plan.frame.to_ecef_matrix(),
             &protos,
             &stump,

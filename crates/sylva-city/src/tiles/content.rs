@@ -3,6 +3,7 @@
 //! prototype files), each tree a feature with a row of attributes (`EXT_instance_features`,
 //! `EXT_structural_metadata`).
 
+use crate::benefits::TreeYear;
 use crate::plan::{Kind, Planned, ProtoKey};
 use crate::prototypes::Prototype;
 use glam::DVec3;
@@ -28,6 +29,11 @@ pub struct Labels<'a> {
 pub fn schema() -> serde_json::Value {
     let text = json!({ "type": "STRING" });
     let number = |description: &str| json!({ "type": "SCALAR", "componentType": "FLOAT32", "description": description });
+    // -1 where no model or price gives the figure.
+    let benefit = |description: &str| {
+        json!({ "type": "SCALAR", "componentType": "FLOAT32", "description": description,
+                "noData": crate::benefits::NO_DATA })
+    };
     json!({
         "id": "sylva_city",
         "classes": { "tree": {
@@ -44,6 +50,10 @@ pub fn schema() -> serde_json::Value {
                 "age_years": number("Age, years since planting"),
                 "height_m": number("Height, m"),
                 "crown_diameter_m": number("Crown diameter, m"),
+                "co2_stored_kg": benefit("CO2 held in the tree, kg (Jenkins et al. 2003 biomass by DBH)"),
+                "co2_sequestered_kg_per_year": benefit("CO2 taken up this year, kg"),
+                "rain_intercepted_m3_per_year": benefit("Rain held back this year, m3"),
+                "benefits_usd_per_year": benefit("This year's CO2 uptake and rain interception at the region's built-in prices, US dollars"),
             }
         }}
     })
@@ -54,7 +64,7 @@ pub fn schema() -> serde_json::Value {
 /// every tree as its class's first seed variant (variants differ in detail a coarse level does
 /// not show), so a parent tile holds fewer meshes.
 pub fn tile_glb(
-    trees: &[&Planned],
+    trees: &[(&Planned, &TreeYear)],
     centre: DVec3,
     lod: usize,
     prototypes: &HashMap<ProtoKey, Prototype>,
@@ -64,7 +74,7 @@ pub fn tile_glb(
 ) -> Result<Vec<u8>, sylva::ExportError> {
     // Trees by what they are drawn as, in a stable order; each keeps its row in the table.
     let mut groups: BTreeMap<Option<ProtoKey>, Vec<u32>> = BTreeMap::new();
-    for (row, t) in trees.iter().enumerate() {
+    for (row, (t, _)) in trees.iter().enumerate() {
         let key = match &t.kind {
             Kind::Tree(k) if lod > 0 => Some(ProtoKey {
                 variant: 0,
@@ -107,7 +117,7 @@ pub fn tile_glb(
         .iter()
         .map(|(key, rows)| {
             let drawn = key.as_ref().map(|k| prototypes[k].height.max(0.01));
-            let of = |r: &u32| trees[*r as usize];
+            let of = |r: &u32| trees[*r as usize].0;
             (
                 rows.iter()
                     .map(|r| (of(r).at - centre).as_vec3().to_array())
@@ -142,10 +152,13 @@ pub fn tile_glb(
 }
 
 /// The rows of a tile's trees, in their order.
-fn table(trees: &[&Planned], labels: &Labels<'_>) -> PropertyTable {
-    let text = |f: &dyn Fn(&Planned) -> String| Column::Text(trees.iter().map(|t| f(t)).collect());
+fn table(trees: &[(&Planned, &TreeYear)], labels: &Labels<'_>) -> PropertyTable {
+    let text =
+        |f: &dyn Fn(&Planned) -> String| Column::Text(trees.iter().map(|t| f(t.0)).collect());
     let number =
-        |f: &dyn Fn(&Planned) -> f32| Column::Float32(trees.iter().map(|t| f(t)).collect());
+        |f: &dyn Fn(&Planned) -> f32| Column::Float32(trees.iter().map(|t| f(t.0)).collect());
+    let year =
+        |f: &dyn Fn(&TreeYear) -> f32| Column::Float32(trees.iter().map(|t| f(t.1)).collect());
     let key = |t: &Planned| match &t.kind {
         Kind::Tree(k) => (k.code.clone(), k.region.clone()),
         Kind::Stump => ("stump".into(), String::new()),
@@ -167,6 +180,16 @@ fn table(trees: &[&Planned], labels: &Labels<'_>) -> PropertyTable {
             ("age_years".into(), number(&|t| t.age)),
             ("height_m".into(), number(&|t| t.height)),
             ("crown_diameter_m".into(), number(&|t| t.crown_diameter)),
+            ("co2_stored_kg".into(), year(&|y| y.co2_stored_kg)),
+            (
+                "co2_sequestered_kg_per_year".into(),
+                year(&|y| y.co2_sequestered_kg),
+            ),
+            (
+                "rain_intercepted_m3_per_year".into(),
+                year(&|y| y.rain_intercepted_m3),
+            ),
+            ("benefits_usd_per_year".into(), year(&|y| y.benefits_usd)),
         ],
     }
 }

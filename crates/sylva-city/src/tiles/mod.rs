@@ -9,6 +9,7 @@ pub mod content;
 pub mod quadtree;
 
 use crate::CityError;
+use crate::benefits::TreeYear;
 use crate::plan::{Kind, Planned, ProtoKey};
 use crate::prototypes::Prototype;
 use content::Labels;
@@ -42,6 +43,7 @@ pub struct TilesetReport {
 pub fn write(
     dir: &Path,
     trees: &[Planned],
+    years: &[TreeYear],
     frame: [f64; 16],
     prototypes: &HashMap<ProtoKey, Prototype>,
     stump: &SharedMesh,
@@ -64,7 +66,11 @@ pub fn write(
         .par_iter()
         .map(|node| {
             let tile = tile_of(node, trees, prototypes);
-            let members: Vec<&Planned> = node.trees.iter().map(|&i| &trees[i as usize]).collect();
+            let members: Vec<(&Planned, &TreeYear)> = node
+                .trees
+                .iter()
+                .map(|&i| (&trees[i as usize], &years[i as usize]))
+                .collect();
             let path = dir.join(&tile.uri);
             let prefix = format!("../../{prototypes_uri}");
             let glb = content::tile_glb(

@@ -144,6 +144,11 @@ try {
   check(picked.every((p) => /^T\d{6}$/.test(p.id) && p.region === 'PacfNW' && p.dbh_cm > 0 &&
     p.height_m > 1 && p.height_m < 60 && p.age_years >= 0),
     'the attributes are the inventory\'s and the grown tree\'s');
+  // The year's benefits: a figure no model or price gives is the no-data value, which the
+  // client reads as absent (PacfNW has no sourced rainfall, so no rain figure).
+  check(picked.some((p) => p.co2_stored_kg > 0 && p.co2_sequestered_kg_per_year > 0 &&
+    p.benefits_usd_per_year > 0),
+    'trees carry their year\'s CO2 stored and taken up, and its value');
 } finally {
   await browser.close();
   server.close();

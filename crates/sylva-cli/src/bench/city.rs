@@ -31,7 +31,14 @@ pub fn bench_city(n: usize) -> Result<()> {
         demo_city("PacfNW", trees, 0, 2026)?.write(&inventory, DemoLayout::Census)?;
         let out = dir.join(format!("tiles-{trees}"));
         let t = Instant::now();
-        let run = tile_city(&inventory, None, &Layout::default(), &CityOptions::default(), &out, &Quiet)?;
+        let run = tile_city(
+            &inventory,
+            None,
+            &Layout::default(),
+            &CityOptions::default(),
+            &out,
+            &Quiet,
+        )?;
         let seconds = t.elapsed().as_secs_f64();
         let drawn = run.epochs[0].2.trees as f64;
         let bytes = (run.prototype_bytes + run.epochs[0].2.content_bytes) as f64;

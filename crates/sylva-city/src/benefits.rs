@@ -1,0 +1,158 @@
+//! Each tree's year of benefits, by the models `sylva grow` accounts with (`sylva::street`):
+//! CO2 stored from its own DBH (Jenkins et al. 2003's biomass groups), CO2 taken up this year
+//! from the DBH its species' measured growth gives it a year earlier, rain held back by its
+//! crown (the grown tree of its class, its leaf and bark areas and crown projection scaled by
+//! the square of the tree's scale to it), and the region's built-in prices of the two. No
+//! energy figures: an inventory has no façades. A figure with no model or price is -1 (the
+//! property's no-data value).
+
+use crate::plan::{Kind, Planned};
+use crate::prototypes::Prototype;
+use std::collections::HashMap;
+use sylva::growth::Measured;
+use sylva::street::Prices;
+use sylva::street::carbon::{BiomassGroup, co2_stored_kg};
+use sylva::street::climate::{climate, interception_m3};
+
+/// A figure no model or price gives.
+pub const NO_DATA: f32 = -1.0;
+
+/// One tree's year.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TreeYear {
+    /// CO2 held in the tree, kg.
+    pub co2_stored_kg: f32,
+    /// CO2 taken up this year, kg.
+    pub co2_sequestered_kg: f32,
+    /// Rain held back this year, m³.
+    pub rain_intercepted_m3: f32,
+    /// The two valued at the region's prices, dollars.
+    pub benefits_usd: f32,
+}
+
+/// The year of `tree` (drawn as `p`, grown by `m`).
+pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) -> TreeYear {
+    let none = TreeYear {
+        co2_stored_kg: NO_DATA,
+        co2_sequestered_kg: NO_DATA,
+        rain_intercepted_m3: NO_DATA,
+        benefits_usd: NO_DATA,
+    };
+    let (Kind::Tree(key), Some(p), Some(m)) = (&tree.kind, p, m) else {
+        return none;
+    };
+    let dbh = tree.dbh as f64;
+    let age = tree.age as f64;
+    let group = BiomassGroup::of(&m.species.scientific);
+    let stored = group.map(|g| co2_stored_kg(g, dbh));
+    let sequestered = group.map(|g| {
+        let before = (age - 1.0).max(m.ages.0);
+        let ratio = if m.dbh(age) > 0.0 {
+            m.dbh(before) / m.dbh(age)
+        } else {
+            0.0
+        };
+        co2_stored_kg(g, dbh) - co2_stored_kg(g, dbh * ratio.min(1.0))
+    });
+    let s = (tree.height / p.height.max(0.01)) as f64;
+    let (leaf, bark, projection) = p.surfaces;
+    let rain = climate(&key.region)
+        .and_then(|c| c.rain)
+        .map(|r| interception_m3(&r, (leaf + bark) * s * s, projection * s * s));
+    let prices = Prices::builtin(&key.region);
+    let valued = |amount: Option<f64>, per: Option<f64>| amount.zip(per).map(|(a, b)| a * b);
+    let carbon = valued(sequestered, prices.as_ref().and_then(|p| p.co2_per_kg));
+    let water = valued(rain, prices.as_ref().and_then(|p| p.stormwater_per_m3));
+    let money = match (carbon, water) {
+        (None, None) => None,
+        (c, w) => Some(c.unwrap_or(0.0) + w.unwrap_or(0.0)),
+    };
+    let f = |x: Option<f64>| x.map_or(NO_DATA, |v| v as f32);
+    TreeYear {
+        co2_stored_kg: f(stored),
+        co2_sequestered_kg: f(sequestered),
+        rain_intercepted_m3: f(rain),
+        benefits_usd: f(money),
+    }
+}
+
+/// Every tree's year.
+pub fn years(
+    trees: &[Planned],
+    measured: &HashMap<(String, String), Measured>,
+    prototypes: &HashMap<crate::plan::ProtoKey, Prototype>,
+) -> Vec<TreeYear> {
+    trees
+        .iter()
+        .map(|t| match &t.kind {
+            Kind::Tree(k) => tree_year(
+                t,
+                measured.get(&(k.region.clone(), k.code.clone())),
+                prototypes.get(k),
+            ),
+            Kind::Stump => tree_year(t, None, None),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::ProtoKey;
+    use glam::DVec3;
+
+    #[test]
+    fn a_tree_s_year_follows_its_own_dbh_and_its_scaled_crown() {
+        let m = sylva::growth::Database::builtin()
+            .find("InlVal", "PLAC")
+            .unwrap();
+        let key = ProtoKey {
+            region: "InlVal".into(),
+            code: "PLAC".into(),
+            age: 10,
+            variant: 0,
+        };
+        let measured = HashMap::from([(("InlVal".to_string(), "PLAC".to_string()), m.clone())]);
+        let dir = tempfile::tempdir().unwrap();
+        let protos = crate::prototypes::grow_all(
+            std::slice::from_ref(&key),
+            &measured,
+            0,
+            dir.path(),
+            &|_| {},
+        )
+        .unwrap();
+        let p = &protos[&key];
+        let tree = |height: f32| Planned {
+            row: 0,
+            at: DVec3::ZERO,
+            kind: Kind::Tree(key.clone()),
+            turn: 0.0,
+            scale: 1.0,
+            age: 10.0,
+            dbh: m.dbh(10.0) as f32,
+            height,
+            crown_diameter: m.crown_diameter(10.0) as f32,
+        };
+        let y = tree_year(&tree(p.height), Some(&m), Some(p));
+        let group = BiomassGroup::of("Platanus x acerifolia").unwrap();
+        assert!((y.co2_stored_kg as f64 - co2_stored_kg(group, m.dbh(10.0))).abs() < 1e-3);
+        assert!(
+            y.co2_sequestered_kg > 0.0 && y.co2_sequestered_kg < y.co2_stored_kg,
+            "{y:?}"
+        );
+        assert!(y.rain_intercepted_m3 > 0.0 && y.benefits_usd > 0.0, "{y:?}");
+        // A tree drawn twice as tall holds back four times the rain (until storms fill it).
+        let big = tree_year(&tree(2.0 * p.height), Some(&m), Some(p));
+        assert!(
+            big.rain_intercepted_m3 > 2.0 * y.rain_intercepted_m3,
+            "{big:?} {y:?}"
+        );
+        // A stump gives nothing: every figure is the no-data value.
+        let stump = Planned {
+            kind: Kind::Stump,
+            ..tree(0.3)
+        };
+        assert_eq!(tree_year(&stump, None, None).benefits_usd, NO_DATA);
+    }
+}
