@@ -217,15 +217,27 @@ impl<'a> Builder<'a> {
             self.root.accessors[colour.value()].normalized = true;
             attributes.insert(Valid(json::mesh::Semantic::Colors(0)), colour);
         }
-        json::mesh::Primitive {
-            attributes,
-            extensions: None,
-            extras: Default::default(),
-            indices: Some(idx),
-            material: Some(material),
-            mode: Valid(json::mesh::Mode::Triangles),
-            targets: None,
-        }
+        triangles(attributes, idx, material)
+    }
+}
+
+/// A primitive of indexed triangles.
+pub(super) fn triangles(
+    attributes: BTreeMap<
+        json::validation::Checked<json::mesh::Semantic>,
+        json::Index<json::Accessor>,
+    >,
+    indices: json::Index<json::Accessor>,
+    material: json::Index<json::Material>,
+) -> json::mesh::Primitive {
+    json::mesh::Primitive {
+        attributes,
+        extensions: None,
+        extras: Default::default(),
+        indices: Some(indices),
+        material: Some(material),
+        mode: Valid(json::mesh::Mode::Triangles),
+        targets: None,
     }
 }
 

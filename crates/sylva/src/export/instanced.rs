@@ -4,7 +4,7 @@
 //! written once however many copies stand; a copy costs its translation, rotation and scale
 //! (40 bytes) and its row.
 
-use super::glb::{Builder, Materials, Piece, bytes_of, finish, material};
+use super::glb::{Builder, Materials, Piece, bytes_of, finish, material, triangles};
 use super::y_up;
 use crate::error::ExportError;
 use crate::mesh::TreeMesh;
@@ -398,15 +398,7 @@ fn shared_mesh(
             b.root.accessors[colour.value()].normalized = true;
             attributes.insert(Valid(json::mesh::Semantic::Colors(0)), colour);
         }
-        primitives.push(json::mesh::Primitive {
-            attributes,
-            extensions: None,
-            extras: Default::default(),
-            indices: Some(idx),
-            material: Some(material),
-            mode: Valid(json::mesh::Mode::Triangles),
-            targets: None,
-        });
+        primitives.push(triangles(attributes, idx, material));
     }
     b.root.push(json::Mesh {
         extensions: None,
