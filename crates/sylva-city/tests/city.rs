@@ -216,3 +216,36 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
         "keep"
     );
 }
+
+#[test]
+fn epochs_age_every_tree_and_plant_the_planned_ones() {
+    let c = city(1000);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("city.csv");
+    c.write(&path, DemoLayout::Census).unwrap();
+    let inv = inventory::load(&path, None, &Layout::default()).unwrap();
+    let options = CityOptions {
+        years: vec![0, 10],
+        ..Default::default()
+    };
+    let p = plan(&inv, &options).unwrap();
+    let (now, later) = (&p.epochs[0], &p.epochs[1]);
+    // The demo plans plantings one to nine years on: absent now, in the ground in ten years.
+    assert!(now.not_yet_planted > 0, "{}", now.not_yet_planted);
+    assert_eq!(later.not_yet_planted, 0);
+    assert_eq!(later.trees.len(), now.trees.len() + now.not_yet_planted);
+    let by_row: HashMap<usize, &sylva_city::plan::Planned> =
+        later.trees.iter().map(|t| (t.row, t)).collect();
+    for t in &now.trees {
+        let Kind::Tree(k) = &t.kind else { continue };
+        let m = &p.measured[&(k.region.clone(), k.code.clone())];
+        let l = by_row[&t.row];
+        // Ten years older, unless the data end first; never smaller.
+        let want = (t.age as f64 + 10.0).min(m.ages.1);
+        assert!((l.age as f64 - want).abs() < 1e-3, "{} -> {}", t.age, l.age);
+        assert!(
+            l.dbh >= t.dbh && l.height >= t.height * 0.999,
+            "{t:?} {l:?}"
+        );
+    }
+}

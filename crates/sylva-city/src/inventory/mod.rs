@@ -169,7 +169,7 @@ pub struct Inventory {
 }
 
 /// Reads the inventory at `path` with `layout` (each column it leaves unnamed taken from the
-/// layout its header matches: see [`Layout::guess`]).
+/// layout its header matches: see [`Layout::completed`]).
 pub fn load(path: &Path, layer: Option<&str>, layout: &Layout) -> Result<Inventory, CityError> {
     let records = read(path, layer)?;
     let layout = layout.completed(&records.header);

@@ -10,7 +10,7 @@
 import { chromium } from 'playwright-core';
 import { createServer } from 'node:http';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, mkdirSync, readFileSync, writeFileSync, existsSync, statSync } from 'node:fs';
+import { mkdtempSync, mkdirSync, readFileSync, writeFileSync, existsSync, statSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, normalize, extname } from 'node:path';
 
@@ -152,6 +152,7 @@ try {
 } finally {
   await browser.close();
   server.close();
+  rmSync(work, { recursive: true, force: true });
 }
 console.log(failures === 0 ? 'the city shows in CesiumJS' : `${failures} checks failed`);
 process.exit(failures === 0 ? 0 : 1);
