@@ -238,11 +238,19 @@ impl Layout {
         let crs = records.crs.or(self.crs);
         let has_points = records.rows.iter().any(|r| r.point.is_some());
         if !has_points && self.lon_lat.is_none() && self.xy.is_none() {
+            // A file of features none of which is a point says so first.
+            let first = records.rejected.first().map_or(String::new(), |r| {
+                format!(
+                    "; {} rows unusable, the first: {}",
+                    records.rejected.len(),
+                    r.reason
+                )
+            });
             return Err(CityError::inventory(
                 path,
                 format!(
                     "no position columns: name them with --lon-col and --lat-col, or --x-col \
-                     and --y-col with --crs (the header has {})",
+                     and --y-col with --crs (the header has {}){first}",
                     records.header.join(", ")
                 ),
             ));
