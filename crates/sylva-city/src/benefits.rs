@@ -11,7 +11,7 @@ use crate::prototypes::Prototype;
 use std::collections::HashMap;
 use sylva::growth::Measured;
 use sylva::street::Prices;
-use sylva::street::carbon::{BiomassGroup, co2_stored_kg};
+use sylva::street::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
 use sylva::street::climate::{climate, interception_m3};
 
 /// A figure no model or price gives.
@@ -45,15 +45,7 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
     let age = tree.age as f64;
     let group = BiomassGroup::of(&m.species.scientific);
     let stored = group.map(|g| co2_stored_kg(g, dbh));
-    let sequestered = group.map(|g| {
-        let before = (age - 1.0).max(m.ages.0);
-        let ratio = if m.dbh(age) > 0.0 {
-            m.dbh(before) / m.dbh(age)
-        } else {
-            0.0
-        };
-        co2_stored_kg(g, dbh) - co2_stored_kg(g, dbh * ratio.min(1.0))
-    });
+    let sequestered = group.map(|g| co2_sequestered_kg(g, m, age, dbh));
     let s = (tree.height / p.height.max(0.01)) as f64;
     let (leaf, bark, projection) = p.surfaces;
     let rain = climate(&key.region)

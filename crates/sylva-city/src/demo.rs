@@ -354,10 +354,7 @@ impl DemoCity {
     pub fn write_csv(&self, path: &Path, layout: DemoLayout) -> Result<(), CityError> {
         let (header, rows) = self.rows(layout);
         let mut w = csv::Writer::from_writer(Vec::new());
-        let err = |e: &dyn std::fmt::Display| CityError::Write {
-            path: path.into(),
-            message: e.to_string(),
-        };
+        let err = |e: &dyn std::fmt::Display| CityError::write(path, e);
         w.write_record(&header).map_err(|e| err(&e))?;
         for r in rows {
             w.write_record(&r).map_err(|e| err(&e))?;
@@ -396,14 +393,8 @@ impl DemoCity {
             })
             .collect();
         let doc = serde_json::json!({ "type": "FeatureCollection", "features": features });
-        let bytes = serde_json::to_vec(&doc).map_err(|e| CityError::Write {
-            path: path.into(),
-            message: e.to_string(),
-        })?;
-        sylva::export::write_atomically(path, &bytes).map_err(|e| CityError::Write {
-            path: path.into(),
-            message: e.to_string(),
-        })
+        let bytes = serde_json::to_vec(&doc).map_err(|e| CityError::write(path, e))?;
+        sylva::export::write_atomically(path, &bytes).map_err(|e| CityError::write(path, e))
     }
 
     /// Writes the city as a GeoPackage layer `trees`: UTM points and the GIS layout's

@@ -45,6 +45,14 @@ impl CityError {
         }
     }
 
+    /// A write error: the file or folder and what went wrong.
+    pub fn write(path: &std::path::Path, e: impl std::fmt::Display) -> Self {
+        CityError::Write {
+            path: path.into(),
+            message: e.to_string(),
+        }
+    }
+
     /// An inventory error.
     pub fn inventory(path: &std::path::Path, message: impl Into<String>) -> Self {
         CityError::Inventory {

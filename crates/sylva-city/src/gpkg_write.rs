@@ -22,10 +22,7 @@ pub struct Layer<'a> {
 
 /// Writes `layer` to `path` (through a file beside it, renamed into place).
 pub fn write(path: &Path, layer: &Layer<'_>) -> Result<(), CityError> {
-    let err = |e: &dyn std::fmt::Display| CityError::Write {
-        path: path.into(),
-        message: e.to_string(),
-    };
+    let err = |e: &dyn std::fmt::Display| CityError::write(path, e);
     let partial = path.with_extension("gpkg.partial");
     let _ = std::fs::remove_file(&partial);
     {

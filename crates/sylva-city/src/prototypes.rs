@@ -59,10 +59,7 @@ pub fn grow_all(
     dir: &Path,
     done: &(dyn Fn(usize) + Sync),
 ) -> Result<HashMap<ProtoKey, Prototype>, CityError> {
-    std::fs::create_dir_all(dir).map_err(|e| CityError::Write {
-        path: dir.into(),
-        message: e.to_string(),
-    })?;
+    std::fs::create_dir_all(dir).map_err(|e| CityError::write(dir, e))?;
     // Each species, region and variant is grown once, its classes taken on the way up.
     let mut runs: BTreeMap<(String, String, u32), Vec<u32>> = BTreeMap::new();
     for k in keys {
@@ -139,10 +136,7 @@ fn prototype(
         let name = format!("{}-L{k}.bin", key.file_stem());
         let (shared, bytes) = SharedMesh::new(mesh, name.clone());
         let path = dir.join(&name);
-        sylva::export::write_atomically(&path, &bytes).map_err(|e| CityError::Write {
-            path: path.clone(),
-            message: e.to_string(),
-        })?;
+        sylva::export::write_atomically(&path, &bytes).map_err(|e| CityError::write(&path, e))?;
         lods.push(shared);
     }
     Ok(Prototype {

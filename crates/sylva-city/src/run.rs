@@ -90,10 +90,7 @@ fn write_all(
     progress: &dyn Progress,
     t0: std::time::Instant,
 ) -> Result<CityRun, CityError> {
-    let write_err = |p: &Path, e: &dyn std::fmt::Display| CityError::Write {
-        path: p.into(),
-        message: e.to_string(),
-    };
+    let write_err = |p: &Path, e: &dyn std::fmt::Display| CityError::write(p, e);
     std::fs::create_dir_all(dir).map_err(|e| write_err(dir, &e))?;
     let planned = t0.elapsed().as_secs_f64();
     let keys: Vec<ProtoKey> = plan
@@ -272,10 +269,7 @@ fn staging_dir(out: &Path) -> PathBuf {
 
 /// Moves the finished `staging` folder to `out`, replacing an earlier run there.
 fn replace(staging: &Path, out: &Path) -> Result<(), CityError> {
-    let err = |e: std::io::Error| CityError::Write {
-        path: out.into(),
-        message: e.to_string(),
-    };
+    let err = |e: std::io::Error| CityError::write(out, e);
     if out.exists() {
         std::fs::remove_dir_all(out).map_err(err)?;
     }

@@ -51,10 +51,7 @@ pub fn write(
     labels: &Labels<'_>,
     done: &(dyn Fn(usize) + Sync),
 ) -> Result<TilesetReport, CityError> {
-    let write_err = |path: &Path, e: &dyn std::fmt::Display| CityError::Write {
-        path: path.into(),
-        message: e.to_string(),
-    };
+    let write_err = |path: &Path, e: &dyn std::fmt::Display| CityError::write(path, e);
     let at: Vec<[f64; 2]> = trees.iter().map(|t| [t.at.x, t.at.y]).collect();
     let root = quadtree::build(&at, LEAF_TREES);
     let mut nodes = Vec::new();

@@ -113,6 +113,24 @@ pub const CARBON_FRACTION: f64 = 0.5;
 /// kg CO2 per kg carbon (molar masses 44 and 12).
 pub const CO2_PER_C: f64 = 44.0 / 12.0;
 
+/// CO2 taken up in the year that ends at `age` by a tree of `dbh_cm` grown as `m`, kg, with
+/// no record of last year: last year's DBH from the measured growth, in proportion, so that a
+/// grown tree slightly off the curve is not penalised.
+pub fn co2_sequestered_kg(
+    group: BiomassGroup,
+    m: &crate::growth::Measured,
+    age: f64,
+    dbh_cm: f64,
+) -> f64 {
+    let previous = (age - 1.0).max(m.ages.0);
+    let ratio = if m.dbh(age) > 0.0 {
+        m.dbh(previous) / m.dbh(age)
+    } else {
+        0.0
+    };
+    co2_stored_kg(group, dbh_cm) - co2_stored_kg(group, dbh_cm * ratio.min(1.0))
+}
+
 /// CO2 a tree of `dbh_cm` holds, kg: above and below ground, urban-adjusted.
 pub fn co2_stored_kg(group: BiomassGroup, dbh_cm: f64) -> f64 {
     if dbh_cm.is_nan() || dbh_cm <= 0.0 {

@@ -15,7 +15,7 @@
 //! ```
 
 use super::StreetError;
-use super::carbon::{BiomassGroup, co2_stored_kg};
+use super::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
 use super::climate::{Climate, climate, interception_m3};
 use super::conflicts::{Conflict, conflicts_with};
 use super::costs::{Costs, YearCosts};
@@ -211,18 +211,8 @@ impl Assessor {
             let g = self.group.expect("stored implies a group");
             match self.last {
                 Some((a, before)) if age > a => (now - before) / (age - a),
-                _ => {
-                    // The first year of a run: last year's DBH from the measured growth, in
-                    // proportion, so that a grown tree slightly off the curve is not penalised.
-                    let m = &self.measured;
-                    let previous = (age - 1.0).max(m.ages.0);
-                    let ratio = if m.dbh(age) > 0.0 {
-                        m.dbh(previous) / m.dbh(age)
-                    } else {
-                        0.0
-                    };
-                    now - co2_stored_kg(g, dbh * ratio.min(1.0))
-                }
+                // The first year of a run.
+                _ => co2_sequestered_kg(g, &self.measured, age, dbh),
             }
         });
         if let Some(now) = stored {
