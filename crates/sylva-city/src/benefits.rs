@@ -18,7 +18,7 @@ use sylva::street::climate::{climate, interception_m3};
 pub const NO_DATA: f32 = -1.0;
 
 /// One tree's year.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TreeYear {
     /// CO2 held in the tree, kg.
     pub co2_stored_kg: f32,
@@ -104,16 +104,9 @@ mod tests {
             age: 10,
             variant: 0,
         };
-        let measured = HashMap::from([(("InlVal".to_string(), "PLAC".to_string()), m.clone())]);
         let dir = tempfile::tempdir().unwrap();
-        let protos = crate::prototypes::grow_all(
-            std::slice::from_ref(&key),
-            &measured,
-            0,
-            dir.path(),
-            &|_| {},
-        )
-        .unwrap();
+        let protos =
+            crate::prototypes::grow_all(std::slice::from_ref(&key), 0, dir.path()).unwrap();
         let p = &protos[&key];
         let tree = |height: f32| Planned {
             row: 0,

@@ -81,6 +81,18 @@ impl std::fmt::Debug for Projection {
 }
 
 impl Projection {
+    /// The EPSG code `text` names (`EPSG:2263`, `epsg:2263` or `2263`).
+    pub fn parse_epsg(text: &str) -> Result<u32, CityError> {
+        let code = text.trim().to_ascii_uppercase();
+        let code = code.strip_prefix("EPSG:").unwrap_or(&code);
+        code.parse::<u32>().map_err(|_| {
+            CityError::setting(
+                "--crs",
+                format!("`{text}` is not an EPSG code; expected e.g. EPSG:2263"),
+            )
+        })
+    }
+
     /// The coordinate system of EPSG code `code` (as `--crs EPSG:2263` names it).
     pub fn epsg(code: u32) -> Result<Self, CityError> {
         let flag = |m: String| CityError::setting("--crs", m);

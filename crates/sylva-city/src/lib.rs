@@ -11,10 +11,12 @@ pub use error::CityError;
 pub mod plan;
 pub mod prototypes;
 pub mod run;
+pub mod tasks;
 pub mod tiles;
 
 pub use inventory::{Layout, LengthUnit};
 pub use plan::CityOptions;
-pub use run::{CityRun, Progress, Quiet, tile_city};
+pub use run::{Progress, Quiet, tile_city};
+pub use tasks::{CityRun, summary_json};
 pub mod demo;
 mod gpkg_write;

@@ -46,8 +46,48 @@ impl Default for CityOptions {
     }
 }
 
+impl CityOptions {
+    /// Most seed variants, epochs, and years on (Sylva's bounds: a run's growth stays some
+    /// minutes on a laptop).
+    pub const MAX_VARIANTS: u32 = 16;
+    pub const MAX_EPOCHS: usize = 20;
+    pub const MAX_YEARS: u32 = 200;
+
+    /// The options checked against their bounds, the epochs in rising order, each once.
+    pub fn checked(&self) -> Result<CityOptions, CityError> {
+        if self.variants == 0 || self.variants > Self::MAX_VARIANTS {
+            return Err(CityError::setting(
+                "--variants",
+                format!("{}: expected 1 to {}", self.variants, Self::MAX_VARIANTS),
+            ));
+        }
+        let mut years = self.years.clone();
+        years.sort_unstable();
+        years.dedup();
+        if years.is_empty()
+            || years.len() > Self::MAX_EPOCHS
+            || years.iter().any(|&y| y > Self::MAX_YEARS)
+        {
+            return Err(CityError::setting(
+                "--years",
+                format!(
+                    "{years:?}: expected 1 to {} epochs, each at most {} years on",
+                    Self::MAX_EPOCHS,
+                    Self::MAX_YEARS
+                ),
+            ));
+        }
+        Ok(CityOptions {
+            years,
+            ..self.clone()
+        })
+    }
+}
+
 /// A grown tree shared by every tree of its species, region, age class and variant.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(
+    Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub struct ProtoKey {
     /// Region whose equations grow it.
     pub region: String,
@@ -70,7 +110,7 @@ impl ProtoKey {
 }
 
 /// What stands at a tree's place.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Kind {
     /// A grown tree.
     Tree(ProtoKey),
@@ -79,7 +119,7 @@ pub enum Kind {
 }
 
 /// One tree of the city at one epoch.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Planned {
     /// Its row in the inventory's trees.
     pub row: usize,

@@ -4,9 +4,7 @@
 
 use crate::CityError;
 use crate::plan::ProtoKey;
-use rayon::prelude::*;
 use std::collections::{BTreeMap, HashMap};
-use std::path::Path;
 use sylva::export::{Materials, SharedMesh};
 use sylva::growth::season::dressed_skeleton;
 use sylva::growth::{Grower, GrowthOptions, Measured, measure};
@@ -28,7 +26,7 @@ const MESH: MeshOptions = MeshOptions {
 };
 
 /// A grown tree, meshed and written.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Prototype {
     /// What it is.
     pub key: ProtoKey,
@@ -49,68 +47,101 @@ pub struct Prototype {
     pub errors: [f32; 3],
 }
 
-/// Grows and meshes every prototype of `keys`, writing each level to
-/// `dir/<code>-<region>-<age>-<variant>-L<k>.bin`; `uri_prefix` is how a tile's GLB refers to
-/// `dir`. `done` is called with the number of prototypes finished so far.
-pub fn grow_all(
-    keys: &[ProtoKey],
-    measured: &HashMap<(String, String), Measured>,
-    seed: u64,
-    dir: &Path,
-    done: &(dyn Fn(usize) + Sync),
-) -> Result<HashMap<ProtoKey, Prototype>, CityError> {
-    std::fs::create_dir_all(dir).map_err(|e| CityError::write(dir, e))?;
-    // Each species, region and variant is grown once, its classes taken on the way up.
+/// One growth task: a species, region and seed variant grown once, its age classes taken on
+/// the way up. A pure function of its fields, so any process may run it.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
+pub struct GrowthTask {
+    /// Region whose equations grow it.
+    pub region: String,
+    /// Species code.
+    pub code: String,
+    /// Seed variant.
+    pub variant: u32,
+    /// The classes' ages, rising.
+    pub ages: Vec<u32>,
+    /// The run's seed.
+    pub seed: u64,
+}
+
+/// The growth tasks that make every prototype of `keys`, in a stable order.
+pub fn growth_tasks(keys: &[ProtoKey], seed: u64) -> Vec<GrowthTask> {
     let mut runs: BTreeMap<(String, String, u32), Vec<u32>> = BTreeMap::new();
     for k in keys {
         runs.entry((k.region.clone(), k.code.clone(), k.variant))
             .or_default()
             .push(k.age);
     }
-    let finished = std::sync::atomic::AtomicUsize::new(0);
-    let grown: Vec<Vec<Prototype>> = runs
-        .into_par_iter()
+    runs.into_iter()
         .map(|((region, code, variant), mut ages)| {
             ages.sort_unstable();
             ages.dedup();
-            let m = measured
-                .get(&(region.clone(), code.clone()))
-                .ok_or_else(|| CityError::Growth(format!("{code} in {region} was not planned")))?;
-            let options = GrowthOptions {
-                seed: seed.wrapping_add(variant as u64),
-                ..Default::default()
-            };
-            let mut grower = Grower::new(m.clone(), options);
-            let mut out = Vec::with_capacity(ages.len());
-            for age in ages {
-                grower.advance_to(age as f64);
-                let key = ProtoKey {
-                    region: region.clone(),
-                    code: code.clone(),
-                    age,
-                    variant,
-                };
-                out.push(prototype(key, m, &grower.skeleton(), dir)?);
-                let n = finished.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                done(n);
+            GrowthTask {
+                region,
+                code,
+                variant,
+                ages,
+                seed,
             }
-            Ok(out)
         })
-        .collect::<Result<_, CityError>>()?;
-    Ok(grown
-        .into_iter()
-        .flatten()
-        .map(|p| (p.key.clone(), p))
-        .collect())
+        .collect()
 }
 
-/// One grown tree dressed for summer, meshed at each level and written.
+/// A prototype's level file: its name (in the run's `prototypes/` folder) and its bytes.
+pub type LevelFile = (String, Vec<u8>);
+
+/// Runs `task`: its prototypes, and the files of their levels of detail.
+pub fn grow(task: &GrowthTask) -> Result<(Vec<Prototype>, Vec<LevelFile>), CityError> {
+    let m = sylva::growth::Database::builtin()
+        .find(&task.region, &task.code)
+        .map_err(|e| CityError::Growth(e.to_string()))?;
+    let options = GrowthOptions {
+        seed: task.seed.wrapping_add(task.variant as u64),
+        ..Default::default()
+    };
+    let mut grower = Grower::new(m.clone(), options);
+    let mut prototypes = Vec::with_capacity(task.ages.len());
+    let mut files = Vec::with_capacity(task.ages.len() * 3);
+    for &age in &task.ages {
+        grower.advance_to(age as f64);
+        let key = ProtoKey {
+            region: task.region.clone(),
+            code: task.code.clone(),
+            age,
+            variant: task.variant,
+        };
+        let (p, levels) = prototype(key, &m, &grower.skeleton());
+        prototypes.push(p);
+        files.extend(levels);
+    }
+    Ok((prototypes, files))
+}
+
+/// Grows every prototype of `keys` and writes their files into `dir` (for tests).
+#[cfg(test)]
+pub(crate) fn grow_all(
+    keys: &[ProtoKey],
+    seed: u64,
+    dir: &std::path::Path,
+) -> Result<HashMap<ProtoKey, Prototype>, CityError> {
+    let mut out = HashMap::new();
+    for task in growth_tasks(keys, seed) {
+        let (prototypes, files) = grow(&task)?;
+        for (name, bytes) in files {
+            let path = dir.join(name);
+            std::fs::write(&path, bytes).map_err(|e| CityError::write(&path, e))?;
+        }
+        out.extend(prototypes.into_iter().map(|p| (p.key.clone(), p)));
+    }
+    Ok(out)
+}
+
+/// One grown tree dressed for summer and meshed at each level: the prototype, and each
+/// level's file.
 fn prototype(
     key: ProtoKey,
     m: &Measured,
     skeleton: &sylva::Skeleton,
-    dir: &Path,
-) -> Result<Prototype, CityError> {
+) -> (Prototype, Vec<LevelFile>) {
     let dims = measure(skeleton);
     let crown = Crown::with_leaves(skeleton, &leaves_of(skeleton));
     let dress = m.dress(None);
@@ -131,23 +162,23 @@ fn prototype(
         worst = worst.max(distance_to(&whole, mesh));
         errors[k] = worst;
     }
-    let mut lods = Vec::with_capacity(3);
-    for (k, mesh) in meshes.iter().enumerate() {
+    let mut files = Vec::with_capacity(3);
+    let lods = [0, 1, 2].map(|k| {
         let name = format!("{}-L{k}.bin", key.file_stem());
-        let (shared, bytes) = SharedMesh::new(mesh, name.clone());
-        let path = dir.join(&name);
-        sylva::export::write_atomically(&path, &bytes).map_err(|e| CityError::write(&path, e))?;
-        lods.push(shared);
-    }
-    Ok(Prototype {
+        let (shared, bytes) = SharedMesh::new(&meshes[k], name.clone());
+        files.push((name, bytes));
+        shared
+    });
+    let prototype = Prototype {
         key,
         height: dims.height as f32,
         crown_diameter: dims.crown_diameter as f32,
         materials: dress.materials(),
         surfaces: (crown.leaf_area, crown.bark_area, crown.projection),
-        lods: lods.try_into().expect("three levels"),
+        lods,
         errors,
-    })
+    };
+    (prototype, files)
 }
 
 /// The most of a tree that an engine mesh of at most `budget` triangles draws: twigs and
@@ -276,24 +307,14 @@ mod tests {
 
     #[test]
     fn levels_keep_their_budgets_and_their_errors_grow() {
-        let db = sylva::growth::Database::builtin();
-        let m = db.find("InlVal", "PYCA_B").unwrap();
         let key = ProtoKey {
             region: "InlVal".into(),
             code: "PYCA_B".into(),
             age: 12,
             variant: 0,
         };
-        let measured = HashMap::from([(("InlVal".to_string(), "PYCA_B".to_string()), m)]);
         let dir = tempfile::tempdir().unwrap();
-        let grown = grow_all(
-            std::slice::from_ref(&key),
-            &measured,
-            0,
-            dir.path(),
-            &|_| {},
-        )
-        .unwrap();
+        let grown = grow_all(std::slice::from_ref(&key), 0, dir.path()).unwrap();
         let p = &grown[&key];
         for (k, lod) in p.lods.iter().enumerate() {
             assert!(

@@ -35,17 +35,11 @@ pub fn run(args: &CityArgs) -> Result<()> {
             .map(|s| LengthUnit::parse(flag, s))
             .transpose()?)
     };
-    let crs = match &args.crs {
-        None => None,
-        Some(c) => {
-            let code = c.trim().to_ascii_uppercase();
-            let code = code.strip_prefix("EPSG:").unwrap_or(&code);
-            match code.parse::<u32>() {
-                Ok(n) => Some(n),
-                Err(_) => bail!("--crs: `{c}` is not an EPSG code; expected e.g. EPSG:2263"),
-            }
-        }
-    };
+    let crs = args
+        .crs
+        .as_deref()
+        .map(sylva_city::geo::Projection::parse_epsg)
+        .transpose()?;
     let layout = Layout {
         id: args.id_col.clone(),
         species: args.species_col.clone(),
@@ -63,20 +57,11 @@ pub fn run(args: &CityArgs) -> Result<()> {
         ground: args.ground_col.clone(),
         name: String::new(),
     };
-    if args.variants == 0 || args.variants > 16 {
-        bail!("--variants {}: expected 1 to 16", args.variants);
-    }
-    if args.years.len() > 20 || args.years.iter().any(|&y| y > 200) {
-        bail!("--years: at most 20 epochs, each at most 200 years on");
-    }
-    let mut years = args.years.clone();
-    years.sort_unstable();
-    years.dedup();
     let options = CityOptions {
         region: args.region.clone(),
         variants: args.variants,
         stumps: args.stumps,
-        years,
+        years: args.years.clone(),
         base_year: args.year,
         ground: args.ground,
         seed: args.seed,

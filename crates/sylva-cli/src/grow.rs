@@ -6,7 +6,7 @@ use crate::args::{GrowArgs, parse_size};
 use crate::shared::{database, headless, load_street, save_picture};
 use anyhow::{Context, Result, bail};
 use sylva::export::{to_glb, write_atomically};
-use sylva::growth::report::{self, AgeRecord, Cohort, age_label, run_ages};
+use sylva::growth::report::{self, Cohort, age_label, run_ages};
 use sylva::growth::{Measured, dressed_mesh};
 use sylva::street::rank::first_conflicts;
 use sylva::street::{Assessor, Kind, YearAccount, picture::site_picture, table};
@@ -145,7 +145,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 save_picture(&output.join(format!("{stem}.png")), &picture)?;
             }
             if args.json {
-                let mut record = record_json(m, grown);
+                let mut record = report::record_json(m, grown);
                 record["street"] = table::json(&account);
                 println!("{record}");
             } else {
@@ -254,30 +254,4 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         println!("wrote {}", output.display());
     }
     Ok(())
-}
-
-/// One age of one species as a JSON line.
-fn record_json(m: &Measured, r: &AgeRecord) -> serde_json::Value {
-    let (d, t, f) = (&r.model, &r.measured, &r.form);
-    let round = |v: f64, k: f64| (v * k).round() / k;
-    serde_json::json!({
-        "species": m.species.code,
-        "age": r.age,
-        "height_m": round(d.height, 1e3),
-        "height_measured_m": round(t.height, 1e3),
-        "crown_height_m": round(d.crown_height, 1e3),
-        "crown_height_measured_m": round(t.crown_height, 1e3),
-        "crown_diameter_m": round(d.crown_diameter, 1e3),
-        "crown_diameter_measured_m": round(t.crown_diameter, 1e3),
-        "dbh_cm": round(d.dbh, 1e2),
-        "dbh_measured_cm": round(t.dbh, 1e2),
-        "leaf_area_m2": round(d.leaf_area, 10.0),
-        "leaf_area_measured_m2": round(t.leaf_area, 10.0),
-        "inner_leaf_share": round(f.inner_leaf_share, 1e3),
-        "leaders": f.leaders,
-        "scaffold_angle_deg": f.scaffold_angle.map(|a| round(a, 10.0)),
-        "pipe_exponent": f.pipe_exponent.map(|n| round(n, 1e2)),
-        "live_branches": r.branches.0,
-        "shed_branches": r.branches.1,
-    })
 }

@@ -7,6 +7,7 @@ use crate::benefits::TreeYear;
 use crate::plan::{Kind, Planned, ProtoKey};
 use crate::prototypes::Prototype;
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 use serde_json::json;
 use std::collections::{BTreeMap, HashMap};
 use sylva::export::{
@@ -14,15 +15,18 @@ use sylva::export::{
     PropertyTable, SharedMesh, instanced_glb,
 };
 
-/// What a tree's row of attributes says beyond its plan: its inventory id and the species as
-/// the inventory names it, and its species' names.
-pub struct Labels<'a> {
-    /// Inventory id, by row.
-    pub id: &'a (dyn Fn(usize) -> String + Sync),
-    /// The species as the inventory writes it, by row.
-    pub written: &'a (dyn Fn(usize) -> String + Sync),
-    /// Common and scientific names of a species code in a region.
-    pub names: &'a (dyn Fn(&str, &str) -> (String, String) + Sync),
+/// One tree of a tile: its plan, its year's figures, and what its row of attributes says
+/// beyond them (the inventory's id and the species as the inventory writes it).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TileTree {
+    /// Where it stands and what it is.
+    pub tree: Planned,
+    /// Its benefits this year.
+    pub year: TreeYear,
+    /// The inventory's id of it.
+    pub id: String,
+    /// The species as the inventory names it.
+    pub written: String,
 }
 
 /// The schema of every tile's property tables: one class, a street tree.
@@ -64,18 +68,17 @@ pub fn schema() -> serde_json::Value {
 /// every tree as its class's first seed variant (variants differ in detail a coarse level does
 /// not show), so a parent tile holds fewer meshes.
 pub fn tile_glb(
-    trees: &[(&Planned, &TreeYear)],
+    trees: &[TileTree],
     centre: DVec3,
     lod: usize,
     prototypes: &HashMap<ProtoKey, Prototype>,
     stump: &SharedMesh,
     prefix: &str,
-    labels: &Labels<'_>,
 ) -> Result<Vec<u8>, sylva::ExportError> {
     // Trees by what they are drawn as, in a stable order; each keeps its row in the table.
     let mut groups: BTreeMap<Option<ProtoKey>, Vec<u32>> = BTreeMap::new();
-    for (row, (t, _)) in trees.iter().enumerate() {
-        let key = match &t.kind {
+    for (row, t) in trees.iter().enumerate() {
+        let key = match &t.tree.kind {
             Kind::Tree(k) if lod > 0 => Some(ProtoKey {
                 variant: 0,
                 ..k.clone()
@@ -117,7 +120,7 @@ pub fn tile_glb(
         .iter()
         .map(|(key, rows)| {
             let drawn = key.as_ref().map(|k| prototypes[k].height.max(0.01));
-            let of = |r: &u32| trees[*r as usize].0;
+            let of = |r: &u32| &trees[*r as usize].tree;
             (
                 rows.iter()
                     .map(|r| (of(r).at - centre).as_vec3().to_array())
@@ -146,32 +149,31 @@ pub fn tile_glb(
         .collect();
     let metadata = Metadata {
         schema: schema(),
-        tables: vec![table(trees, labels)],
+        tables: vec![table(trees)],
     };
     instanced_glb(&meshes, &groups, Some(&metadata))
 }
 
 /// The rows of a tile's trees, in their order.
-fn table(trees: &[(&Planned, &TreeYear)], labels: &Labels<'_>) -> PropertyTable {
-    let text =
-        |f: &dyn Fn(&Planned) -> String| Column::Text(trees.iter().map(|t| f(t.0)).collect());
+fn table(trees: &[TileTree]) -> PropertyTable {
+    let text = |f: &dyn Fn(&TileTree) -> String| Column::Text(trees.iter().map(f).collect());
     let number =
-        |f: &dyn Fn(&Planned) -> f32| Column::Float32(trees.iter().map(|t| f(t.0)).collect());
+        |f: &dyn Fn(&Planned) -> f32| Column::Float32(trees.iter().map(|t| f(&t.tree)).collect());
     let year =
-        |f: &dyn Fn(&TreeYear) -> f32| Column::Float32(trees.iter().map(|t| f(t.1)).collect());
-    let key = |t: &Planned| match &t.kind {
+        |f: &dyn Fn(&TreeYear) -> f32| Column::Float32(trees.iter().map(|t| f(&t.year)).collect());
+    let key = |t: &TileTree| match &t.tree.kind {
         Kind::Tree(k) => (k.code.clone(), k.region.clone()),
         Kind::Stump => ("stump".into(), String::new()),
     };
-    let names = |t: &Planned| {
+    let names = |t: &TileTree| {
         let (code, region) = key(t);
-        (labels.names)(&code, &region)
+        species_names(&code, &region)
     };
     PropertyTable {
         class: "tree".into(),
         columns: vec![
-            ("id".into(), text(&|t| (labels.id)(t.row))),
-            ("species_written".into(), text(&|t| (labels.written)(t.row))),
+            ("id".into(), text(&|t| t.id.clone())),
+            ("species_written".into(), text(&|t| t.written.clone())),
             ("species".into(), text(&|t| key(t).0)),
             ("common_name".into(), text(&|t| names(t).0)),
             ("scientific_name".into(), text(&|t| names(t).1)),
@@ -192,6 +194,17 @@ fn table(trees: &[(&Planned, &TreeYear)], labels: &Labels<'_>) -> PropertyTable 
             ("benefits_usd_per_year".into(), year(&|y| y.benefits_usd)),
         ],
     }
+}
+
+/// Common and scientific names of species `code` in `region` (none for a stump).
+fn species_names(code: &str, region: &str) -> (String, String) {
+    sylva::growth::Database::builtin()
+        .species()
+        .iter()
+        .find(|s| s.code == code && s.region == region)
+        .map_or((String::new(), String::new()), |s| {
+            (s.common.clone(), s.scientific.clone())
+        })
 }
 
 /// A stump's bark: the grey-brown of weathered wood.

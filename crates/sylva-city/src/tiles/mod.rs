@@ -12,11 +12,12 @@ use crate::CityError;
 use crate::benefits::TreeYear;
 use crate::plan::{Kind, Planned, ProtoKey};
 use crate::prototypes::Prototype;
-use content::Labels;
+use content::TileTree;
 use glam::{DMat4, DVec3};
 use quadtree::Node;
+use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 use sylva::export::SharedMesh;
 
@@ -36,74 +37,148 @@ pub struct TilesetReport {
     pub trees: usize,
 }
 
-/// Writes `trees` (in the frame whose ECEF transform is `frame`) as a tileset in `dir`:
-/// `dir/tileset.json` and `dir/content/<level>/<x>-<y>.glb`, the prototypes' files read from
-/// `prototypes_uri` (relative to `dir`). `done` is called with the tiles written so far.
-#[allow(clippy::too_many_arguments)]
-pub fn write(
-    dir: &Path,
-    trees: &[Planned],
-    years: &[TreeYear],
+/// One tile's work, whole: everything its content needs, so that any process can make it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TileTask {
+    /// The folder of its tileset, relative to the run's output (`""` or `"year-10/"`).
+    pub tileset: String,
+    /// Depth, and x, y among the tiles of its depth.
+    pub level: u32,
+    pub x: u32,
+    pub y: u32,
+    /// Its square on the ground: west, south, east, north, m.
+    pub square: [f64; 4],
+    /// Levels below it: 0 for a leaf tile.
+    pub height: u32,
+    /// Every tree below it.
+    pub trees: Vec<TileTree>,
+    /// The grown trees they are drawn as.
+    pub prototypes: Vec<Prototype>,
+    /// The stump's mesh.
+    pub stump: SharedMesh,
+    /// Where the prototypes' files lie, relative to the tileset's folder.
+    pub prototypes_uri: String,
+}
+
+impl TileTask {
+    /// The task of `node`, one of the tiles of `trees` (whose years are `years`, whose labels
+    /// `labels` gives by inventory row), in the tileset at `tileset`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        tileset: &str,
+        node: &Node,
+        trees: &[Planned],
+        years: &[TreeYear],
+        labels: &dyn Fn(usize) -> (String, String),
+        prototypes: &HashMap<ProtoKey, Prototype>,
+        stump: &SharedMesh,
+        prototypes_uri: &str,
+    ) -> TileTask {
+        let members: Vec<TileTree> = node
+            .trees
+            .iter()
+            .map(|&i| {
+                let tree = trees[i as usize].clone();
+                let (id, written) = labels(tree.row);
+                TileTree {
+                    year: years[i as usize],
+                    id,
+                    written,
+                    tree,
+                }
+            })
+            .collect();
+        let lod = node.height().min(2) as usize;
+        let used: BTreeSet<ProtoKey> = members
+            .iter()
+            .filter_map(|t| match &t.tree.kind {
+                Kind::Tree(k) => Some(k.clone()),
+                Kind::Stump => None,
+            })
+            // Each tree's own grown tree gives its box and error; coarse levels draw each
+            // class's first variant (`content::tile_glb`).
+            .flat_map(|k| {
+                let first = ProtoKey {
+                    variant: 0,
+                    ..k.clone()
+                };
+                if lod > 0 { vec![k, first] } else { vec![k] }
+            })
+            .collect();
+        TileTask {
+            tileset: tileset.to_string(),
+            level: node.level,
+            x: node.x,
+            y: node.y,
+            square: node.square,
+            height: node.height(),
+            trees: members,
+            prototypes: used.iter().map(|k| prototypes[k].clone()).collect(),
+            stump: stump.clone(),
+            prototypes_uri: prototypes_uri.to_string(),
+        }
+    }
+}
+
+/// Makes the content of `task`: what the tileset's JSON needs of the tile, and its GLB.
+pub fn make_tile(task: &TileTask) -> Result<(Tile, Vec<u8>), CityError> {
+    let prototypes: HashMap<ProtoKey, Prototype> = task
+        .prototypes
+        .iter()
+        .map(|p| (p.key.clone(), p.clone()))
+        .collect();
+    let tile = tile_of(task, &prototypes);
+    let prefix = format!("../../{}", task.prototypes_uri);
+    let glb = content::tile_glb(
+        &task.trees,
+        tile.centre,
+        tile.lod,
+        &prototypes,
+        &task.stump,
+        &prefix,
+    )
+    .map_err(|e| CityError::write(Path::new(&format!("{}{}", task.tileset, tile.uri)), e))?;
+    Ok((
+        Tile {
+            content_bytes: glb.len() as u64,
+            ..tile
+        },
+        glb,
+    ))
+}
+
+/// The tileset's JSON: the tiles of the quadtree `root` (made by [`make_tile`], in any
+/// order), placed in the city's frame whose ECEF transform is `frame`, over trees the
+/// tallest of which is `tallest` m.
+pub fn tileset_json(
+    root: &Node,
+    tiles: &[Tile],
     frame: [f64; 16],
-    prototypes: &HashMap<ProtoKey, Prototype>,
-    stump: &SharedMesh,
-    prototypes_uri: &str,
-    labels: &Labels<'_>,
-    done: &(dyn Fn(usize) + Sync),
-) -> Result<TilesetReport, CityError> {
-    let write_err = |path: &Path, e: &dyn std::fmt::Display| CityError::write(path, e);
-    let at: Vec<[f64; 2]> = trees.iter().map(|t| [t.at.x, t.at.y]).collect();
-    let root = quadtree::build(&at, LEAF_TREES);
+    tallest: f32,
+) -> Result<(Vec<u8>, TilesetReport), CityError> {
+    let by_node: HashMap<(u32, u32, u32), &Tile> =
+        tiles.iter().map(|t| ((t.level, t.x, t.y), t)).collect();
     let mut nodes = Vec::new();
     root.walk(&mut nodes);
-    let written = std::sync::atomic::AtomicUsize::new(0);
-    use rayon::prelude::*;
-    // Every tile's content, written in parallel; its error and box come back for the JSON.
-    let tiles: Vec<(Tile, u64)> = nodes
-        .par_iter()
-        .map(|node| {
-            let tile = tile_of(node, trees, prototypes);
-            let members: Vec<(&Planned, &TreeYear)> = node
-                .trees
-                .iter()
-                .map(|&i| (&trees[i as usize], &years[i as usize]))
-                .collect();
-            let path = dir.join(&tile.uri);
-            let prefix = format!("../../{prototypes_uri}");
-            let glb = content::tile_glb(
-                &members,
-                tile.centre,
-                tile.lod,
-                prototypes,
-                stump,
-                &prefix,
-                labels,
-            )
-            .map_err(|e| write_err(&path, &e))?;
-            if let Some(parent) = path.parent() {
-                std::fs::create_dir_all(parent).map_err(|e| write_err(parent, &e))?;
-            }
-            sylva::export::write_atomically(&path, &glb).map_err(|e| write_err(&path, &e))?;
-            done(written.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-            Ok((tile, glb.len() as u64))
-        })
-        .collect::<Result<_, CityError>>()?;
-    let content_bytes = tiles.iter().map(|t| t.1).sum();
-    let by_node: HashMap<(u32, u32, u32), &Tile> = tiles
+    if let Some(n) = nodes
         .iter()
-        .map(|(t, _)| ((t.level, t.x, t.y), t))
-        .collect();
-    let mut root_json = tile_json(&root, &by_node, None);
+        .find(|n| !by_node.contains_key(&(n.level, n.x, n.y)))
+    {
+        return Err(CityError::Growth(format!(
+            "tile {}/{}-{} was not made",
+            n.level, n.x, n.y
+        )));
+    }
+    let mut root_json = tile_json(root, &by_node, None);
     // The root carries the city's frame: local east-north-up metres to ECEF.
     let root_tile = by_node[&(0, 0, 0)];
     let m = DMat4::from_cols_array(&frame) * DMat4::from_translation(root_tile.centre);
     root_json["transform"] = json!(m.to_cols_array());
     root_json["refine"] = json!("REPLACE");
-    let tallest = trees.iter().map(|t| t.height).fold(1.0f32, f32::max);
     let error = root_json["geometricError"]
         .as_f64()
         .unwrap_or(0.0)
-        .max(tallest as f64);
+        .max(tallest.max(1.0) as f64);
     let tileset = json!({
         "asset": {
             "version": "1.1",
@@ -112,42 +187,52 @@ pub fn write(
         "geometricError": error,
         "root": root_json,
     });
-    let path = dir.join("tileset.json");
-    let text = serde_json::to_vec_pretty(&tileset).map_err(|e| write_err(&path, &e))?;
-    sylva::export::write_atomically(&path, &text).map_err(|e| write_err(&path, &e))?;
-    Ok(TilesetReport {
-        tiles: tiles.len(),
-        content_bytes,
+    let text = serde_json::to_vec_pretty(&tileset)
+        .map_err(|e| CityError::write(Path::new("tileset.json"), e))?;
+    let report = TilesetReport {
+        tiles: nodes.len(),
+        content_bytes: nodes
+            .iter()
+            .map(|n| by_node[&(n.level, n.x, n.y)].content_bytes)
+            .sum(),
         depth: root.height(),
-        trees: trees.len(),
-    })
+        trees: root.trees.len(),
+    };
+    Ok((text, report))
 }
 
-/// A tile's content and how it is placed.
-struct Tile {
-    level: u32,
-    x: u32,
-    y: u32,
-    uri: String,
+/// A tile's content and how it is placed: what the tileset's JSON says of it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Tile {
+    /// The folder of its tileset, relative to the run's output.
+    pub tileset: String,
+    /// Depth, and x, y among the tiles of its depth.
+    pub level: u32,
+    pub x: u32,
+    pub y: u32,
+    /// Its content's path, relative to its tileset's folder.
+    pub uri: String,
     /// Its centre in the city's frame: the middle of its square, at the ground.
-    centre: DVec3,
+    pub centre: DVec3,
     /// Level of detail it draws its trees at.
-    lod: usize,
+    pub lod: usize,
     /// Geometric error, m, before it is made no smaller than its children's.
-    error: f64,
+    pub error: f64,
     /// Its box in the city's frame: low and high corners.
-    lo: DVec3,
-    hi: DVec3,
+    pub lo: DVec3,
+    pub hi: DVec3,
+    /// Bytes of its GLB.
+    pub content_bytes: u64,
 }
 
-fn tile_of(node: &Node, trees: &[Planned], prototypes: &HashMap<ProtoKey, Prototype>) -> Tile {
-    let lod = node.height().min(2) as usize;
-    let [w, s, e, n] = node.square;
+fn tile_of(task: &TileTask, prototypes: &HashMap<ProtoKey, Prototype>) -> Tile {
+    let lod = task.height.min(2) as usize;
+    let [w, s, e, n] = task.square;
     let mut error = 0.0f64;
     let mut overhang = 0.0f64;
     let (mut zlo, mut zhi) = (f64::MAX, f64::MIN);
-    for &i in &node.trees {
-        let t = &trees[i as usize];
+    for t in &task.trees {
+        let t = &t.tree;
         let (top, reach, err) = match &t.kind {
             Kind::Tree(k) => {
                 let p = &prototypes[k];
@@ -174,15 +259,17 @@ fn tile_of(node: &Node, trees: &[Planned], prototypes: &HashMap<ProtoKey, Protot
     // A margin for the trees' leaves beyond their measured crowns, and rounding.
     let margin = 0.5;
     Tile {
-        level: node.level,
-        x: node.x,
-        y: node.y,
-        uri: format!("content/{}/{}-{}.glb", node.level, node.x, node.y),
+        tileset: task.tileset.clone(),
+        level: task.level,
+        x: task.x,
+        y: task.y,
+        uri: format!("content/{}/{}-{}.glb", task.level, task.x, task.y),
         centre: DVec3::new((w + e) / 2.0, (s + n) / 2.0, 0.0),
         lod,
-        error: if node.children.is_empty() { 0.0 } else { error },
+        error: if task.height == 0 { 0.0 } else { error },
         lo: DVec3::new(w - overhang - margin, s - overhang - margin, zlo - margin),
         hi: DVec3::new(e + overhang + margin, n + overhang + margin, zhi + margin),
+        content_bytes: 0,
     }
 }
 

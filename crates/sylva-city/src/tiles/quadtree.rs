@@ -29,6 +29,11 @@ impl Node {
             .unwrap_or(0)
     }
 
+    /// Tiles in all, itself among them.
+    pub fn count(&self) -> usize {
+        1 + self.children.iter().map(Node::count).sum::<usize>()
+    }
+
     /// Every tile, parents before their children.
     pub fn walk<'a>(&'a self, out: &mut Vec<&'a Node>) {
         out.push(self);

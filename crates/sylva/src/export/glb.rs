@@ -13,7 +13,7 @@ use std::io::Write;
 use std::path::Path;
 
 /// Base colours (linear RGBA) of the materials.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Materials {
     /// Bark colour.
     pub bark: [f32; 4],

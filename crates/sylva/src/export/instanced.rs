@@ -17,7 +17,8 @@ use std::collections::{BTreeMap, HashMap};
 
 /// A mesh's geometry in a binary file of its own, which many GLB files refer to: a city's tiles
 /// share each grown tree's mesh instead of each holding a copy. Made with [`SharedMesh::new`].
-#[derive(Clone, Debug, PartialEq)]
+/// It serialises (serde) so that a city's tasks can carry it to other processes.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SharedMesh {
     /// The binary file's URI, relative to the GLB files that refer to it.
     pub uri: String,
@@ -27,7 +28,7 @@ pub struct SharedMesh {
 }
 
 /// Where one primitive's arrays lie in a shared mesh's file.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 struct SharedPrimitive {
     /// 0 bark, 1 leaves, 2 flowers.
     material: usize,

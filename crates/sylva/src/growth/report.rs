@@ -67,6 +67,33 @@ pub fn run_ages(
     Ok((0..count).map(|i| from + i as f64 * step).collect())
 }
 
+/// An age's record as JSON: each grown dimension beside the equations' (`_measured`), and the
+/// crown's form.
+pub fn record_json(m: &Measured, r: &AgeRecord) -> serde_json::Value {
+    let (d, t, f) = (&r.model, &r.measured, &r.form);
+    let round = |v: f64, k: f64| (v * k).round() / k;
+    serde_json::json!({
+        "species": m.species.code,
+        "age": r.age,
+        "height_m": round(d.height, 1e3),
+        "height_measured_m": round(t.height, 1e3),
+        "crown_height_m": round(d.crown_height, 1e3),
+        "crown_height_measured_m": round(t.crown_height, 1e3),
+        "crown_diameter_m": round(d.crown_diameter, 1e3),
+        "crown_diameter_measured_m": round(t.crown_diameter, 1e3),
+        "dbh_cm": round(d.dbh, 1e2),
+        "dbh_measured_cm": round(t.dbh, 1e2),
+        "leaf_area_m2": round(d.leaf_area, 10.0),
+        "leaf_area_measured_m2": round(t.leaf_area, 10.0),
+        "inner_leaf_share": round(f.inner_leaf_share, 1e3),
+        "leaders": f.leaders,
+        "scaffold_angle_deg": f.scaffold_angle.map(|a| round(a, 10.0)),
+        "pipe_exponent": f.pipe_exponent.map(|n| round(n, 1e2)),
+        "live_branches": r.branches.0,
+        "shed_branches": r.branches.1,
+    })
+}
+
 /// One age of one tree: what the model grew and what the equations say.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AgeRecord {
