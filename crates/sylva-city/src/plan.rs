@@ -100,6 +100,15 @@ pub struct ProtoKey {
 }
 
 impl ProtoKey {
+    /// The same class's first seed variant: what coarse levels draw (variants differ in
+    /// detail a coarse level does not show).
+    pub fn first_variant(&self) -> ProtoKey {
+        ProtoKey {
+            variant: 0,
+            ..self.clone()
+        }
+    }
+
     /// A name fit for a file: `PLAC-InlVal-30-1`.
     pub fn file_stem(&self) -> String {
         format!(

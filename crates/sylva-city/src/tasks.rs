@@ -82,13 +82,7 @@ impl CityJob {
                 Kind::Stump => None,
             })
             // Coarse levels draw each class's first variant (`content::tile_glb`).
-            .flat_map(|k| {
-                let first = ProtoKey {
-                    variant: 0,
-                    ..k.clone()
-                };
-                [k, first]
-            })
+            .flat_map(|k| [k.first_variant(), k])
             .collect::<BTreeSet<_>>()
             .into_iter()
             .collect();

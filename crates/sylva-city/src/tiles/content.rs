@@ -79,10 +79,7 @@ pub fn tile_glb(
     let mut groups: BTreeMap<Option<ProtoKey>, Vec<u32>> = BTreeMap::new();
     for (row, t) in trees.iter().enumerate() {
         let key = match &t.tree.kind {
-            Kind::Tree(k) if lod > 0 => Some(ProtoKey {
-                variant: 0,
-                ..k.clone()
-            }),
+            Kind::Tree(k) if lod > 0 => Some(k.first_variant()),
             Kind::Tree(k) => Some(k.clone()),
             Kind::Stump => None,
         };

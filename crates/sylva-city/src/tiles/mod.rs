@@ -98,11 +98,11 @@ impl TileTask {
             // Each tree's own grown tree gives its box and error; coarse levels draw each
             // class's first variant (`content::tile_glb`).
             .flat_map(|k| {
-                let first = ProtoKey {
-                    variant: 0,
-                    ..k.clone()
-                };
-                if lod > 0 { vec![k, first] } else { vec![k] }
+                if lod > 0 {
+                    vec![k.first_variant(), k]
+                } else {
+                    vec![k]
+                }
             })
             .collect();
         TileTask {
