@@ -52,6 +52,8 @@ struct EpochTiles {
     /// Its tileset's folder, relative to the output folder (`""` or `"year-10/"`).
     dir: String,
     root: Node,
+    /// Its tiles (level, x, y), parents before their children: the tile tasks' order.
+    order: Vec<(u32, u32, u32)>,
     years_of_trees: Vec<TreeYear>,
 }
 
@@ -140,6 +142,10 @@ impl CityJob {
             .iter()
             .map(|e| {
                 let at: Vec<[f64; 2]> = e.trees.iter().map(|t| [t.at.x, t.at.y]).collect();
+                let root = quadtree::build(&at, LEAF_TREES);
+                let mut nodes = Vec::new();
+                root.walk(&mut nodes);
+                let order = nodes.iter().map(|n| (n.level, n.x, n.y)).collect();
                 EpochTiles {
                     years: e.years,
                     dir: if single {
@@ -147,7 +153,8 @@ impl CityJob {
                     } else {
                         format!("year-{}/", e.years)
                     },
-                    root: quadtree::build(&at, LEAF_TREES),
+                    root,
+                    order,
                     years_of_trees: benefits::years(
                         &e.trees,
                         &self.plan.measured,
@@ -161,7 +168,7 @@ impl CityJob {
 
     /// Tile tasks in all, once laid out.
     pub fn tile_count(&self) -> usize {
-        self.epochs.iter().map(|e| e.root.count()).sum()
+        self.epochs.iter().map(|e| e.order.len()).sum()
     }
 
     /// Tile task `index` (of [`CityJob::tile_count`]): the epochs' tiles in order, each
@@ -169,13 +176,11 @@ impl CityJob {
     pub fn tile_task(&self, index: usize) -> Option<TileTask> {
         let mut i = index;
         for (e, tiles) in self.plan.epochs.iter().zip(&self.epochs) {
-            let n = tiles.root.count();
-            if i >= n {
-                i -= n;
+            let Some(&(level, x, y)) = tiles.order.get(i) else {
+                i -= tiles.order.len();
                 continue;
-            }
-            let mut nodes = Vec::with_capacity(n);
-            tiles.root.walk(&mut nodes);
+            };
+            let node = tiles.root.find(level, x, y)?;
             let uri = if tiles.dir.is_empty() {
                 format!("{PROTOTYPES_DIR}/")
             } else {
@@ -187,7 +192,7 @@ impl CityJob {
             };
             return Some(TileTask::new(
                 &tiles.dir,
-                nodes[i],
+                node,
                 &e.trees,
                 &tiles.years_of_trees,
                 &labels,

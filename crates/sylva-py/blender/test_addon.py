@@ -2,11 +2,19 @@
 through Add > Sylva tree, and checks their polygons and materials against Sylva's own counts.
 
     blender -b --factory-startup --python-exit-code 1 --python test_addon.py -- sylva_tree.zip
+
+It also runs under PyPI's `bpy` (Blender as a Python module): `python test_addon.py -- ZIP`.
 """
 
+import os
 import sys
 
-import bpy
+# Run as a script (under PyPI's bpy), this folder heads sys.path and would shadow the
+# installed add-on with its source.
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:] = [p for p in sys.path if os.path.abspath(p or ".") != HERE]
+
+import bpy  # noqa: E402
 
 zip_path = sys.argv[sys.argv.index("--") + 1]
 bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
@@ -15,8 +23,9 @@ assert "sylva_tree_add" in dir(bpy.ops.mesh), "the add-on did not register its o
 menu = [getattr(f, "__module__", "") for f in bpy.types.VIEW3D_MT_add._dyn_ui_initialize()]
 assert "sylva_tree" in menu, f"no Sylva entry in Add: {menu}"
 
-import sylva_tree  # noqa: E402  (installed above)
-
+# The installed copy (enabling imported it), never a source tree on sys.path.
+sylva_tree = sys.modules["sylva_tree"]
+assert "scripts" in sylva_tree.__file__ and "addons" in sylva_tree.__file__, sylva_tree.__file__
 sylva = sylva_tree._sylva()
 
 

@@ -216,7 +216,15 @@ fn grow(
 ) -> PyResult<Model> {
     py.detach(|| {
         let m = Database::builtin().find(region, code).map_err(error)?;
-        let ages = report::run_ages(&m, Some(age), Some(age), 1.0).map_err(error)?;
+        // The CLI's bounds on ages, said in this function's words.
+        let ages = report::run_ages(&m, Some(age), Some(age), 1.0).map_err(|_| {
+            error(format!(
+                "age {age}: expected 0 to 300 years (the data for {} cover ages {} to {})",
+                m.label(),
+                m.ages.0,
+                m.ages.1
+            ))
+        })?;
         let month = season.map(Month::parse).transpose().map_err(error)?;
         let site = site.as_deref().map(Site::load).transpose().map_err(error)?;
         let money = prices.is_some() || costs.is_some();

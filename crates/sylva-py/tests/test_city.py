@@ -64,6 +64,8 @@ def test_city_errors_name_the_setting(tmp_path, demo_csv):
         sylva.city(demo_csv, tmp_path / "b", crs="EPSG:abc")
     with pytest.raises(sylva.SylvaError, match="columns"):
         sylva.city(demo_csv, tmp_path / "c", columns={"colour": "x"})
+    with pytest.raises(sylva.SylvaError, match="`species` is 3"):
+        sylva.city(demo_csv, tmp_path / "e", columns={"species": 3})
     with pytest.raises(sylva.SylvaError, match="missing.csv"):
         sylva.city(tmp_path / "missing.csv", tmp_path / "d")
     assert not os.path.exists(tmp_path / "a") and not os.path.exists(tmp_path / "d")

@@ -88,6 +88,8 @@ def test_errors_are_sylva_errors_naming_what_is_wrong():
         sylva.grow("PLAC", region="Atlantis", age=5)
     with pytest.raises(sylva.SylvaError, match="quality"):
         sylva.generate("quaking_aspen", quality=-1)
+    with pytest.raises(sylva.SylvaError, match="age -3: expected 0 to 300 years"):
+        sylva.grow("PLAC", region="InlVal", age=-3)
     with pytest.raises(sylva.SylvaError, match="no-such.toml"):
         sylva.grow("PLAC", region="InlVal", age=5, site="no-such.toml")
 

@@ -71,7 +71,7 @@ pub fn tile_glb(
     trees: &[TileTree],
     centre: DVec3,
     lod: usize,
-    prototypes: &HashMap<ProtoKey, Prototype>,
+    prototypes: &HashMap<&ProtoKey, &Prototype>,
     stump: &SharedMesh,
     prefix: &str,
 ) -> Result<Vec<u8>, sylva::ExportError> {

@@ -122,11 +122,8 @@ impl TileTask {
 
 /// Makes the content of `task`: what the tileset's JSON needs of the tile, and its GLB.
 pub fn make_tile(task: &TileTask) -> Result<(Tile, Vec<u8>), CityError> {
-    let prototypes: HashMap<ProtoKey, Prototype> = task
-        .prototypes
-        .iter()
-        .map(|p| (p.key.clone(), p.clone()))
-        .collect();
+    let prototypes: HashMap<&ProtoKey, &Prototype> =
+        task.prototypes.iter().map(|p| (&p.key, p)).collect();
     let tile = tile_of(task, &prototypes);
     let prefix = format!("../../{}", task.prototypes_uri);
     let glb = content::tile_glb(
@@ -225,7 +222,7 @@ pub struct Tile {
     pub content_bytes: u64,
 }
 
-fn tile_of(task: &TileTask, prototypes: &HashMap<ProtoKey, Prototype>) -> Tile {
+fn tile_of(task: &TileTask, prototypes: &HashMap<&ProtoKey, &Prototype>) -> Tile {
     let lod = task.height.min(2) as usize;
     let [w, s, e, n] = task.square;
     let mut error = 0.0f64;
@@ -235,7 +232,7 @@ fn tile_of(task: &TileTask, prototypes: &HashMap<ProtoKey, Prototype>) -> Tile {
         let t = &t.tree;
         let (top, reach, err) = match &t.kind {
             Kind::Tree(k) => {
-                let p = &prototypes[k];
+                let p = prototypes[k];
                 let reach = (p.crown_diameter * t.scale).max(t.crown_diameter) as f64 / 2.0;
                 (
                     (p.height * t.scale) as f64,

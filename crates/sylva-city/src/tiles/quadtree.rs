@@ -29,9 +29,21 @@ impl Node {
             .unwrap_or(0)
     }
 
-    /// Tiles in all, itself among them.
-    pub fn count(&self) -> usize {
-        1 + self.children.iter().map(Node::count).sum::<usize>()
+    /// The tile at `level`, `x`, `y` at or below this one, found by descending through the
+    /// one child on its way at each level.
+    pub fn find(&self, level: u32, x: u32, y: u32) -> Option<&Node> {
+        if level < self.level {
+            return None;
+        }
+        let up = level - self.level;
+        if (x >> up, y >> up) != (self.x, self.y) {
+            return None;
+        }
+        if up == 0 {
+            return Some(self);
+        }
+        let child = |c: &&Node| (x >> (up - 1), y >> (up - 1)) == (c.x, c.y);
+        self.children.iter().find(child)?.find(level, x, y)
     }
 
     /// Every tile, parents before their children.
@@ -152,5 +164,12 @@ mod tests {
             assert!(n.children.is_empty() || below == n.trees.len());
         }
         assert!(root.height() >= 2);
+        // Every tile is found again by its level and place; a place with no tile is not.
+        for n in &all {
+            assert!(std::ptr::eq(root.find(n.level, n.x, n.y).unwrap(), *n));
+        }
+        let deepest = root.height();
+        assert!(root.find(deepest + 1, 0, 0).is_none());
+        assert!(root.find(1, 5, 5).is_none());
     }
 }

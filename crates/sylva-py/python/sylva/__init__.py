@@ -108,9 +108,16 @@ def city_settings(
     seed: int = 0,
 ) -> str:
     """A city's settings as the Rust side reads them (JSON); see :func:`city`."""
-    cols = {}
+    cols: dict = {}
     for key, value in (columns or {}).items():
-        cols[str(key)] = value if isinstance(value, str) else [str(v) for v in value]
+        if isinstance(value, str):
+            cols[str(key)] = value
+        elif isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+            cols[str(key)] = list(value)
+        else:
+            raise SylvaError(
+                f"columns: `{key}` is {value!r}; expected a column name or a list of names"
+            )
     return json.dumps(
         {
             "inventory": os.fspath(inventory),
