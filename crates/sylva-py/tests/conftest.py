@@ -7,13 +7,17 @@ import pytest
 
 @pytest.fixture(scope="session")
 def sylva_bin():
-    """The `sylva` CLI built from the same tree as the wheel (SYLVA_BIN, else target/release)."""
-    path = os.environ.get("SYLVA_BIN") or os.path.join(
-        os.path.dirname(__file__), "..", "..", "..", "target", "release", "sylva"
-    )
-    if not os.path.exists(path):
-        pytest.skip(f"no sylva binary at {path}; build it with cargo build --release -p sylva-cli")
-    return os.path.abspath(path)
+    """The `sylva` CLI built from the same tree as the wheel: SYLVA_BIN, else the README's build
+    (target/debug), else a release build."""
+    target = os.path.join(os.path.dirname(__file__), "..", "..", "..", "target")
+    candidates = [os.environ.get("SYLVA_BIN")] if os.environ.get("SYLVA_BIN") else [
+        os.path.join(target, "debug", "sylva"),
+        os.path.join(target, "release", "sylva"),
+    ]
+    for path in candidates:
+        if os.path.exists(path):
+            return os.path.abspath(path)
+    pytest.skip(f"no sylva binary at {' or '.join(candidates)}; build it with cargo build --bin sylva")
 
 
 @pytest.fixture(scope="session")

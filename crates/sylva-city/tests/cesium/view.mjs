@@ -15,7 +15,7 @@ import { tmpdir } from 'node:os';
 import { join, normalize, extname } from 'node:path';
 
 const here = new URL('.', import.meta.url).pathname;
-const bin = process.argv[2] || join(here, '../../../../target/release/sylva');
+const bin = process.argv[2] || join(here, '../../../../target/debug/sylva');
 const shots = process.argv[3] || null;
 if (shots) mkdirSync(shots, { recursive: true });
 

@@ -12,7 +12,7 @@ import { chromium } from 'playwright-core';
 import { writeFileSync, mkdirSync } from 'node:fs';
 import { startServer, waitUntil, check } from './common.mjs';
 
-const bin = process.argv[2] || new URL('../../../../target/release/sylva', import.meta.url).pathname;
+const bin = process.argv[2] || new URL('../../../../target/debug/sylva', import.meta.url).pathname;
 const shots = process.argv[3] || null;
 if (shots) mkdirSync(shots, { recursive: true });
 

@@ -19,7 +19,7 @@
 import { startServer, waitUntil, check } from './common.mjs';
 import { clients } from './clients.mjs';
 
-const bin = process.argv[2] || new URL('../../../../target/release/sylva', import.meta.url).pathname;
+const bin = process.argv[2] || new URL('../../../../target/debug/sylva', import.meta.url).pathname;
 const CLIENTS = 20;
 const FLOOR_MS = 10;
 const server = await startServer(bin);

@@ -1,0 +1,65 @@
+# Step timing for .ci/run (sourced): `step NAME` ends the step before and starts NAME; jobs
+# started with `background NAME CMD...` run beside the steps and are joined with `join NAME`.
+# On exit, for any reason, a table of every step's and job's wall time is printed, so the next
+# change that slows CI shows where.
+
+ci_t0=$(date +%s)
+ci_logs=$(mktemp -d)
+ci_rows=()
+ci_step=""
+ci_step_t0=$ci_t0
+declare -A ci_job_pid ci_job_t0
+
+ci_close_step() {
+  local now
+  now=$(date +%s)
+  [ -n "$ci_step" ] && ci_rows+=("$ci_step|$((now - ci_step_t0))")
+  ci_step=""
+  ci_step_t0=$now
+}
+
+step() {
+  ci_close_step
+  ci_step="$1"
+  echo "== $1"
+}
+
+# background NAME COMMAND...: runs COMMAND with its output in a log of its own; `join NAME`
+# waits for it, prints that log, and fails the run if the job failed.
+background() {
+  local name=$1
+  shift
+  ci_job_t0[$name]=$(date +%s)
+  ("$@") >"$ci_logs/$name.log" 2>&1 &
+  ci_job_pid[$name]=$!
+  echo "== started in the background: $name"
+}
+
+join() {
+  local name=$1 rc=0 t0 waited
+  t0=$(date +%s)
+  wait "${ci_job_pid[$name]}" || rc=$?
+  waited=$(($(date +%s) - t0))
+  # A job's own time is from its start to the moment it was found finished: an upper bound
+  # when it ended while a step ran, exact when the run waited for it.
+  ci_rows+=("  $name (background; waited ${waited} s)|$(($(date +%s) - ci_job_t0[$name]))")
+  echo "== $name (background job, exit $rc):"
+  sed 's/^/   | /' "$ci_logs/$name.log" | tail -n 40
+  [ "$rc" -eq 0 ] || { echo "background job $name failed"; return "$rc"; }
+}
+
+ci_table() {
+  local rc=$?
+  ci_close_step
+  local total=$(($(date +%s) - ci_t0)) row
+  echo
+  echo "== CI step times (wall clock, $(nproc) cores)"
+  printf '%-60s %8s\n' "step" "seconds"
+  for row in "${ci_rows[@]}"; do
+    printf '%-60s %8s\n' "${row%|*}" "${row##*|}"
+  done
+  printf '%-60s %8s  (%d min %02d s, exit %d)\n' "total" "$total" $((total / 60)) $((total % 60)) "$rc"
+  [ -d target ] && echo "target/: $(du -sh target 2>/dev/null | cut -f1)"
+  rm -rf "$ci_logs"
+  return "$rc"
+}
