@@ -16,6 +16,14 @@ use sylva::lod::Viewer;
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
 
 pub fn run(args: &BenchArgs) -> Result<()> {
+    // The README's build (dev profile) optimises the engine but not the GPU, window and HTTP
+    // stacks, and checks overflow: figures to quote come from `--release`.
+    if cfg!(debug_assertions) {
+        eprintln!(
+            "note: this sylva is the dev build (`cargo run`); for figures to compare or quote, \
+             run `cargo run --release --bin sylva -- bench`"
+        );
+    }
     let runs = args.runs.max(1);
     let threads = rayon::current_num_threads();
     println!(
