@@ -30,7 +30,8 @@ background() {
   local name=$1
   shift
   ci_job_t0[$name]=$(date +%s)
-  ("$@") >"$ci_logs/$name.log" 2>&1 &
+  # The job notes its own end, so the table shows how long it ran, not when it was joined.
+  ( rc=0; "$@" || rc=$?; date +%s >"$ci_logs/$name.end"; exit "$rc" ) >"$ci_logs/$name.log" 2>&1 &
   ci_job_pid[$name]=$!
   echo "== started in the background: $name"
 }
@@ -40,9 +41,7 @@ join() {
   t0=$(date +%s)
   wait "${ci_job_pid[$name]}" || rc=$?
   waited=$(($(date +%s) - t0))
-  # A job's own time is from its start to the moment it was found finished: an upper bound
-  # when it ended while a step ran, exact when the run waited for it.
-  ci_rows+=("  $name (background; waited ${waited} s)|$(($(date +%s) - ci_job_t0[$name]))")
+  ci_rows+=("  $name (background; waited ${waited} s)|$(($(cat "$ci_logs/$name.end") - ci_job_t0[$name]))")
   echo "== $name (background job, exit $rc):"
   sed 's/^/   | /' "$ci_logs/$name.log" | tail -n 40
   [ "$rc" -eq 0 ] || { echo "background job $name failed"; return "$rc"; }
