@@ -14,6 +14,8 @@ mod mutate;
 use harness::{Case, Rng, broken, run, scratch};
 use mutate::{HOSTILE, damage, mutate};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -374,6 +376,43 @@ establishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.
 removal_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n\
 [[pruning]]\nup_to_dbh_cm = 15.0\nprice = 30.0\ncycle_years = 3\n";
 
+/// Runs every case, each in a fresh folder of its own, on as many threads as there are cores;
+/// the outcomes (and folders) come back in the cases' order.
+fn run_all(all: &[Case], root: &Path) -> Vec<(PathBuf, harness::Outcome)> {
+    let next = AtomicUsize::new(0);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let done: Mutex<Vec<Option<(PathBuf, harness::Outcome)>>> =
+        Mutex::new((0..all.len()).map(|_| None).collect());
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(case) = all.get(i) else { break };
+                    let dir = scratch(root, case.family, i);
+                    // Cases that write into special files: a link to /dev/full, a folder in
+                    // the way.
+                    for name in ["full.glb", "full.png", "full.svg"] {
+                        if case.args.iter().any(|a| a == name) {
+                            std::os::unix::fs::symlink("/dev/full", dir.join(name)).unwrap();
+                        }
+                    }
+                    if case.args.iter().any(|a| a == "a-folder") {
+                        std::fs::create_dir(dir.join("a-folder")).unwrap();
+                    }
+                    let outcome = run(case, &dir);
+                    done.lock().unwrap()[i] = Some((dir, outcome));
+                }
+            });
+        }
+    });
+    done.into_inner()
+        .unwrap()
+        .into_iter()
+        .map(|o| o.expect("every case ran"))
+        .collect()
+}
+
 #[test]
 fn no_input_makes_sylva_panic_hang_or_leave_a_partial_file() {
     let n = env_number("SYLVA_FUZZ_CASES", 8) as usize;
@@ -388,20 +427,12 @@ fn no_input_makes_sylva_panic_hang_or_leave_a_partial_file() {
         all.extend(family(f, &seeds, &mut rng, n));
     }
     all.extend(output_cases());
+    // Most cases are a short refusal on one thread: as many run side by side as there are
+    // cores, each in its own folder, and their outcomes are tallied in case order below.
+    let outcomes = run_all(&all, &root);
     let mut failures = Vec::new();
     let mut table: Vec<(&str, [usize; 3], f64, i64)> = Vec::new();
-    for (i, case) in all.iter().enumerate() {
-        let dir = scratch(&root, case.family, i);
-        // Cases that write into special files: a link to /dev/full, a folder in the way.
-        for name in ["full.glb", "full.png", "full.svg"] {
-            if case.args.iter().any(|a| a == name) {
-                std::os::unix::fs::symlink("/dev/full", dir.join(name)).unwrap();
-            }
-        }
-        if case.args.iter().any(|a| a == "a-folder") {
-            std::fs::create_dir(dir.join("a-folder")).unwrap();
-        }
-        let outcome = run(case, &dir);
+    for (case, (dir, outcome)) in all.iter().zip(outcomes) {
         let row = match table.iter_mut().find(|r| r.0 == case.family) {
             Some(r) => r,
             None => {
@@ -428,7 +459,7 @@ fn no_input_makes_sylva_panic_hang_or_leave_a_partial_file() {
                 continue;
             }
         }
-        let _ = std::fs::remove_dir_all(&dir);
+        let _ = std::fs::remove_dir_all(dir);
     }
     eprintln!("fuzz campaign, seed {seed}, {n} cases per family:");
     eprintln!(
