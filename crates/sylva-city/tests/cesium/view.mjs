@@ -5,7 +5,7 @@
 // draws a frame and checks its pixels for trees, then picks trees on screen and checks the
 // attributes each carries.
 //
-//   node view.mjs [path/to/sylva] [folder for the screenshot]
+//   node view.mjs [path/to/sylva] [folder for the frame's picture]
 
 import { chromium } from 'playwright-core';
 import { createServer } from 'node:http';
@@ -129,7 +129,7 @@ try {
   console.log(`a frame drawn in ${((Date.now() - t2) / 1000).toFixed(1)} s`);
   const png = Buffer.from(dataUrl.slice(dataUrl.indexOf(',') + 1), 'base64');
   if (shots) writeFileSync(join(shots, 'city-cesium.png'), png);
-  // The screenshot's pixels, read back through a canvas: leaf-green ones, and where they are.
+  // The frame's pixels, read back through a canvas: leaf-green ones, and where they are.
   const seen = await page.evaluate(async (b64) => {
     const img = new Image();
     img.src = `data:image/png;base64,${b64}`;
