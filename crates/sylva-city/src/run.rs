@@ -67,18 +67,25 @@ fn run_tasks(
     let total = job.prototype_count();
     let grown = std::sync::atomic::AtomicUsize::new(0);
     progress.step("growing trees", 0, total);
-    let results: Vec<Vec<Prototype>> = job
-        .growth_tasks()
-        .par_iter()
-        .map(|task| {
-            let (prototypes, files) = run_growth(task)?;
+    let tasks = job.growth_tasks();
+    // The oldest trees first, each thread taking the next task as it comes free: the growth
+    // of a city's oldest species can take a fifth of the whole, and started last it would run
+    // alone at the end. The results go back into the tasks' own order.
+    let mut order: Vec<usize> = (0..tasks.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse(tasks[i].ages.last().copied().unwrap_or(0)));
+    let mut results: Vec<(usize, Vec<Prototype>)> = order
+        .into_iter()
+        .par_bridge()
+        .map(|i| {
+            let (prototypes, files) = run_growth(&tasks[i])?;
             write_files(dir, &files)?;
             let n = grown.fetch_add(prototypes.len(), Ordering::Relaxed) + prototypes.len();
             progress.step("growing trees", n, total);
-            Ok(prototypes)
+            Ok((i, prototypes))
         })
         .collect::<Result<_, CityError>>()?;
-    job.add_prototypes(results.into_iter().flatten());
+    results.sort_by_key(|(i, _)| *i);
+    job.add_prototypes(results.into_iter().flat_map(|(_, p)| p));
     write_files(dir, &[stump_file().1])?;
     let grown_at = t0.elapsed().as_secs_f64();
     let tiles = job.lay_out()?;

@@ -448,19 +448,28 @@ fn faithful_chinese_hackberry() {
     assert_faithful("InlVal", "CESI4");
 }
 
-/// Beyond Modesto: a cherry and a red oak of the Pacific Northwest, a conifer, the coast
-/// redwood of the northern California coast (which keeps one leader), and Orlando's Mexican
-/// fan palm (its age -> DBH fitted to the measured palms).
+// Beyond Modesto: a cherry and a red oak of the Pacific Northwest, the coast redwood of the
+// northern California coast (a conifer, which keeps one leader), and Orlando's Mexican fan
+// palm (its age -> DBH fitted to the measured palms). One test each, so that the test
+// threads share them.
 #[test]
-fn faithful_elsewhere() {
-    for (region, code) in [
-        ("PacfNW", "PRSE2"),
-        ("PacfNW", "QURU"),
-        ("NoCalC", "SESE"),
-        ("CenFla", "WARO"),
-    ] {
-        assert_faithful(region, code);
-    }
+fn faithful_pacific_northwest_cherry() {
+    assert_faithful("PacfNW", "PRSE2");
+}
+
+#[test]
+fn faithful_pacific_northwest_red_oak() {
+    assert_faithful("PacfNW", "QURU");
+}
+
+#[test]
+fn faithful_coast_redwood() {
+    assert_faithful("NoCalC", "SESE");
+}
+
+#[test]
+fn faithful_mexican_fan_palm() {
+    assert_faithful("CenFla", "WARO");
 }
 
 /// The crown the grower steers by is the crown `measure` finds on its skeleton.
