@@ -204,7 +204,8 @@ impl LightGrid {
 /// where it leaves the grid or its light is spent.
 ///
 /// Replaying the steps from a table, rather than choosing the axis at every cell, takes the
-/// walk's one unpredictable branch out of the loop: growth spent a third of its time here.
+/// walk's one unpredictable branch out of the loop: growing a plane to 40 years spent 31% of
+/// its time in the walk before, 16% after (`perf`, dev build).
 struct Walk {
     /// Offset of each cell along the walk from the first (0 first), in the grid's flat index.
     offsets: Vec<isize>,
