@@ -47,8 +47,10 @@ join() {
   [ "$rc" -eq 0 ] || { echo "background job $name failed"; return "$rc"; }
 }
 
+# ci_table [EXIT_STATUS]: the table, ending with the run's exit status (the last command's if
+# none is given); returns that status.
 ci_table() {
-  local rc=$?
+  local rc=${1:-$?}
   ci_close_step
   local total=$(($(date +%s) - ci_t0)) row
   echo
