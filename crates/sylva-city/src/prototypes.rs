@@ -245,7 +245,7 @@ fn distance_to(whole: &TreeMesh, part: &TreeMesh) -> f32 {
 
 /// Points binned in cubic cells over their box, for nearest-point queries: each cell's points
 /// lie together in one list (cells in x, then y, then z order), so a query reads a cell with
-/// two array lookups. (A hash map of cells made the LOD errors a fifth of a city's growth.)
+/// two array lookups, where a hash map of cells hashed every cell a query looked at.
 struct Grid {
     lo: glam::Vec3,
     cell: f32,
@@ -314,7 +314,12 @@ impl Grid {
     fn nearest(&self, p: glam::Vec3, points: &[glam::Vec3]) -> f32 {
         let c = self.key(p);
         let mut best = f32::INFINITY;
-        // The farthest shell that still meets the grid.
+        // The nearest and the farthest shells that meet the grid (a point outside it starts
+        // at the grid, not at its own cell).
+        let first = (0..3)
+            .map(|a| (-c[a]).max(c[a] - (self.dims[a] - 1)).max(0))
+            .max()
+            .unwrap_or(0);
         let last = (0..3)
             .map(|a| c[a].abs().max((self.dims[a] - 1 - c[a]).abs()))
             .max()
@@ -327,7 +332,7 @@ impl Grid {
         };
         // Each axis' cells of shell r that lie in the grid.
         let span = |a: usize, r: i64| (c[a] - r).max(0)..=(c[a] + r).min(self.dims[a] - 1);
-        for r in 0..=last {
+        for r in first..=last {
             if (r as f32 - 1.0) * self.cell > best {
                 break;
             }
