@@ -25,6 +25,7 @@ pub mod climate;
 pub mod conflicts;
 pub mod costs;
 pub mod crown;
+pub mod itree;
 pub mod ledger;
 pub mod picture;
 pub mod prices;
