@@ -193,6 +193,74 @@ impl Region {
     }
 }
 
+/// How a species found its table row.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Match {
+    /// The region measured the species: its own row.
+    Species,
+    /// The region lists the species and assigns it another row (a relative's, or its type's
+    /// `OTHER` class): i-Tree's own choice.
+    Assigned,
+    /// The region does not list the species; a listed species of the same genus and tree type
+    /// gives its row (the species named).
+    Genus(String),
+    /// Neither: the `OTHER` class of the species' tree type, as i-Tree Streets assigns
+    /// species it has no data for.
+    TreeType,
+}
+
+impl Region {
+    /// The table row for a species (code, Latin name and tree type as the Urban Tree Database
+    /// gives them), and how it was found; `None` when the region has not even the tree type's
+    /// `OTHER` class (Boise has no broadleaf evergreens).
+    pub fn resolve(
+        &self,
+        code: &str,
+        scientific_name: &str,
+        tree_type: &str,
+    ) -> Option<(String, Match)> {
+        let has = |c: &str| {
+            self.values
+                .contains_key(&(Factor::Electricity, c.to_string()))
+        };
+        if has(code) {
+            return Some((code.to_string(), Match::Species));
+        }
+        if let Some(row) = self.row_for(code) {
+            return Some((row, Match::Assigned));
+        }
+        let genus = |name: &str| name.split_whitespace().next().unwrap_or("").to_lowercase();
+        let g = genus(scientific_name);
+        let relative = self.species.iter().find(|s| {
+            !g.is_empty()
+                && genus(&s.scientific_name) == g
+                && s.tree_type == tree_type
+                && !s.values_from.ends_with("OTHER")
+                && has(&s.values_from)
+        });
+        if let Some(s) = relative {
+            return Some((s.values_from.clone(), Match::Genus(s.code.clone())));
+        }
+        let other = Region::other(tree_type);
+        has(&other).then_some((other, Match::TreeType))
+    }
+}
+
+/// The i-Tree Streets region whose tables stand for a Sylva region, and why when it is not the
+/// region itself: the Sacramento Valley has none, and Modesto's Inland Valleys, the same
+/// Central Valley climate 120 km south, is the nearest.
+pub fn reference_region(name: &str) -> Option<(&'static str, Option<&'static str>)> {
+    if name == "SacVal" {
+        return Some((
+            "InlVal",
+            Some(
+                "i-Tree Streets has no Sacramento Valley region: the Inland Valleys' (Modesto) tables stand in",
+            ),
+        ));
+    }
+    regions().get_key_value(name).map(|(k, _)| (*k, None))
+}
+
 /// The 16 regions' tables, keyed by Sylva's short region name (`InlVal`); parsed once.
 pub fn regions() -> &'static HashMap<&'static str, Region> {
     static ALL: OnceLock<HashMap<&'static str, Region>> = OnceLock::new();
@@ -322,6 +390,72 @@ mod tests {
         let gas = at("InlVal", Factor::NaturalGas, "CICA", 38.1);
         assert!((gas - -46.2).abs() < 1e-9, "{gas}");
         assert!((gas * 0.0125278).abs() < 1.0);
+    }
+
+    #[test]
+    fn a_species_finds_its_row_by_code_assignment_genus_or_tree_type() {
+        let r = region("InlVal").unwrap();
+        assert_eq!(
+            r.resolve("CICA", "Cinnamomum camphora", "BEM").unwrap(),
+            ("CICA".into(), Match::Species)
+        );
+        // Not measured in Modesto: another Pyrus of the same type, else its type's class.
+        let (row, how) = r.resolve("PYXX", "Pyrus imaginaria", "BDM").unwrap();
+        assert_eq!(
+            (row.as_str(), how),
+            ("PYCA_B", Match::Genus("PYCA_B".into()))
+        );
+        let (row, how) = r.resolve("ZZZZ", "Nullus nemo", "BES").unwrap();
+        assert_eq!((row.as_str(), how), ("BES OTHER", Match::TreeType));
+        // Boise lists no broadleaf evergreens at all: nothing, not a guess.
+        assert!(
+            region("TpIntW")
+                .unwrap()
+                .resolve("ZZZZ", "Nullus nemo", "BEM")
+                .is_none()
+        );
+        // Every species of every region resolves to a row with every factor.
+        for (name, r) in regions() {
+            for s in r.species() {
+                let (row, _) = r
+                    .resolve(&s.code, &s.scientific_name, &s.tree_type)
+                    .unwrap();
+                assert!(
+                    r.value(Factor::Co2Storage, &row, 30.0).is_some(),
+                    "{name} {s:?}"
+                );
+            }
+        }
+        assert_eq!(reference_region("SacVal").unwrap().0, "InlVal");
+        assert_eq!(reference_region("NoEast").unwrap(), ("NoEast", None));
+        assert!(reference_region("Atlantis").is_none());
+    }
+
+    /// Every species Sylva can grow finds a row in its region's reference (the Sacramento Valley
+    /// through the Inland Valleys), and most of them their own.
+    #[test]
+    fn every_growable_species_has_a_reference_row() {
+        let db = crate::growth::Database::builtin();
+        let mut counts = [0usize; 4];
+        for region in db.regions() {
+            let (name, _) = reference_region(&region.code).unwrap();
+            let r = super::region(name).unwrap();
+            for s in db.growable(&region.code) {
+                let (_, how) = r
+                    .resolve(&s.code, &s.scientific, &s.tree_type)
+                    .unwrap_or_else(|| {
+                        panic!("{} {} ({}): no row", region.code, s.code, s.tree_type)
+                    });
+                counts[match how {
+                    Match::Species => 0,
+                    Match::Assigned => 1,
+                    Match::Genus(_) => 2,
+                    Match::TreeType => 3,
+                }] += 1;
+            }
+        }
+        eprintln!("own row, assigned, genus, tree type: {counts:?}");
+        assert!(counts[0] > counts[2] + counts[3], "{counts:?}");
     }
 
     #[test]
