@@ -154,15 +154,19 @@ impl Region {
     /// The table row a species code reads: its own row, else the row its species entry
     /// names, else `None` (the caller falls back by tree type with [`Region::other`]).
     pub fn row_for(&self, code: &str) -> Option<String> {
-        let has = |c: &str| {
-            self.values
-                .contains_key(&(Factor::Electricity, c.to_string()))
-        };
+        let has = |c: &str| self.has_row(c);
         if has(code) {
             return Some(code.to_string());
         }
         let s = self.species.iter().find(|s| s.code == code)?;
         has(&s.values_from).then(|| s.values_from.clone())
+    }
+
+    /// Whether the tables hold a row of that name (every row has every factor, as the tests
+    /// check, so electricity stands for all).
+    fn has_row(&self, row: &str) -> bool {
+        self.values
+            .contains_key(&(Factor::Electricity, row.to_string()))
     }
 
     /// The `OTHER` row of a tree type (`BDL OTHER` …).
@@ -219,10 +223,7 @@ impl Region {
         scientific_name: &str,
         tree_type: &str,
     ) -> Option<(String, Match)> {
-        let has = |c: &str| {
-            self.values
-                .contains_key(&(Factor::Electricity, c.to_string()))
-        };
+        let has = |c: &str| self.has_row(c);
         if has(code) {
             return Some((code.to_string(), Match::Species));
         }
