@@ -7,7 +7,7 @@ use plotters::prelude::*;
 use sylva::growth::Measured;
 use sylva::growth::Targets;
 use sylva::growth::report::{AgeRecord, CHARTED};
-use sylva::street::YearAccount;
+use sylva::street::{Basis, YearAccount};
 use sylva_render::{FrameStats, Picture};
 
 /// Makes the bundled font plotters' "sans-serif", once.
@@ -77,12 +77,15 @@ pub fn growth_chart(m: &Measured, history: &[AgeRecord]) -> Result<Picture> {
     Ok(rgb_picture(&buffer, w, h))
 }
 
-/// Linsen et al.'s (2005) yearly bars: benefits stacked above zero (CO2, stormwater, cooling),
-/// costs and an evergreen's heating penalty below, and the net as a line.
+/// Linsen et al.'s (2005) yearly bars, in i-Tree Streets' categories: benefits stacked above
+/// zero (CO2, stormwater, cooling, heating saved, air quality, aesthetics), costs, a winter
+/// heating penalty and BVOC emissions below, and the net as a line; read from the account of
+/// `basis` (the typical position or this site).
 pub fn benefit_chart(
     m: &Measured,
     accounts: &[YearAccount],
     missing: &[String],
+    basis: Basis,
 ) -> Result<Picture> {
     register_font();
     let (w, h) = (1500u32, 900u32);
@@ -107,13 +110,24 @@ pub fn benefit_chart(
         lines.truncate(8);
         let (plot, notes) = root.split_vertically(h - 30 - 22 * lines.len() as u32);
         let ups = |a: &YearAccount| {
-            let v = &a.money;
-            [v.carbon, v.stormwater, v.cooling].map(|x| x.unwrap_or(0.0).max(0.0))
+            let v = a.money(basis);
+            let carbon = v.carbon.unwrap_or(0.0) + v.co2_avoided.unwrap_or(0.0);
+            [
+                Some(carbon),
+                v.stormwater,
+                v.cooling,
+                v.heating,
+                v.air_quality,
+                v.aesthetics,
+            ]
+            .map(|x| x.unwrap_or(0.0).max(0.0))
         };
         let downs = |a: &YearAccount| {
             let c = a.costs.unwrap_or_default();
+            let v = a.money(basis);
             [
-                -a.money.heating.unwrap_or(0.0).min(0.0),
+                -v.heating.unwrap_or(0.0).min(0.0),
+                -v.bvoc.unwrap_or(0.0).min(0.0),
                 c.planting,
                 c.pruning,
                 c.removal,
@@ -137,9 +151,10 @@ pub fn benefit_chart(
         let mut chart = ChartBuilder::on(&plot)
             .caption(
                 format!(
-                    "{} in {}: yearly benefits (up) and costs (down), dollars",
+                    "{} in {}, {}: yearly benefits (up) and costs (down), dollars",
                     m.label(),
-                    m.region.code
+                    m.region.code,
+                    basis.name()
                 ),
                 ("sans-serif", 26),
             )
@@ -157,10 +172,21 @@ pub fn benefit_chart(
             RGBColor(60, 130, 60),
             RGBColor(60, 110, 190),
             RGBColor(230, 170, 40),
+            RGBColor(220, 110, 40),
+            RGBColor(120, 190, 210),
+            RGBColor(200, 120, 190),
         ];
-        let up_names = ["CO2 taken up", "stormwater held", "cooling saved"];
+        let up_names = [
+            "CO2 taken up and avoided",
+            "stormwater held",
+            "cooling saved",
+            "heating saved",
+            "air quality",
+            "aesthetics",
+        ];
         let down_colours = [
             RGBColor(150, 90, 160),
+            RGBColor(90, 150, 150),
             RGBColor(120, 80, 50),
             RGBColor(190, 100, 60),
             RGBColor(200, 60, 60),
@@ -170,6 +196,7 @@ pub fn benefit_chart(
         ];
         let down_names = [
             "heating penalty",
+            "BVOCs emitted",
             "planting",
             "pruning",
             "removal",
@@ -211,7 +238,7 @@ pub fn benefit_chart(
         }
         chart
             .draw_series(LineSeries::new(
-                accounts.iter().map(|a| (a.age, a.net())),
+                accounts.iter().map(|a| (a.age, a.net(basis))),
                 BLACK.stroke_width(3),
             ))?
             .label("net")

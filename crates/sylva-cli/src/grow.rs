@@ -9,7 +9,7 @@ use sylva::export::{to_glb, write_atomically};
 use sylva::growth::report::{self, Cohort, age_label, run_ages};
 use sylva::growth::{Measured, dressed_mesh};
 use sylva::street::rank::first_conflicts;
-use sylva::street::{Assessor, Kind, YearAccount, picture::site_picture, table};
+use sylva::street::{Assessor, Basis, Kind, YearAccount, picture::site_picture, table};
 use sylva_render::Picture;
 use sylva_render::caption::with_caption;
 use sylva_render::street::{comparison_picture, tree_picture};
@@ -156,7 +156,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                     format!("  new conflicts: {}", said.join(", "))
                 };
                 println!(
-                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments  net ${:.0}/yr{conflicts}",
+                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments  {}{conflicts}",
                     m.label(),
                     age_label(age),
                     model.height,
@@ -164,7 +164,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                     model.dbh,
                     model.leaf_area,
                     cohort.growers[i].segment_count(),
-                    account.net()
+                    nets(&account, site.is_some())
                 );
             }
             accounts[i].push(account);
@@ -189,10 +189,10 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 .zip(&accounts)
                 .map(|((m, h), a)| {
                     format!(
-                        "{} {:.1} m, net ${:.0}/yr",
+                        "{} {:.1} m, {}",
                         m.species.common,
                         h.last().map_or(0.0, |g| g.model.height),
-                        a.last().map_or(0.0, |a| a.net())
+                        a.last().map_or(String::new(), |a| nets(a, site.is_some()))
                     )
                 })
                 .collect();
@@ -213,8 +213,14 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         let chart = crate::chart::growth_chart(m, h)?;
         save_picture(&output.join(format!("{code}-chart.png")), &chart)?;
         let missing = assessors[i].missing();
-        let bars = crate::chart::benefit_chart(m, &accounts[i], missing)?;
+        let basis = Basis::default_for(site.is_some());
+        let bars = crate::chart::benefit_chart(m, &accounts[i], missing, basis)?;
         save_picture(&output.join(format!("{code}-benefits.png")), &bars)?;
+        if basis == Basis::Site {
+            // The reference beside the site's own figures.
+            let bars = crate::chart::benefit_chart(m, &accounts[i], missing, Basis::Typical)?;
+            save_picture(&output.join(format!("{code}-benefits-typical.png")), &bars)?;
+        }
         if args.json {
             continue;
         }
@@ -235,6 +241,9 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 }
             );
         }
+        if let Some(r) = assessors[i].reference() {
+            println!("{}: typical position from {}", m.species.code, r.describe());
+        }
         for note in missing {
             println!("{}: not counted: {note}", m.species.code);
         }
@@ -254,4 +263,19 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         println!("wrote {}", output.display());
     }
     Ok(())
+}
+
+/// A year's net as a line of text: at typical position, and on the site where there is one.
+fn nets(a: &YearAccount, has_site: bool) -> String {
+    let typical = a
+        .typical
+        .as_ref()
+        .map(|_| format!("net ${:.0}/yr at typical position", a.net(Basis::Typical)));
+    let site = has_site.then(|| format!("${:.0}/yr on this site", a.net(Basis::Site)));
+    match (typical, site) {
+        (Some(t), Some(s)) => format!("{t}, {s}"),
+        (Some(t), None) => t,
+        (None, Some(s)) => format!("net {s}"),
+        (None, None) => format!("net ${:.0}/yr (own crown, no site)", a.net(Basis::Site)),
+    }
 }

@@ -1,12 +1,12 @@
 //! `sylva rank`: a region's species grown side by side on one site and listed by net benefit
 //! over the years, with the year each first runs into the street.
 
-use crate::args::RankArgs;
+use crate::args::{RankArgs, RankBy};
 use crate::shared::{database, load_street, with_progress};
 use anyhow::{Result, bail};
 use sylva::growth::Measured;
-use sylva::street::Kind;
 use sylva::street::rank::{first_conflicts, rank};
+use sylva::street::{Basis, Kind};
 
 pub fn run(args: &RankArgs) -> Result<()> {
     if !(1.0..=sylva::growth::report::MAX_AGE).contains(&args.years) {
@@ -17,6 +17,11 @@ pub fn run(args: &RankArgs) -> Result<()> {
         );
     }
     let (site, prices, costs) = load_street(&args.street)?;
+    let basis = match args.by {
+        Some(RankBy::Typical) => Basis::Typical,
+        Some(RankBy::Site) => Basis::Site,
+        None => Basis::default_for(site.is_some()),
+    };
     let db = database(args.database.as_ref())?;
     let species: Vec<Measured> = db
         .growable(&args.region)
@@ -40,6 +45,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
             site.as_ref(),
             prices.as_ref(),
             costs.as_ref(),
+            basis,
             &|_| tick(),
         )
     });
@@ -58,10 +64,21 @@ pub fn run(args: &RankArgs) -> Result<()> {
                     "species": r.species.species.code,
                     "name": r.species.species.common,
                     "years": r.last_age(),
-                    "benefits_usd": (r.benefits() * 100.0).round() / 100.0,
+                    "ranked_by": basis.name(),
+                    "benefits_usd": (r.benefits(basis) * 100.0).round() / 100.0,
                     "costs_usd": r.accounts.iter().any(|a| a.costs.is_some())
                         .then(|| (r.costs() * 100.0).round() / 100.0),
-                    "net_usd": (r.net() * 100.0).round() / 100.0,
+                    "net_usd": (r.net(basis) * 100.0).round() / 100.0,
+                    "typical": {
+                        "benefits_usd": (r.benefits(Basis::Typical) * 100.0).round() / 100.0,
+                        "net_usd": (r.net(Basis::Typical) * 100.0).round() / 100.0,
+                        "by_category_usd": by_category(r, Basis::Typical),
+                    },
+                    "site": {
+                        "benefits_usd": (r.benefits(Basis::Site) * 100.0).round() / 100.0,
+                        "net_usd": (r.net(Basis::Site) * 100.0).round() / 100.0,
+                        "by_category_usd": by_category(r, Basis::Site),
+                    },
                     "first_conflicts": first,
                     "not_computed": r.missing,
                 })
@@ -72,7 +89,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
     let place = &ranked[0].species.region;
     println!(
         "{} species of {} ({}), grown yearly to {} years{}; dollars summed over the years, \
-         undiscounted",
+         undiscounted; ranked by the net at {}",
         ranked.len(),
         place.name,
         place.city,
@@ -81,11 +98,24 @@ pub fn run(args: &RankArgs) -> Result<()> {
             .site
             .as_ref()
             .map(|p| format!(" on {}", p.display()))
-            .unwrap_or_default()
+            .unwrap_or_default(),
+        basis.name()
     );
     println!(
-        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>10}  {:<22} first conflict with a fixture",
-        "rank", "species", "years", "benefits", "costs", "net", "clearance pruning from"
+        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>10} {:>10} {:>10}  {:<22} first conflict with a fixture",
+        "rank",
+        "species",
+        "years",
+        "benefits",
+        "(typical)",
+        "costs",
+        "net",
+        "(typical)",
+        "clearance pruning from"
+    );
+    println!(
+        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>10} {:>10} {:>10}",
+        "", "", "", "this site", "position", "", "this site", "position"
     );
     for (i, r) in ranked.iter().enumerate() {
         // Growing into the clear heights over roadway and sidewalk is met by raising the
@@ -111,18 +141,29 @@ pub fn run(args: &RankArgs) -> Result<()> {
         } else {
             ""
         };
+        // Without a site there is no façade: the grown tree's own column lacks energy and
+        // is shown only where there is a site.
+        let own = |v: f64| {
+            if site.is_some() {
+                format!("{v:.0}")
+            } else {
+                "-".into()
+            }
+        };
         println!(
-            "  {:<4} {:<34} {:>5.0} {:>10.0} {:>10} {:>10.0}  {pruning:<22} {conflict}{carbon_missing}",
+            "  {:<4} {:<34} {:>5.0} {:>10} {:>10.0} {:>10} {:>10} {:>10.0}  {pruning:<22} {conflict}{carbon_missing}",
             i + 1,
             r.species.label(),
             r.last_age(),
-            r.benefits(),
+            own(r.benefits(Basis::Site)),
+            r.benefits(Basis::Typical),
             if r.accounts.iter().any(|a| a.costs.is_some()) {
                 format!("{:.0}", r.costs())
             } else {
                 "-".into()
             },
-            r.net()
+            own(r.net(Basis::Site)),
+            r.net(Basis::Typical)
         );
     }
     // What every species lacks alike, said once.
@@ -135,4 +176,25 @@ pub fn run(args: &RankArgs) -> Result<()> {
         println!("not counted: {m}");
     }
     Ok(())
+}
+
+/// A run's benefits summed over its years in each of i-Tree's categories, dollars (`null`
+/// where a category is not computed).
+fn by_category(r: &sylva::street::rank::Ranked, basis: Basis) -> serde_json::Value {
+    let mut out = serde_json::Map::new();
+    for a in &r.accounts {
+        for (name, v) in a.money(basis).categories() {
+            let entry = out.entry(name).or_insert(serde_json::Value::Null);
+            if let Some(v) = v {
+                let sum = entry.as_f64().unwrap_or(0.0) + v;
+                *entry = serde_json::json!(sum);
+            }
+        }
+    }
+    for v in out.values_mut() {
+        if let Some(x) = v.as_f64() {
+            *v = serde_json::json!((x * 100.0).round() / 100.0);
+        }
+    }
+    out.into()
 }

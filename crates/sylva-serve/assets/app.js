@@ -27,8 +27,18 @@ window.sylva = timing;
 const state = {
   regions: [], species: [], sites: [],
   region: 'InlVal', site: 'narrow', chosen: [], age: 20,
+  // 'typical': i-Tree Streets' figures at the grown DBH, at its usual positions around
+  // buildings (the site menu's first choice); 'site': the grown tree's own on `site`.
+  basis: 'typical',
   growth: new Map(),   // code -> growth JSON (all ages)
 };
+
+// The account the table and bars show: the typical position's, with the year's costs, or the
+// grown tree's own on the site.
+function account(st) {
+  if (state.basis !== 'typical' || !st.typical) return st;
+  return { ...st, value_usd: st.typical.value_usd, net_usd: st.typical.net_usd, conflicts: [] };
+}
 const street = new Street($('scene'));
 window.sylvaStreet = street;
 const loader = new THREE.GLTFLoader();
@@ -251,28 +261,38 @@ function drawNumbers() {
     lineChart(canvas, canvas.dataset.q, series, state.age);
   }
   const f = (v, d = 1) => (v == null ? '–' : Number(v).toFixed(d));
+  const typical = state.basis === 'typical';
   const head = ['Species', 'Height m', 'DBH cm', 'Crown m', 'Leaf area m²', 'CO₂ stored kg',
-    'CO₂ taken up kg/yr', 'Rain held m³', 'Cooling kWh', 'Net $/yr', 'In the way'];
+    'CO₂ taken up kg/yr', 'Rain held m³', 'Cooling kWh', 'Air quality $/yr', 'Net $/yr', 'In the way'];
   const lines = state.chosen.map((code, i) => {
     const s = state.species.find((x) => x.code === code);
     const r = row(code);
-    if (!r) return `<tr><td style="color:${COLOURS[i]}">${s.common}</td><td colspan="10">growing…</td></tr>`;
-    const st = r.street;
-    const conflicts = st.conflicts.map((c) => c.kind.replace('_', ' ')).join(', ') || 'nothing';
+    if (!r) return `<tr><td style="color:${COLOURS[i]}">${s.common}</td><td colspan="11">growing…</td></tr>`;
+    const st = account(r.street);
+    const t = r.street.typical;
+    const conflicts = typical ? 'no site' : st.conflicts.map((c) => c.kind.replace('_', ' ')).join(', ') || 'nothing';
+    // At typical position the flows are i-Tree's at this DBH; on a site, the grown tree's own.
+    const flows = typical && t
+      ? [t.co2_sequestered_kg, t.stormwater_m3, t.electricity_kwh]
+      : [st.co2_sequestered_kg, st.interception_m3, st.cooling_kwh];
     return `<tr><td style="color:${COLOURS[i]}"><b>${s.common}</b></td>` +
       `<td>${f(r.model.height)} <small>(${f(r.measured.height)})</small></td>` +
       `<td>${f(r.model.dbh)} <small>(${f(r.measured.dbh)})</small></td>` +
       `<td>${f(r.model.crown_diameter)} <small>(${f(r.measured.crown_diameter)})</small></td>` +
       `<td>${f(r.model.leaf_area, 0)}</td><td>${f(st.co2_stored_kg, 0)}</td>` +
-      `<td>${f(st.co2_sequestered_kg)}</td><td>${f(st.interception_m3, 2)}</td>` +
-      `<td>${f(st.cooling_kwh, 0)}</td><td>${f(st.net_usd, 0)}</td><td>${conflicts}</td></tr>`;
+      `<td>${f(flows[0])}</td><td>${f(flows[1], 2)}</td>` +
+      `<td>${f(flows[2], 0)}</td><td>${f(st.value_usd.air_quality, 0)}</td>` +
+      `<td>${f(st.net_usd, 0)}</td><td>${conflicts}</td></tr>`;
   });
+  const basis = typical
+    ? 'Benefits at typical position: i-Tree Streets\' figures for the species at the grown DBH.'
+    : 'Benefits of the grown tree on this site.';
   $('table').innerHTML = `<tr>${head.map((h) => `<th>${h}</th>`).join('')}</tr>${lines.join('')}` +
-    '<tr><td colspan="11" class="note">Grown tree, with the measured equation in brackets.</td></tr>';
+    `<tr><td colspan="12" class="note">Grown tree, with the measured equation in brackets. ${basis}</td></tr>`;
   const items = state.chosen.map((code, i) => {
     const s = state.species.find((x) => x.code === code);
     const r = row(code);
-    return r && { label: s.common, colour: COLOURS[i], street: r.street };
+    return r && { label: s.common, colour: COLOURS[i], street: account(r.street) };
   }).filter(Boolean);
   barChart($('bars'), items);
   const missing = new Set();
@@ -284,6 +304,12 @@ function drawConflicts() {
   const [lo, hi] = ageRange();
   const marks = $('marks');
   marks.textContent = '';
+  if (state.basis === 'typical') {
+    // No site, no conflicts: the typical position is a spread of positions, not a street.
+    $('conflicts').innerHTML = '<p class="note">Typical position: no site, so no conflicts. Choose a site above to see them.</p>';
+    $('site-pictures').textContent = '';
+    return;
+  }
   const parts = [];
   state.chosen.forEach((code, i) => {
     const g = state.growth.get(code);
@@ -418,9 +444,18 @@ async function start() {
   timing.warmMs = street.warm();
   $('region').innerHTML = regions.map((r) =>
     `<option value="${r.code}">${r.city}: ${r.name} (${r.code}, ${r.species} species)</option>`).join('');
-  $('site').innerHTML = sites.map((s) => `<option value="${s.key}">${s.label}</option>`).join('');
+  // The typical position first: the account a planner without a site reads.
+  $('site').innerHTML = '<option value="typical">Typical position (i-Tree Streets, no site)</option>' +
+    sites.map((s) => `<option value="${s.key}">${s.label}</option>`).join('');
   $('region').onchange = (e) => chooseRegion(e.target.value, []);
-  $('site').onchange = (e) => { state.site = e.target.value; street.streetKey = null; refresh(); };
+  $('site').onchange = (e) => {
+    // The typical position reads the same growth as the first site (its accounts carry it)
+    // and draws that street as a backdrop.
+    state.basis = e.target.value === 'typical' ? 'typical' : 'site';
+    if (state.basis === 'site') state.site = e.target.value;
+    street.streetKey = null;
+    refresh();
+  };
   $('search').oninput = showMatches;
   $('search').onkeydown = (e) => {
     if (e.key === 'Enter') {

@@ -78,11 +78,17 @@ export function lineChart(canvas, quantity, series, age) {
 }
 
 // What the bars show of a year's account (`street` in the growth rows).
+// i-Tree Streets' categories; a negative value (a winter heating penalty, BVOCs emitted) is
+// drawn below the line.
 export const BENEFITS = [
-  ['carbon', 'CO₂', '#5b8c5a'],
+  ['carbon', 'CO₂ taken up', '#5b8c5a'],
+  ['co2_avoided', 'CO₂ avoided', '#8fb58a'],
   ['stormwater', 'Rain held', '#4a87b5'],
   ['cooling', 'Cooling', '#e0a43a'],
-  ['heating', 'Winter shade', '#b5654a'],
+  ['heating', 'Heating', '#b5654a'],
+  ['air_quality', 'Air quality', '#78bed2'],
+  ['bvoc', 'BVOCs emitted', '#5a9696'],
+  ['aesthetics', 'Aesthetics', '#c878be'],
 ];
 export const COSTS = [
   ['planting', 'Planting', '#8c6d9e'],
@@ -90,7 +96,7 @@ export const COSTS = [
   ['removal', 'Removal', '#7d7d7d'],
   ['sidewalk', 'Sidewalk', '#b09a70'],
   ['cleanup', 'Clean-up', '#6f8f8f'],
-  ['average', 'Programme cost (average)', '#9c5b5b'],
+  ['average', 'Programme average', '#9c5b5b'],
 ];
 
 // `items`: [{ label, colour, street }].

@@ -82,6 +82,7 @@ export class Street {
     const key = JSON.stringify([site, count, spacing, latitude, tallest]);
     if (key === this.streetKey) return;
     this.streetKey = key;
+    this.lastSite = site;
     this.site.clear();
     this.changed = true;
     this.slots = [];
@@ -167,11 +168,15 @@ export class Street {
     if (this.framed !== key) this.frame(half, tallest);
   }
 
-  // A view from across the road that takes in every tree at its tallest.
+  // A view from across the road that takes in every tree at its tallest and, whatever the
+  // canvas's shape, the widest crowns of the outermost trees (`half` is the row's half-length
+  // plus 8 m of street; the trees themselves reach `half - 8`).
   frame(half, tallest) {
     this.framed = this.streetKey;
     const target = new THREE.Vector3(0, tallest * 0.45, 0);
-    const distance = Math.max(half * 1.6, tallest * 2.2, 12);
+    const tan = Math.tan((this.camera.fov * Math.PI) / 360);
+    const wide = (half - 7) / (tan * Math.max(0.3, this.camera.aspect));
+    const distance = Math.max(wide * 1.15, tallest * 2.2, 12);
     this.camera.position.set(0, tallest * 0.45 + distance * 0.18, distance);
     this.controls.target.copy(target);
     this.controls.update();

@@ -59,7 +59,7 @@ impl Pictures {
                     "{} {:.1} m, net ${:.0}/yr",
                     m.species.common,
                     e.record.model.height,
-                    e.accounts[0].net()
+                    e.accounts[0].net(sylva::street::Basis::Site)
                 )
             })
             .collect();

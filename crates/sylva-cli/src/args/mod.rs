@@ -532,7 +532,9 @@ pub struct StreetArgs {
     pub site: Option<PathBuf>,
 
     /// Prices of the benefits (source, year, electricity_per_kwh, natural_gas_per_kbtu,
-    /// stormwater_per_m3, co2_per_kg) instead of i-Tree's regional defaults.
+    /// stormwater_per_m3, co2_per_kg, ozone_per_kg, nox_per_kg, pm10_per_kg, so2_per_kg,
+    /// voc_per_kg; optionally leaf_gain_per_m2 for aesthetics) instead of i-Tree's regional
+    /// defaults.
     #[arg(long, value_name = "PRICES.toml")]
     pub prices: Option<PathBuf>,
 
@@ -563,9 +565,23 @@ pub struct RankArgs {
     #[arg(long, value_name = "DIR")]
     pub database: Option<PathBuf>,
 
+    /// Rank by the net benefit at i-Tree Streets' typical position, or by the grown tree's
+    /// own on the site given (default: `site` when --site is given, else `typical`).
+    #[arg(long, value_enum)]
+    pub by: Option<RankBy>,
+
     /// Print one JSON object per species instead of the table.
     #[arg(long)]
     pub json: bool,
+}
+
+/// What `sylva rank` ranks by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum RankBy {
+    /// i-Tree Streets' figures for the species at the grown DBH, at its usual positions.
+    Typical,
+    /// The grown tree's own crown on the site given (--site).
+    Site,
 }
 
 #[derive(Args, Debug)]

@@ -50,7 +50,12 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
     assert!(run.status.success(), "{}", text(&run.stderr));
     let said = text(&run.stdout);
     assert!(said.contains("first conflicts: at"), "{said}");
-    assert!(said.contains("not counted: air pollutant uptake"), "{said}");
+    // Aesthetics are counted in m² but not priced by default, and said so.
+    assert!(said.contains("not counted: aesthetics"), "{said}");
+    assert!(
+        said.contains("typical position from i-Tree Streets InlVal `PLAC`"),
+        "{said}"
+    );
     let mut reader = csv::Reader::from_path(out.join("PLAC.csv")).unwrap();
     let header = reader.headers().unwrap().clone();
     let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.unwrap()).collect();
@@ -76,14 +81,35 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         .iter()
         .map(|c| number(row, &format!("cost_{c}_usd")))
         .sum();
-        let benefits: f64 = ["carbon", "stormwater", "cooling", "heating"]
-            .iter()
-            .map(|b| number(row, &format!("value_{b}_usd")))
-            .sum();
+        // Every category of the site's account is priced except aesthetics (no built-in
+        // price: an empty cell, not a zero).
+        assert_eq!(column(&header, row, "value_aesthetics_usd"), "");
+        let categories = [
+            "carbon",
+            "co2_avoided",
+            "stormwater",
+            "cooling",
+            "heating",
+            "air_quality",
+            "bvoc",
+        ];
+        let sum = |prefix: &str| -> f64 {
+            categories
+                .iter()
+                .map(|b| number(row, &format!("{prefix}value_{b}_usd")))
+                .sum()
+        };
         assert!(
-            (number(row, "net_usd") - (benefits - costs)).abs() < 0.03,
+            (number(row, "net_usd") - (sum("") - costs)).abs() < 0.05,
             "{row:?}"
         );
+        assert!(
+            (number(row, "typical_net_usd") - (sum("typical_") - costs)).abs() < 0.05,
+            "{row:?}"
+        );
+        // The plane emits isoprene: a cost in both accounts.
+        assert!(number(row, "value_bvoc_usd") < 0.0 && number(row, "typical_value_bvoc_usd") < 0.0);
+        assert!(number(row, "value_air_quality_usd") > 0.0);
     }
     // Itemised costs replace the built-in average.
     assert_eq!(number(&rows[0], "cost_average_usd"), 0.0);
@@ -176,6 +202,11 @@ fn bad_sites_prices_and_costs_are_refused_before_anything_is_written() {
             "--prices",
             vec!["stormwater_per_m3"],
         ),
+        (
+            "source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\nozone_per_kg = inf\nnox_per_kg = 28.2\npm10_per_kg = 20.7\nso2_per_kg = 8.2\nvoc_per_kg = 10.3\n".into(),
+            "--prices",
+            vec!["ozone_per_kg", "finite"],
+        ),
         (COSTS.replace("cleanup_per_year = 3.0\n", ""), "--costs", vec!["cleanup_per_year"]),
     ];
     for (i, (body, flag, needles)) in cases.iter().enumerate() {
@@ -204,7 +235,7 @@ fn bad_sites_prices_and_costs_are_refused_before_anything_is_written() {
     let prices = dir.path().join("prices.toml");
     std::fs::write(
         &prices,
-        "source = \"test\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\n",
+        "source = \"test\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\nozone_per_kg = 11.0\nnox_per_kg = 28.2\npm10_per_kg = 20.7\nso2_per_kg = 8.2\nvoc_per_kg = 10.3\n",
     )
     .unwrap();
     let out = dir.path().join("palm");
@@ -271,6 +302,25 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         rows.iter()
             .any(|r| !r["first_conflicts"].as_array().unwrap().is_empty())
     );
+    // With a site the site's own figures rank; the typical position stands beside them.
+    assert!(rows.iter().all(|r| r["ranked_by"] == "this site"));
+    assert!(
+        rows.iter()
+            .all(|r| r["site"]["net_usd"] == r["net_usd"] && r["typical"]["net_usd"].is_f64())
+    );
+    // Another region, no site, ranked by the typical position: every category but aesthetics
+    // (no built-in price) has a number for every species.
+    let run = sylva(&["rank", "--region", "NoEast", "--years", "3", "--json"]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    for line in text(&run.stdout).lines() {
+        let r: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_eq!(r["ranked_by"], "typical position", "{r}");
+        assert_eq!(r["net_usd"], r["typical"]["net_usd"], "{r}");
+        let cats = r["typical"]["by_category_usd"].as_object().unwrap();
+        for (name, v) in cats {
+            assert_eq!(v.is_null(), name == "aesthetics", "{name}: {r}");
+        }
+    }
     let run = sylva(&["rank", "--region", "Atlantis", "--years", "4"]);
     assert_eq!(run.status.code(), Some(1));
     assert!(

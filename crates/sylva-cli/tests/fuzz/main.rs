@@ -370,7 +370,8 @@ const FAMILIES: [&str; 12] = [
 
 /// Seeds for the street family (test figures, not a city's).
 const PRICES: &str = "source = \"test\"\nyear = 2024\nelectricity_per_kwh = 0.3\n\
-natural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\n";
+natural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\n\
+ozone_per_kg = 11.0\nnox_per_kg = 28.2\npm10_per_kg = 20.7\nso2_per_kg = 8.2\nvoc_per_kg = 10.3\n";
 const COSTS: &str = "source = \"test\"\nyear = 2024\nplanting = 200.0\n\
 establishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.0\n\
 removal_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n\

@@ -86,6 +86,32 @@ try {
     draws.push(d);
     if (a === 5 || a === 50) await look(page, a);
   }
+  // 4. The typical position is the site menu's first choice and what the page opens on; its
+  // bars are i-Tree's categories.
+  const menu = await page.evaluate(() => [...document.querySelectorAll('#site option')].map((o) => o.value));
+  const note = await page.locator('#table .note').textContent();
+  check(menu[0] === 'typical' && menu.length >= 2 && /typical position/i.test(note),
+    `site menu ${menu.join(', ')}; table says: ${note}`);
+  // 5. Four trees in a row are framed whole: the outermost crowns' edges, at the ground and
+  // at the tallest, fall inside the canvas at the default camera.
+  const framed = await page.evaluate(() => {
+    const s = window.sylvaStreet;
+    const site = s.lastSite;
+    const spacing = 14, tallest = 22;
+    s.streetKey = null;
+    s.framed = null;
+    s.setStreet(site, 4, spacing, 37.6, tallest);
+    const edge = 2 * spacing;
+    const seen = [[-edge, 0], [edge, 0], [-edge, tallest], [edge, tallest]].map(([x, z]) => {
+      const [px, py, visible] = s.project(x, 0, z);
+      const c = document.getElementById('scene');
+      return visible && px >= 0 && px <= c.clientWidth && py >= 0 && py <= c.clientHeight;
+    });
+    s.streetKey = null;
+    s.framed = null;
+    return seen;
+  });
+  check(framed.every(Boolean), `four trees framed whole: ${framed.join(', ')}`);
   const worst = Math.max(...draws.map((d) => d.ms));
   console.log(`new age drawn after the slider stopped: ${draws.map((d) => `${d.age}: ${d.ms.toFixed(0)} ms (detail ${d.detail}, frame ${d.frame.toFixed(0)} ms)`).join(', ')}`);
   target('slowest new age drawn after the slider stopped', worst, 300);

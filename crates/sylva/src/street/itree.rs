@@ -162,6 +162,14 @@ impl Region {
         has(&s.values_from).then(|| s.values_from.clone())
     }
 
+    /// Every table row's name (species codes and `OTHER` classes), in no set order.
+    pub fn rows(&self) -> impl Iterator<Item = &str> {
+        self.values
+            .keys()
+            .filter(|(f, _)| *f == Factor::Electricity)
+            .map(|(_, row)| row.as_str())
+    }
+
     /// Whether the tables hold a row of that name (every row has every factor, as the tests
     /// check, so electricity stands for all).
     fn has_row(&self, row: &str) -> bool {

@@ -23,29 +23,80 @@ use super::crown::{Crown, leaves_of};
 use super::prices::Prices;
 use super::shade::{Energy, energy};
 use super::site::Site;
+use super::typical::{AirQuality, EmissionFactors, Reference, Typical};
 use crate::Skeleton;
 use crate::growth::{Dimensions, Measured};
 
-/// A year's benefits in dollars; `None` where a model or a price is missing.
+/// A year's benefits in dollars, in i-Tree Streets' categories; `None` where a model or a
+/// price is missing.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Money {
     /// CO2 taken up this year.
     pub carbon: Option<f64>,
+    /// CO2 not emitted at power plants thanks to the energy saved.
+    pub co2_avoided: Option<f64>,
     /// Stormwater held back.
     pub stormwater: Option<f64>,
     /// Air conditioning saved.
     pub cooling: Option<f64>,
-    /// Heating penalty (negative or zero).
+    /// Heating saved; negative where winter shade costs more than the tree saves.
     pub heating: Option<f64>,
+    /// Pollutants taken up by the leaves or not emitted thanks to the energy saved.
+    pub air_quality: Option<f64>,
+    /// Biogenic VOCs emitted (negative or zero).
+    pub bvoc: Option<f64>,
+    /// Aesthetics and property value.
+    pub aesthetics: Option<f64>,
 }
 
 impl Money {
     /// Sum of what is known.
     pub fn total(&self) -> f64 {
-        [self.carbon, self.stormwater, self.cooling, self.heating]
-            .iter()
-            .flatten()
-            .sum()
+        self.categories().iter().flat_map(|c| c.1).sum()
+    }
+
+    /// Each category with its name, in report order.
+    pub fn categories(&self) -> [(&'static str, Option<f64>); 8] {
+        [
+            ("carbon", self.carbon),
+            ("co2_avoided", self.co2_avoided),
+            ("stormwater", self.stormwater),
+            ("cooling", self.cooling),
+            ("heating", self.heating),
+            ("air_quality", self.air_quality),
+            ("bvoc", self.bvoc),
+            ("aesthetics", self.aesthetics),
+        ]
+    }
+}
+
+/// Which account a net benefit is read from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Basis {
+    /// i-Tree Streets' figures for the species at the grown DBH, at its usual spread of
+    /// positions around buildings ([`Typical`]).
+    Typical,
+    /// The grown tree's own crown on the site given (without a site: no façade, no energy).
+    Site,
+}
+
+impl Basis {
+    /// The basis a run reads by default: the site's own figures where there is a site, else
+    /// the typical position.
+    pub fn default_for(has_site: bool) -> Basis {
+        if has_site {
+            Basis::Site
+        } else {
+            Basis::Typical
+        }
+    }
+
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Basis::Typical => "typical position",
+            Basis::Site => "this site",
+        }
     }
 }
 
@@ -66,8 +117,19 @@ pub struct YearAccount {
     pub interception_m3: Option<f64>,
     /// Shade on the façade and its energy effects.
     pub energy: Option<Energy>,
-    /// The benefits in dollars.
+    /// CO2 not emitted thanks to the energy the façade's shade saves, kg.
+    pub co2_avoided_kg: Option<f64>,
+    /// Pollutants taken up by the grown crown (i-Tree's uptake per square metre of leaf at
+    /// this DBH, times the crown's own leaf area), and not emitted thanks to its energy
+    /// savings, where there is a façade.
+    pub air: Option<AirQuality>,
+    /// Leaf area gained this year by the grown crown, m².
+    pub leaf_gain_m2: f64,
+    /// The benefits of the grown tree on this site, in dollars.
     pub money: Money,
+    /// i-Tree Streets' figures for the species at this DBH, where the region's tables have
+    /// its row or class.
+    pub typical: Option<Typical>,
     /// The costs in dollars, where a cost table was given.
     pub costs: Option<YearCosts>,
     /// Conflicts with the site this year.
@@ -75,9 +137,18 @@ pub struct YearAccount {
 }
 
 impl YearAccount {
+    /// The benefits of an account, dollars: the typical position's where asked for and known,
+    /// else the grown tree's own.
+    pub fn money(&self, basis: Basis) -> &Money {
+        match (basis, &self.typical) {
+            (Basis::Typical, Some(t)) => &t.money,
+            _ => &self.money,
+        }
+    }
+
     /// Benefits less costs of what is computed, dollars.
-    pub fn net(&self) -> f64 {
-        self.money.total() - self.costs.map_or(0.0, |c| c.total())
+    pub fn net(&self, basis: Basis) -> f64 {
+        self.money(basis).total() - self.costs.map_or(0.0, |c| c.total())
     }
 }
 
@@ -90,7 +161,10 @@ pub struct Assessor {
     site: Option<Site>,
     prices: Option<Prices>,
     costs: Option<Costs>,
+    reference: Option<Reference>,
+    factors: Option<EmissionFactors>,
     last: Option<(f64, f64)>,
+    last_leaf: Option<(f64, f64)>,
     missing: Vec<String>,
 }
 
@@ -144,12 +218,22 @@ impl Assessor {
             )),
             Some(Costs::Itemised(_)) => {}
         }
-        missing.push(
-            "air pollutant uptake: not computed (no citable regional deposition velocities and \
-             concentrations)"
-                .into(),
-        );
-        missing.push("aesthetics and property value: not computed".into());
+        let reference = Reference::of(m)
+            .map_err(|why| {
+                missing.push(format!(
+                    "typical position: {why}; the grown tree's own figures stand in, and its air \
+                     quality, which is scaled from i-Tree's rates, is not computed"
+                ))
+            })
+            .ok();
+        if prices.as_ref().and_then(|p| p.leaf_gain_per_m2).is_none() {
+            missing.push(
+                "aesthetics and property value: the leaf area gained is counted (m²) but not \
+                 priced: i-Tree Streets prices it from the region's median home sale price, \
+                 which its tables do not carry (give --prices with leaf_gain_per_m2)"
+                    .into(),
+            );
+        }
         Assessor {
             measured: m.clone(),
             group,
@@ -158,9 +242,17 @@ impl Assessor {
             site,
             prices,
             costs,
+            factors: reference.as_ref().map(|r| EmissionFactors::of(r.region())),
+            reference,
             last: None,
+            last_leaf: None,
             missing,
         }
+    }
+
+    /// Where the typical-position figures come from, where they do.
+    pub fn reference(&self) -> Option<&Reference> {
+        self.reference.as_ref()
     }
 
     /// The benefits and costs not computed for this species, each with its reason.
@@ -228,9 +320,41 @@ impl Assessor {
             _ => None,
         };
         let p = self.prices.as_ref();
+        let typical = self.reference.as_ref().map(|r| r.at(dbh, p));
+        let leaf_gain = match self.last_leaf {
+            Some((a, before)) if age > a => ((crown.leaf_area - before) / (age - a)).max(0.0),
+            // The first year of a run: the mean gain since planting.
+            _ => crown.leaf_area / age.max(1.0),
+        };
+        self.last_leaf = Some((age, crown.leaf_area));
+        // Energy saved on the façade, as i-Tree counts it: kWh, and kBtu of gas (negative).
+        let saved = energy.map(|e| (e.cooling_kwh, -e.heating_penalty_kbtu));
+        let avoided = saved
+            .zip(self.factors)
+            .map(|((kwh, kbtu), f)| f.avoided(kwh, kbtu));
+        // i-Tree's uptake and BVOC emission per square metre of leaf at this DBH, on the
+        // grown crown's own leaf area.
+        let air = typical.as_ref().map(|t| {
+            let a = &t.amounts;
+            let k = if a.leaf_area_m2 > 0.0 {
+                crown.leaf_area / a.leaf_area_m2
+            } else {
+                0.0
+            };
+            AirQuality {
+                ozone_kg: a.air.ozone_kg * k,
+                nox_kg: a.air.nox_kg * k,
+                pm10_kg: a.air.pm10_kg * k,
+                so2_kg: a.air.so2_kg * k,
+                avoided_kg: avoided.map_or([0.0; 4], |a| a.1),
+                bvoc_kg: a.air.bvoc_kg * k,
+            }
+        });
         let price = |amount: Option<f64>, per: Option<f64>| amount.zip(per).map(|(a, p)| a * p);
+        let air_value = air.zip(p).and_then(|(a, p)| a.value(p));
         let money = Money {
             carbon: price(sequestered, p.and_then(|p| p.co2_per_kg)),
+            co2_avoided: price(avoided.map(|a| a.0), p.and_then(|p| p.co2_per_kg)),
             stormwater: price(interception, p.and_then(|p| p.stormwater_per_m3)),
             cooling: price(
                 energy.map(|e| e.cooling_kwh),
@@ -240,6 +364,9 @@ impl Assessor {
                 energy.map(|e| -e.heating_penalty_kbtu),
                 p.and_then(|p| p.natural_gas_per_kbtu),
             ),
+            air_quality: air_value.map(|v| v.0),
+            bvoc: air_value.map(|v| v.1),
+            aesthetics: price(Some(leaf_gain), p.and_then(|p| p.leaf_gain_per_m2)),
         };
         YearAccount {
             age,
@@ -249,7 +376,11 @@ impl Assessor {
             co2_sequestered_kg: sequestered,
             interception_m3: interception,
             energy,
+            co2_avoided_kg: avoided.map(|a| a.0),
+            air,
+            leaf_gain_m2: leaf_gain,
             money,
+            typical,
             costs: self.costs.as_ref().map(|c| c.year(age, dbh)),
             conflicts: self
                 .site

@@ -34,11 +34,12 @@ pub mod shade;
 pub mod site;
 pub mod sun;
 pub mod table;
+pub mod typical;
 pub mod wires;
 
 pub use conflicts::{Conflict, Kind, Part};
 pub use costs::Costs;
-pub use ledger::{Assessor, Money, YearAccount};
+pub use ledger::{Assessor, Basis, Money, YearAccount};
 pub use prices::Prices;
 pub use site::Site;
 

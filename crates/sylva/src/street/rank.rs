@@ -3,7 +3,7 @@
 
 use super::conflicts::{Conflict, Kind};
 use super::costs::Costs;
-use super::ledger::{Assessor, YearAccount};
+use super::ledger::{Assessor, Basis, YearAccount};
 use super::prices::Prices;
 use super::site::Site;
 use crate::growth::Measured;
@@ -23,8 +23,8 @@ pub struct Ranked {
 
 impl Ranked {
     /// Benefits over the years, dollars (undiscounted).
-    pub fn benefits(&self) -> f64 {
-        self.accounts.iter().map(|a| a.money.total()).sum()
+    pub fn benefits(&self, basis: Basis) -> f64 {
+        self.accounts.iter().map(|a| a.money(basis).total()).sum()
     }
 
     /// Costs over the years, dollars.
@@ -36,8 +36,8 @@ impl Ranked {
     }
 
     /// Benefits less costs.
-    pub fn net(&self) -> f64 {
-        self.benefits() - self.costs()
+    pub fn net(&self, basis: Basis) -> f64 {
+        self.benefits(basis) - self.costs()
     }
 
     /// The last age grown.
@@ -84,7 +84,8 @@ pub fn ages(m: &Measured, years: f64) -> Vec<f64> {
 }
 
 /// Grows every species yearly to `years` on the same site, in parallel, and returns them by
-/// net benefit, best first. `done` is called as each species finishes.
+/// net benefit on `basis`, best first. `done` is called as each species finishes.
+#[allow(clippy::too_many_arguments)]
 pub fn rank(
     species: Vec<Measured>,
     years: f64,
@@ -92,6 +93,7 @@ pub fn rank(
     site: Option<&Site>,
     prices: Option<&Prices>,
     costs: Option<&Costs>,
+    basis: Basis,
     done: &(dyn Fn(&Measured) + Sync),
 ) -> Vec<Ranked> {
     let mut out: Vec<Ranked> = species
@@ -102,7 +104,7 @@ pub fn rank(
             r
         })
         .collect();
-    out.sort_by(|a, b| b.net().total_cmp(&a.net()));
+    out.sort_by(|a, b| b.net(basis).total_cmp(&a.net(basis)));
     out
 }
 

@@ -2,17 +2,125 @@
 //! serves them (an empty cell or `null` where a model or a price is missing, never a zero).
 
 use super::conflicts::Conflict;
-use super::ledger::YearAccount;
+use super::ledger::{Basis, Money, YearAccount};
+use super::typical::Typical;
 use std::fmt::Write as _;
 
-/// The account's CSV columns, after a growth report's own.
-pub const HEADER: &str = "co2_stored_kg,co2_sequestered_kg,interception_m3,cooling_kwh,\
-heating_penalty_kbtu,facade_shaded_m2h,value_carbon_usd,value_stormwater_usd,\
-value_cooling_usd,value_heating_usd,cost_planting_usd,cost_pruning_usd,cost_removal_usd,\
-cost_sidewalk_usd,cost_cleanup_usd,cost_average_usd,net_usd,conflicts";
+/// A column: its name and how a cell is written from an account.
+type Column = (&'static str, fn(&YearAccount) -> String);
 
 fn cell(v: Option<f64>, digits: usize) -> String {
     v.map_or(String::new(), |v| format!("{v:.digits$}"))
+}
+
+fn typical(a: &YearAccount, f: fn(&Typical) -> Option<f64>, digits: usize) -> String {
+    cell(a.typical.as_ref().and_then(f), digits)
+}
+
+/// Every column after a growth report's own: the grown tree on this site, then i-Tree's
+/// typical position, then costs and both nets.
+const COLUMNS: &[Column] = &[
+    ("co2_stored_kg", |a| cell(a.co2_stored_kg, 1)),
+    ("co2_sequestered_kg", |a| cell(a.co2_sequestered_kg, 2)),
+    ("co2_avoided_kg", |a| cell(a.co2_avoided_kg, 2)),
+    ("interception_m3", |a| cell(a.interception_m3, 3)),
+    ("cooling_kwh", |a| cell(a.energy.map(|e| e.cooling_kwh), 1)),
+    ("heating_penalty_kbtu", |a| {
+        cell(a.energy.map(|e| e.heating_penalty_kbtu), 1)
+    }),
+    ("facade_shaded_m2h", |a| {
+        cell(a.energy.map(|e| e.summer.shaded_m2h), 0)
+    }),
+    ("air_removed_kg", |a| cell(a.air.map(|q| q.removed_kg()), 3)),
+    ("bvoc_kg", |a| cell(a.air.map(|q| q.bvoc_kg), 3)),
+    ("leaf_gain_m2", |a| format!("{:.1}", a.leaf_gain_m2)),
+    ("value_carbon_usd", |a| cell(a.money.carbon, 2)),
+    ("value_co2_avoided_usd", |a| cell(a.money.co2_avoided, 2)),
+    ("value_stormwater_usd", |a| cell(a.money.stormwater, 2)),
+    ("value_cooling_usd", |a| cell(a.money.cooling, 2)),
+    ("value_heating_usd", |a| cell(a.money.heating, 2)),
+    ("value_air_quality_usd", |a| cell(a.money.air_quality, 2)),
+    ("value_bvoc_usd", |a| cell(a.money.bvoc, 2)),
+    ("value_aesthetics_usd", |a| cell(a.money.aesthetics, 2)),
+    ("typical_row", |a| {
+        a.typical.as_ref().map_or(String::new(), |t| t.row.clone())
+    }),
+    ("typical_held", |a| {
+        a.typical
+            .as_ref()
+            .map_or(String::new(), |t| t.held.to_string())
+    }),
+    ("typical_electricity_kwh", |a| {
+        typical(a, |t| Some(t.amounts.electricity_kwh), 1)
+    }),
+    ("typical_natural_gas_kbtu", |a| {
+        typical(a, |t| Some(t.amounts.natural_gas_kbtu), 1)
+    }),
+    ("typical_stormwater_m3", |a| {
+        typical(a, |t| Some(t.amounts.stormwater_m3), 3)
+    }),
+    ("typical_co2_sequestered_kg", |a| {
+        typical(a, |t| Some(t.amounts.co2_sequestered_kg), 2)
+    }),
+    ("typical_co2_avoided_kg", |a| {
+        typical(a, |t| Some(t.amounts.co2_avoided_kg), 2)
+    }),
+    ("typical_air_removed_kg", |a| {
+        typical(a, |t| Some(t.amounts.air.removed_kg()), 3)
+    }),
+    ("typical_bvoc_kg", |a| {
+        typical(a, |t| Some(t.amounts.air.bvoc_kg), 3)
+    }),
+    ("typical_leaf_gain_m2", |a| {
+        typical(a, |t| Some(t.amounts.leaf_gain_m2), 1)
+    }),
+    ("typical_value_carbon_usd", |a| {
+        typical(a, |t| t.money.carbon, 2)
+    }),
+    ("typical_value_co2_avoided_usd", |a| {
+        typical(a, |t| t.money.co2_avoided, 2)
+    }),
+    ("typical_value_stormwater_usd", |a| {
+        typical(a, |t| t.money.stormwater, 2)
+    }),
+    ("typical_value_cooling_usd", |a| {
+        typical(a, |t| t.money.cooling, 2)
+    }),
+    ("typical_value_heating_usd", |a| {
+        typical(a, |t| t.money.heating, 2)
+    }),
+    ("typical_value_air_quality_usd", |a| {
+        typical(a, |t| t.money.air_quality, 2)
+    }),
+    ("typical_value_bvoc_usd", |a| {
+        typical(a, |t| t.money.bvoc, 2)
+    }),
+    ("typical_value_aesthetics_usd", |a| {
+        typical(a, |t| t.money.aesthetics, 2)
+    }),
+    ("cost_planting_usd", |a| {
+        cell(a.costs.map(|c| c.planting), 2)
+    }),
+    ("cost_pruning_usd", |a| cell(a.costs.map(|c| c.pruning), 2)),
+    ("cost_removal_usd", |a| cell(a.costs.map(|c| c.removal), 2)),
+    ("cost_sidewalk_usd", |a| {
+        cell(a.costs.map(|c| c.sidewalk), 2)
+    }),
+    ("cost_cleanup_usd", |a| cell(a.costs.map(|c| c.cleanup), 2)),
+    ("cost_average_usd", |a| cell(a.costs.map(|c| c.average), 2)),
+    ("net_usd", |a| format!("{:.2}", a.net(Basis::Site))),
+    ("typical_net_usd", |a| {
+        a.typical
+            .as_ref()
+            .map_or(String::new(), |_| format!("{:.2}", a.net(Basis::Typical)))
+    }),
+    ("conflicts", |a| conflicts_cell(&a.conflicts)),
+];
+
+/// The account's CSV columns, after a growth report's own: `net_usd` is the grown tree's on
+/// this site, `typical_net_usd` i-Tree's typical position's.
+pub fn header() -> String {
+    COLUMNS.iter().map(|c| c.0).collect::<Vec<_>>().join(",")
 }
 
 /// Conflicts as one cell: `kind:part:share%` joined by `;`.
@@ -31,45 +139,26 @@ pub fn conflicts_cell(conflicts: &[Conflict]) -> String {
         .join(";")
 }
 
-/// One account's cells, in [`HEADER`]'s order.
+/// One account's cells, in [`header`]'s order.
 pub fn row(a: &YearAccount) -> String {
-    let e = a.energy;
-    let c = a.costs;
-    let m = &a.money;
-    [
-        cell(a.co2_stored_kg, 1),
-        cell(a.co2_sequestered_kg, 2),
-        cell(a.interception_m3, 3),
-        cell(e.map(|e| e.cooling_kwh), 1),
-        cell(e.map(|e| e.heating_penalty_kbtu), 1),
-        cell(e.map(|e| e.summer.shaded_m2h), 0),
-        cell(m.carbon, 2),
-        cell(m.stormwater, 2),
-        cell(m.cooling, 2),
-        cell(m.heating, 2),
-        cell(c.map(|c| c.planting), 2),
-        cell(c.map(|c| c.pruning), 2),
-        cell(c.map(|c| c.removal), 2),
-        cell(c.map(|c| c.sidewalk), 2),
-        cell(c.map(|c| c.cleanup), 2),
-        cell(c.map(|c| c.average), 2),
-        format!("{:.2}", a.net()),
-        conflicts_cell(&a.conflicts),
-    ]
-    .join(",")
+    COLUMNS
+        .iter()
+        .map(|c| (c.1)(a))
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
 /// A growth report's CSV (one header line, then one row per age) with each age's account
 /// appended to its row.
 pub fn join_csv(growth_csv: &str, accounts: &[YearAccount]) -> String {
-    let mut out = String::with_capacity(growth_csv.len() * 2);
+    let mut out = String::with_capacity(growth_csv.len() * 3);
     for (i, line) in growth_csv.lines().enumerate() {
         let extra = match i {
-            0 => HEADER.to_string(),
+            0 => header(),
             _ => accounts
                 .get(i - 1)
                 .map(row)
-                .unwrap_or_else(|| ",".repeat(17)),
+                .unwrap_or_else(|| ",".repeat(COLUMNS.len() - 1)),
         };
         // Writing into a String cannot fail.
         let _ = writeln!(out, "{line},{extra}");
@@ -77,23 +166,50 @@ pub fn join_csv(growth_csv: &str, accounts: &[YearAccount]) -> String {
     out
 }
 
-/// One account as JSON.
+fn money_json(m: &Money) -> serde_json::Value {
+    let round = |v: Option<f64>| v.map(|v| (v * 100.0).round() / 100.0);
+    m.categories()
+        .iter()
+        .map(|(name, v)| (name.to_string(), serde_json::json!(round(*v))))
+        .collect::<serde_json::Map<_, _>>()
+        .into()
+}
+
+/// One account as JSON: the grown tree on this site, with i-Tree's typical position under
+/// `typical`.
 pub fn json(a: &YearAccount) -> serde_json::Value {
     let round = |v: Option<f64>, k: f64| v.map(|v| (v * k).round() / k);
     let e = a.energy;
+    let typical = a.typical.as_ref().map(|t| {
+        let m = &t.amounts;
+        serde_json::json!({
+            "region": t.region,
+            "row": t.row,
+            "held": t.held,
+            "electricity_kwh": round(Some(m.electricity_kwh), 10.0),
+            "natural_gas_kbtu": round(Some(m.natural_gas_kbtu), 10.0),
+            "stormwater_m3": round(Some(m.stormwater_m3), 1e3),
+            "co2_sequestered_kg": round(Some(m.co2_sequestered_kg), 100.0),
+            "co2_avoided_kg": round(Some(m.co2_avoided_kg), 100.0),
+            "air_removed_kg": round(Some(m.air.removed_kg()), 1e3),
+            "bvoc_kg": round(Some(m.air.bvoc_kg), 1e3),
+            "leaf_gain_m2": round(Some(m.leaf_gain_m2), 10.0),
+            "value_usd": money_json(&t.money),
+            "net_usd": (a.net(Basis::Typical) * 100.0).round() / 100.0,
+        })
+    });
     serde_json::json!({
         "co2_stored_kg": round(a.co2_stored_kg, 10.0),
         "co2_sequestered_kg": round(a.co2_sequestered_kg, 100.0),
+        "co2_avoided_kg": round(a.co2_avoided_kg, 100.0),
         "interception_m3": round(a.interception_m3, 1e3),
         "cooling_kwh": round(e.map(|e| e.cooling_kwh), 10.0),
         "heating_penalty_kbtu": round(e.map(|e| e.heating_penalty_kbtu), 10.0),
         "facade_shaded_m2h": round(e.map(|e| e.summer.shaded_m2h), 1.0),
-        "value_usd": {
-            "carbon": round(a.money.carbon, 100.0),
-            "stormwater": round(a.money.stormwater, 100.0),
-            "cooling": round(a.money.cooling, 100.0),
-            "heating": round(a.money.heating, 100.0),
-        },
+        "air_removed_kg": round(a.air.map(|q| q.removed_kg()), 1e3),
+        "bvoc_kg": round(a.air.map(|q| q.bvoc_kg), 1e3),
+        "leaf_gain_m2": round(Some(a.leaf_gain_m2), 10.0),
+        "value_usd": money_json(&a.money),
         "cost_usd": a.costs.map(|c| serde_json::json!({
             "planting": (c.planting * 100.0).round() / 100.0,
             "pruning": (c.pruning * 100.0).round() / 100.0,
@@ -102,7 +218,8 @@ pub fn json(a: &YearAccount) -> serde_json::Value {
             "cleanup": (c.cleanup * 100.0).round() / 100.0,
             "average": (c.average * 100.0).round() / 100.0,
         })),
-        "net_usd": (a.net() * 100.0).round() / 100.0,
+        "net_usd": (a.net(Basis::Site) * 100.0).round() / 100.0,
+        "typical": typical,
         "conflicts": a.conflicts.iter().map(|c| serde_json::json!({
             "kind": c.kind.name(),
             "part": c.part.name(),
@@ -140,7 +257,7 @@ mod tests {
         let text = join_csv(&csv(&cohort.history[0]), &accounts);
         let mut reader = csv::Reader::from_reader(text.as_bytes());
         let header = reader.headers().unwrap().clone();
-        assert_eq!(header.len(), 17 + 18);
+        assert_eq!(header.len(), 17 + COLUMNS.len());
         let rows: Vec<_> = reader.records().map(|r| r.unwrap()).collect();
         assert_eq!(rows.len(), 2);
         let col = |name: &str| header.iter().position(|h| h == name).unwrap();
@@ -156,8 +273,18 @@ mod tests {
             "{:?}",
             &rows[1]
         );
+        // Typical position: the plane's own Modesto row, worth more than what the grown tree
+        // earns without a façade (no energy), and its net written.
+        assert_eq!(&rows[1][col("typical_row")], "PLAC");
+        let t = &accounts[1];
+        assert!(t.money(Basis::Typical).total() > t.money(Basis::Site).total());
+        let typical: f64 = rows[1][col("typical_net_usd")].parse().unwrap();
+        assert!((typical - t.net(Basis::Typical)).abs() < 0.006, "{typical}");
         let j = json(&accounts[1]);
         assert!(j["cooling_kwh"].is_null());
+        assert_eq!(j["typical"]["row"], "PLAC");
+        assert!(j["typical"]["value_usd"]["air_quality"].as_f64().unwrap() > 0.0);
+        assert!(j["typical"]["value_usd"]["aesthetics"].is_null());
         assert_eq!(j["conflicts"][0]["kind"], "wire");
     }
 }
