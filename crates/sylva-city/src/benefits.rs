@@ -3,8 +3,11 @@
 //! from the DBH its species' measured growth gives it a year earlier, rain held back by its
 //! crown (the grown tree of its class, its leaf and bark areas and crown projection scaled by
 //! the square of the tree's scale to it), and the region's built-in prices of the two. No
-//! energy figures: an inventory has no façades. A figure with no model or price is -1 (the
-//! property's no-data value).
+//! energy figures from the crown: an inventory has no façades. Beside them, the typical
+//! position's account (`sylva::street::typical`): i-Tree Streets' figures for the species at
+//! the tree's own inventory DBH, in its categories, at the region's prices, as i-Tree Streets
+//! itself values an inventory. A figure with no model or price is -1 (the property's no-data
+//! value).
 
 use crate::plan::{Kind, Planned};
 use crate::prototypes::Prototype;
@@ -13,6 +16,7 @@ use sylva::growth::Measured;
 use sylva::street::Prices;
 use sylva::street::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
 use sylva::street::climate::{climate, interception_m3};
+use sylva::street::typical::Reference;
 
 /// A figure no model or price gives.
 pub const NO_DATA: f32 = -1.0;
@@ -28,6 +32,11 @@ pub struct TreeYear {
     pub rain_intercepted_m3: f32,
     /// The two valued at the region's prices, dollars.
     pub benefits_usd: f32,
+    /// At typical position: energy (cooling and heating), carbon (sequestered and avoided),
+    /// stormwater, air quality (BVOCs subtracted), dollars.
+    pub typical_usd: [f32; 4],
+    /// At typical position: every priced benefit, dollars.
+    pub typical_benefits_usd: f32,
 }
 
 /// The year of `tree` (drawn as `p`, grown by `m`).
@@ -37,6 +46,8 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
         co2_sequestered_kg: NO_DATA,
         rain_intercepted_m3: NO_DATA,
         benefits_usd: NO_DATA,
+        typical_usd: [NO_DATA; 4],
+        typical_benefits_usd: NO_DATA,
     };
     let (Kind::Tree(key), Some(p), Some(m)) = (&tree.kind, p, m) else {
         return none;
@@ -60,11 +71,28 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
         (c, w) => Some(c.unwrap_or(0.0) + w.unwrap_or(0.0)),
     };
     let f = |x: Option<f64>| x.map_or(NO_DATA, |v| v as f32);
+    let typical = Reference::of(m)
+        .ok()
+        .map(|r| r.at(dbh, prices.as_ref()).money);
+    let sum = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (None, None) => None,
+        (a, b) => Some(a.unwrap_or(0.0) + b.unwrap_or(0.0)),
+    };
+    let typical_usd = typical.map_or([NO_DATA; 4], |t| {
+        [
+            f(sum(t.cooling, t.heating)),
+            f(sum(t.carbon, t.co2_avoided)),
+            f(t.stormwater),
+            f(sum(t.air_quality, t.bvoc)),
+        ]
+    });
     TreeYear {
         co2_stored_kg: f(stored),
         co2_sequestered_kg: f(sequestered),
         rain_intercepted_m3: f(rain),
         benefits_usd: f(money),
+        typical_usd,
+        typical_benefits_usd: f(typical.map(|t| t.total())),
     }
 }
 
@@ -133,11 +161,25 @@ mod tests {
             big.rain_intercepted_m3 > 2.0 * y.rain_intercepted_m3,
             "{big:?} {y:?}"
         );
+        // At typical position: i-Tree's London plane row at this DBH, every category priced
+        // and summed (the plane emits isoprene, so its air quality is net of a BVOC cost).
+        let t = Reference::of(&m)
+            .unwrap()
+            .at(m.dbh(10.0), Prices::builtin("InlVal").as_ref());
+        assert!(
+            (y.typical_benefits_usd as f64 - t.money.total()).abs() < 1e-3,
+            "{y:?}"
+        );
+        assert!(y.typical_usd.iter().all(|&v| v > 0.0), "{y:?}");
+        let sum: f32 = y.typical_usd.iter().sum();
+        assert!((sum - y.typical_benefits_usd).abs() < 1e-3, "{y:?}");
         // A stump gives nothing: every figure is the no-data value.
         let stump = Planned {
             kind: Kind::Stump,
             ..tree(0.3)
         };
-        assert_eq!(tree_year(&stump, None, None).benefits_usd, NO_DATA);
+        let gone = tree_year(&stump, None, None);
+        assert_eq!(gone.benefits_usd, NO_DATA);
+        assert_eq!(gone.typical_benefits_usd, NO_DATA);
     }
 }

@@ -101,7 +101,12 @@ async fn a_grown_tree_comes_back_as_a_readable_glb_of_its_measured_height() {
     // The year's account is there with the typical position beside it, and what is not
     // computed says so.
     assert!(row["street"]["co2_stored_kg"].as_f64().unwrap() > 0.0);
-    assert!(row["street"]["typical"]["value_usd"]["air_quality"].as_f64().unwrap() > 0.0);
+    assert!(
+        row["street"]["typical"]["value_usd"]["air_quality"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
     assert!(row["street"]["typical"]["net_usd"].is_f64());
     assert!(growth["missing"].as_array().unwrap().iter().any(|m| {
         m.as_str()

@@ -58,6 +58,11 @@ pub fn schema() -> serde_json::Value {
                 "co2_sequestered_kg_per_year": benefit("CO2 taken up this year, kg"),
                 "rain_intercepted_m3_per_year": benefit("Rain held back this year, m3"),
                 "benefits_usd_per_year": benefit("This year's CO2 uptake and rain interception at the region's built-in prices, US dollars"),
+                "typical_energy_usd_per_year": benefit("At i-Tree Streets' typical position, at this DBH: cooling and heating saved (a winter penalty negative), US dollars"),
+                "typical_carbon_usd_per_year": benefit("At typical position: CO2 sequestered and avoided, US dollars"),
+                "typical_stormwater_usd_per_year": benefit("At typical position: rain held back, US dollars"),
+                "typical_air_quality_usd_per_year": benefit("At typical position: pollutants taken up and not emitted, less BVOCs emitted, US dollars"),
+                "typical_benefits_usd_per_year": benefit("At typical position: every priced benefit (aesthetics are not priced), US dollars"),
             }
         }}
     })
@@ -189,6 +194,26 @@ fn table(trees: &[TileTree]) -> PropertyTable {
                 year(&|y| y.rain_intercepted_m3),
             ),
             ("benefits_usd_per_year".into(), year(&|y| y.benefits_usd)),
+            (
+                "typical_energy_usd_per_year".into(),
+                year(&|y| y.typical_usd[0]),
+            ),
+            (
+                "typical_carbon_usd_per_year".into(),
+                year(&|y| y.typical_usd[1]),
+            ),
+            (
+                "typical_stormwater_usd_per_year".into(),
+                year(&|y| y.typical_usd[2]),
+            ),
+            (
+                "typical_air_quality_usd_per_year".into(),
+                year(&|y| y.typical_usd[3]),
+            ),
+            (
+                "typical_benefits_usd_per_year".into(),
+                year(&|y| y.typical_benefits_usd),
+            ),
         ],
     }
 }

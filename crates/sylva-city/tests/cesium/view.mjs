@@ -190,6 +190,12 @@ try {
   check(picked.some((p) => p.co2_stored_kg > 0 && p.co2_sequestered_kg_per_year > 0 &&
     p.benefits_usd_per_year > 0),
     'trees carry their year\'s CO2 stored and taken up, and its value');
+  // i-Tree Streets' typical-position account at the tree's own DBH, by category.
+  check(picked.some((p) => p.typical_benefits_usd_per_year > 0 && p.typical_energy_usd_per_year !== undefined &&
+    p.typical_air_quality_usd_per_year !== undefined &&
+    Math.abs(p.typical_energy_usd_per_year + p.typical_carbon_usd_per_year + p.typical_stormwater_usd_per_year +
+      p.typical_air_quality_usd_per_year - p.typical_benefits_usd_per_year) < 0.05),
+    'trees carry their typical-position benefits, the categories adding up');
 } finally {
   await browser.close();
   server.close();
