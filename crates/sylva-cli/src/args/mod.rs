@@ -570,6 +570,17 @@ pub struct RankArgs {
     #[arg(long, value_enum)]
     pub by: Option<RankBy>,
 
+    /// Only these species codes (default: every growable species of the region).
+    #[arg(long, value_delimiter = ',')]
+    pub species: Vec<String>,
+
+    /// Instead of ranking: grow each species to 20, 30 and 40 cm DBH, place it around a
+    /// standard house at i-Tree Streets' 24 positions (three distance classes, eight
+    /// directions, weighted evenly), and print the shade's cooling and heating beside
+    /// i-Tree's figures at the same DBH.
+    #[arg(long)]
+    pub calibrate: bool,
+
     /// Print one JSON object per species instead of the table.
     #[arg(long)]
     pub json: bool,

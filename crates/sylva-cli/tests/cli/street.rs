@@ -321,6 +321,35 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
             assert_eq!(v.is_null(), name == "aesthetics", "{name}: {r}");
         }
     }
+    // The site model set beside i-Tree's figures around the standard house.
+    let run = sylva(&[
+        "rank",
+        "--region",
+        "InlVal",
+        "--calibrate",
+        "--species",
+        "CICA",
+        "--json",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let rows: Vec<serde_json::Value> = text(&run.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(rows.len(), 3, "20, 30 and 40 cm");
+    for r in &rows {
+        assert_eq!(r["species"], "CICA");
+        assert!(r["dbh_cm"].as_f64().unwrap() >= r["dbh_target_cm"].as_f64().unwrap());
+        assert!(r["itree_natural_gas_kbtu"].as_f64().unwrap() < 0.0, "{r}");
+        assert!(r["heating_in_bounds"].is_boolean());
+    }
+    let run = sylva(&["rank", "--calibrate", "--species", "NOPE"]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(
+        text(&run.stderr).contains("--species NOPE"),
+        "{}",
+        text(&run.stderr)
+    );
     let run = sylva(&["rank", "--region", "Atlantis", "--years", "4"]);
     assert_eq!(run.status.code(), Some(1));
     assert!(

@@ -20,6 +20,7 @@
 //! A benefit without a sourced model or input is reported as missing, with the reason, never
 //! as zero. `docs/benefits.md` gives every formula and source.
 
+pub mod calibrate;
 pub mod carbon;
 pub mod climate;
 pub mod conflicts;

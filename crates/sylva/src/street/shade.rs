@@ -51,12 +51,45 @@ pub struct FacadeSun {
     pub shaded_m2h: f64,
 }
 
+/// A wall in the tree's frame: the plane y = `setback` (the trunk at the origin, x along the
+/// wall), from x0 to x1 and from the ground to `height`, looking out along -y towards the
+/// compass direction `faces`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wall {
+    /// y of the wall, m.
+    pub setback: f64,
+    /// Height, m.
+    pub height: f64,
+    /// Its ends along x, m.
+    pub x: [f64; 2],
+    /// Compass direction it faces, degrees clockwise from north.
+    pub faces: f64,
+}
+
+impl Wall {
+    /// A site's façade: centred on the tree.
+    pub fn of(facade: &Facade) -> Wall {
+        Wall {
+            setback: facade.setback,
+            height: facade.height,
+            x: [-facade.width / 2.0, facade.width / 2.0],
+            faces: facade.faces,
+        }
+    }
+}
+
 /// Sun on the façade over the months `months` at `latitude`, with the crown in front of it.
 /// The trunk stands at the origin; the wall is the plane y = `facade.setback`.
 pub fn facade_sun(crown: &Crown, facade: &Facade, latitude: f64, months: &[usize]) -> FacadeSun {
-    let nx = ((facade.width / SPACING).ceil() as usize).clamp(1, MAX_SAMPLES);
-    let nz = ((facade.height / SPACING).ceil() as usize).clamp(1, MAX_SAMPLES);
-    let (dx, dz) = (facade.width / nx as f64, facade.height / nz as f64);
+    wall_sun(crown, &Wall::of(facade), latitude, months)
+}
+
+/// Sun on a wall over the months `months` at `latitude`, with the crown in front of it.
+pub fn wall_sun(crown: &Crown, wall: &Wall, latitude: f64, months: &[usize]) -> FacadeSun {
+    let width = wall.x[1] - wall.x[0];
+    let nx = ((width / SPACING).ceil() as usize).clamp(1, MAX_SAMPLES);
+    let nz = ((wall.height / SPACING).ceil() as usize).clamp(1, MAX_SAMPLES);
+    let (dx, dz) = (width / nx as f64, wall.height / nz as f64);
     let cell_area = dx * dz;
     let mut out = FacadeSun::default();
     for &m in months {
@@ -70,7 +103,7 @@ pub fn facade_sun(crown: &Crown, facade: &Facade, latitude: f64, months: &[usize
             if beam <= 0.0 {
                 continue;
             }
-            let rel = (sun.azimuth - facade.faces).to_radians();
+            let rel = (sun.azimuth - wall.faces).to_radians();
             let (e, cos_e) = (sun.elevation.to_radians(), sun.elevation.to_radians().cos());
             let dir = DVec3::new(-rel.sin() * cos_e, -rel.cos() * cos_e, e.sin());
             // The wall looks out along -y: lit only while the sun is on that side.
@@ -82,8 +115,8 @@ pub fn facade_sun(crown: &Crown, facade: &Facade, latitude: f64, months: &[usize
             for i in 0..nx {
                 for k in 0..nz {
                     let p = DVec3::new(
-                        -facade.width / 2.0 + (i as f64 + 0.5) * dx,
-                        facade.setback - 1e-3,
+                        wall.x[0] + (i as f64 + 0.5) * dx,
+                        wall.setback - 1e-3,
                         (k as f64 + 0.5) * dz,
                     );
                     let stopped = 1.0 - crown.transmittance(p, dir);
@@ -108,6 +141,38 @@ pub struct Energy {
     pub cooling_kwh: f64,
     /// Extra furnace gas for the winter sun kept out, kBtu (evergreens only; >= 0).
     pub heating_penalty_kbtu: f64,
+}
+
+impl FacadeSun {
+    fn add(&mut self, o: FacadeSun) {
+        self.incident_kwh += o.incident_kwh;
+        self.blocked_kwh += o.blocked_kwh;
+        self.shaded_m2h += o.shaded_m2h;
+    }
+}
+
+/// The energy a crown saves and costs the walls of a building whose walls are `glass` windows
+/// (a share, 0..1), as [`energy`] counts it for one façade.
+pub fn energy_of_walls(
+    crown: &Crown,
+    walls: &[Wall],
+    glass: f64,
+    latitude: f64,
+    evergreen: bool,
+) -> Energy {
+    let (mut summer, mut winter) = (FacadeSun::default(), FacadeSun::default());
+    for w in walls {
+        summer.add(wall_sun(crown, w, latitude, &SUMMER));
+        if evergreen {
+            winter.add(wall_sun(crown, w, latitude, &WINTER));
+        }
+    }
+    Energy {
+        summer,
+        winter,
+        cooling_kwh: summer.blocked_kwh * glass * SHGC / COOLING_COP,
+        heating_penalty_kbtu: winter.blocked_kwh * glass * SHGC / FURNACE_AFUE * KBTU_PER_KWH,
+    }
 }
 
 /// The energy a crown saves and costs a façade. `evergreen` trees keep their leaves in winter;
