@@ -140,6 +140,9 @@ enum Shape {
 }
 
 impl Shape {
+    // Inlined into the per-point loops: a call per point and zone cost a third of
+    // `conflicts_with`'s time (2.55 against 1.72 ms for a 40-year plane's 44,000 points).
+    #[inline]
     fn holds(&self, p: Vec3) -> bool {
         match *self {
             Shape::Box { lo, hi } => p.cmpge(lo).all() && p.cmple(hi).all(),

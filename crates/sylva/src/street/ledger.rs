@@ -296,7 +296,26 @@ impl Assessor {
     /// `skeleton`. Call in rising order of age.
     pub fn year(&mut self, age: f64, dims: &Dimensions, skeleton: &Skeleton) -> YearAccount {
         let leaves = leaves_of(skeleton);
-        let crown = Crown::with_leaves(skeleton, &leaves);
+        let facade = self.site.as_ref().and_then(|s| s.facade.as_ref());
+        // The crown and its shade on the façade, and the site's conflicts, read the same leaves
+        // and nothing of each other: on two threads they take the longer one's time, not the
+        // sum (`sylva bench --street`).
+        let ((crown, energy), conflicts) = rayon::join(
+            || {
+                let crown = Crown::with_leaves(skeleton, &leaves);
+                let energy = match (facade, self.climate) {
+                    (Some(f), Some(c)) => Some(energy(&crown, f, c.latitude, self.evergreen)),
+                    _ => None,
+                };
+                (crown, energy)
+            },
+            || {
+                self.site
+                    .as_ref()
+                    .map(|s| conflicts_with(skeleton, &leaves, s))
+                    .unwrap_or_default()
+            },
+        );
         let dbh = dims.dbh;
         let stored = self.group.map(|g| co2_stored_kg(g, dbh));
         let sequestered = stored.map(|now| {
@@ -314,11 +333,6 @@ impl Assessor {
             .climate
             .and_then(|c| c.rain)
             .map(|r| interception_m3(&r, crown.leaf_area + crown.bark_area, crown.projection));
-        let facade = self.site.as_ref().and_then(|s| s.facade.as_ref());
-        let energy = match (facade, self.climate) {
-            (Some(f), Some(c)) => Some(energy(&crown, f, c.latitude, self.evergreen)),
-            _ => None,
-        };
         let p = self.prices.as_ref();
         let typical = self.reference.as_ref().map(|r| r.at(dbh, p));
         let leaf_gain = match self.last_leaf {
@@ -382,11 +396,7 @@ impl Assessor {
             money,
             typical,
             costs: self.costs.as_ref().map(|c| c.year(age, dbh)),
-            conflicts: self
-                .site
-                .as_ref()
-                .map(|s| conflicts_with(skeleton, &leaves, s))
-                .unwrap_or_default(),
+            conflicts,
         }
     }
 }
