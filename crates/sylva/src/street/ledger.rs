@@ -20,85 +20,13 @@ use super::climate::{Climate, climate, interception_m3};
 use super::conflicts::{Conflict, conflicts_with};
 use super::costs::{Costs, YearCosts};
 use super::crown::{Crown, leaves_of};
+use super::money::{Basis, Money};
 use super::prices::Prices;
 use super::shade::{Energy, energy};
 use super::site::Site;
 use super::typical::{AirQuality, EmissionFactors, Reference, Typical};
 use crate::Skeleton;
 use crate::growth::{Dimensions, Measured};
-
-/// A year's benefits in dollars, in i-Tree Streets' categories; `None` where a model or a
-/// price is missing.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Money {
-    /// CO2 taken up this year.
-    pub carbon: Option<f64>,
-    /// CO2 not emitted at power plants thanks to the energy saved.
-    pub co2_avoided: Option<f64>,
-    /// Stormwater held back.
-    pub stormwater: Option<f64>,
-    /// Air conditioning saved.
-    pub cooling: Option<f64>,
-    /// Heating saved; negative where winter shade costs more than the tree saves.
-    pub heating: Option<f64>,
-    /// Pollutants taken up by the leaves or not emitted thanks to the energy saved.
-    pub air_quality: Option<f64>,
-    /// Biogenic VOCs emitted (negative or zero).
-    pub bvoc: Option<f64>,
-    /// Aesthetics and property value.
-    pub aesthetics: Option<f64>,
-}
-
-impl Money {
-    /// Sum of what is known.
-    pub fn total(&self) -> f64 {
-        self.categories().iter().flat_map(|c| c.1).sum()
-    }
-
-    /// Each category with its name, in report order.
-    pub fn categories(&self) -> [(&'static str, Option<f64>); 8] {
-        [
-            ("carbon", self.carbon),
-            ("co2_avoided", self.co2_avoided),
-            ("stormwater", self.stormwater),
-            ("cooling", self.cooling),
-            ("heating", self.heating),
-            ("air_quality", self.air_quality),
-            ("bvoc", self.bvoc),
-            ("aesthetics", self.aesthetics),
-        ]
-    }
-}
-
-/// Which account a net benefit is read from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Basis {
-    /// i-Tree Streets' figures for the species at the grown DBH, at its usual spread of
-    /// positions around buildings ([`Typical`]).
-    Typical,
-    /// The grown tree's own crown on the site given (without a site: no façade, no energy).
-    Site,
-}
-
-impl Basis {
-    /// The basis a run reads by default: the site's own figures where there is a site, else
-    /// the typical position.
-    pub fn default_for(has_site: bool) -> Basis {
-        if has_site {
-            Basis::Site
-        } else {
-            Basis::Typical
-        }
-    }
-
-    /// The name used on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Basis::Typical => "typical position",
-            Basis::Site => "this site",
-        }
-    }
-}
 
 /// One year of one tree.
 #[derive(Clone, Debug, PartialEq)]

@@ -13,7 +13,11 @@
 //! - [`prices`] and [`costs`]: what each unit is worth and what a tree costs, built in or
 //!   from TOML.
 //! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it.
-//! - [`ledger`]: one year's account of all of these; [`rank`]: a region's species side by
+//! - [`itree`] and [`typical`]: i-Tree Streets' per-tree tables, and the typical-position
+//!   account they give a species at the grown DBH; [`calibrate`]: the site model's shade
+//!   around a standard house beside them.
+//! - [`money`]: a year's dollars in i-Tree's categories; [`ledger`]: one year's account of all
+//!   of these, the grown tree's own and the typical position's; [`rank`]: a region's species side by
 //!   side over the years; [`wires`]: the wire model against the database's own records;
 //!   [`picture`]: the site drawn with the tree and its conflicts.
 //!
@@ -28,6 +32,7 @@ pub mod costs;
 pub mod crown;
 pub mod itree;
 pub mod ledger;
+pub mod money;
 pub mod picture;
 pub mod prices;
 pub mod rank;
@@ -40,7 +45,8 @@ pub mod wires;
 
 pub use conflicts::{Conflict, Kind, Part};
 pub use costs::Costs;
-pub use ledger::{Assessor, Basis, Money, YearAccount};
+pub use ledger::{Assessor, YearAccount};
+pub use money::{Basis, Money};
 pub use prices::Prices;
 pub use site::Site;
 

@@ -3,7 +3,8 @@
 
 use super::conflicts::{Conflict, Kind};
 use super::costs::Costs;
-use super::ledger::{Assessor, Basis, YearAccount};
+use super::ledger::{Assessor, YearAccount};
+use super::money::Basis;
 use super::prices::Prices;
 use super::site::Site;
 use crate::growth::Measured;

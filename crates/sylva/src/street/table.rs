@@ -2,7 +2,8 @@
 //! serves them (an empty cell or `null` where a model or a price is missing, never a zero).
 
 use super::conflicts::Conflict;
-use super::ledger::{Basis, Money, YearAccount};
+use super::ledger::YearAccount;
+use super::money::{Basis, Money};
 use super::typical::Typical;
 use std::fmt::Write as _;
 

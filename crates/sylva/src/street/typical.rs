@@ -3,7 +3,7 @@
 //! buildings, priced at the region's prices.
 //!
 //! This is the reference Sylva's own figures are held to, and the account shown wherever no
-//! site is given. The tables are [`itree`](super::itree)'s; a species finds its row as i-Tree
+//! site is given. The tables are [`super::itree`]'s; a species finds its row as i-Tree
 //! does (its own, i-Tree's assignment, a relative of the same genus and tree type, or its tree
 //! type's `OTHER` class), and the values are interpolated at the grown tree's DBH.
 //!
@@ -12,7 +12,7 @@
 //! avoided emissions the way i-Tree turns its own.
 
 use super::itree::{self, DBH_CLASSES_CM, Factor, Match, Region};
-use super::ledger::Money;
+use super::money::Money;
 use super::prices::Prices;
 use crate::growth::Measured;
 
