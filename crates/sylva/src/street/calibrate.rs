@@ -16,7 +16,7 @@
 //! (IRC N1102 / IECC R405, "Specifications for the standard reference and proposed designs").
 
 use super::crown::{Crown, leaves_of};
-use super::shade::{Energy, FacadeSun, Wall, energy_of_walls};
+use super::shade::{Energy, Wall, energy_of_walls};
 use super::typical::Reference;
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
@@ -104,13 +104,8 @@ pub fn typical_energy(crown: &Crown, house: &House, latitude: f64, evergreen: bo
             );
             sum.cooling_kwh += e.cooling_kwh / n;
             sum.heating_penalty_kbtu += e.heating_penalty_kbtu / n;
-            for (to, from) in [(&mut sum.summer, e.summer), (&mut sum.winter, e.winter)] {
-                *to = FacadeSun {
-                    incident_kwh: to.incident_kwh + from.incident_kwh / n,
-                    blocked_kwh: to.blocked_kwh + from.blocked_kwh / n,
-                    shaded_m2h: to.shaded_m2h + from.shaded_m2h / n,
-                };
-            }
+            sum.summer.add_share(e.summer, n);
+            sum.winter.add_share(e.winter, n);
         }
     }
     sum
@@ -250,26 +245,11 @@ mod tests {
     #[test]
     fn a_west_tree_saves_more_cooling_than_a_north_tree() {
         // A block of leaves in front of the tree's trunk, towards the wall.
-        let mut tree = crate::Skeleton::default();
-        for i in 0..12 {
-            for j in 0..6 {
-                for k in 0..8 {
-                    tree.leaves.push(crate::skeleton::Leaf {
-                        position: glam::Vec3::new(
-                            -3.0 + i as f32 * 0.5,
-                            -1.5 + j as f32 * 0.5,
-                            1.0 + k as f32 * 0.5,
-                        ),
-                        orientation: glam::Quat::IDENTITY,
-                        length: 0.4,
-                        width: 0.4,
-                        shape: crate::skeleton::LeafShape::Square,
-                        stem: crate::StemId(0),
-                        light: 1.0,
-                    });
-                }
-            }
-        }
+        let tree = super::super::crown::leaf_block(
+            glam::Vec3::new(-3.0, -1.5, 1.0),
+            [12, 6, 8],
+            glam::Vec3::splat(0.5),
+        );
         let crown = Crown::of(&tree);
         let h = STANDARD_HOUSE;
         let at = |b: f64| energy_of_walls(&crown, &walls_seen(&h, b, 3.0), h.glass, 37.64, false);

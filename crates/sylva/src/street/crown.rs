@@ -161,6 +161,29 @@ impl Crown {
     }
 }
 
+/// A test crown: square 0.4 m leaves on a regular grid, `counts` along x, y, z from `origin`
+/// at `step` apart (the shade and calibration tests stand such a block before a wall).
+#[cfg(test)]
+pub(crate) fn leaf_block(origin: Vec3, counts: [usize; 3], step: Vec3) -> Skeleton {
+    let mut tree = Skeleton::default();
+    for i in 0..counts[0] {
+        for j in 0..counts[1] {
+            for k in 0..counts[2] {
+                tree.leaves.push(crate::skeleton::Leaf {
+                    position: origin + Vec3::new(i as f32, j as f32, k as f32) * step,
+                    orientation: glam::Quat::IDENTITY,
+                    length: 0.4,
+                    width: 0.4,
+                    shape: crate::skeleton::LeafShape::Square,
+                    stem: crate::StemId(0),
+                    light: 1.0,
+                });
+            }
+        }
+    }
+    tree
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

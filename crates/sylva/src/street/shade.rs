@@ -144,10 +144,11 @@ pub struct Energy {
 }
 
 impl FacadeSun {
-    fn add(&mut self, o: FacadeSun) {
-        self.incident_kwh += o.incident_kwh;
-        self.blocked_kwh += o.blocked_kwh;
-        self.shaded_m2h += o.shaded_m2h;
+    /// Adds `o` divided by `n` (1: a second wall; n: one of n positions averaged).
+    pub(super) fn add_share(&mut self, o: FacadeSun, n: f64) {
+        self.incident_kwh += o.incident_kwh / n;
+        self.blocked_kwh += o.blocked_kwh / n;
+        self.shaded_m2h += o.shaded_m2h / n;
     }
 }
 
@@ -162,9 +163,9 @@ pub fn energy_of_walls(
 ) -> Energy {
     let (mut summer, mut winter) = (FacadeSun::default(), FacadeSun::default());
     for w in walls {
-        summer.add(wall_sun(crown, w, latitude, &SUMMER));
+        summer.add_share(wall_sun(crown, w, latitude, &SUMMER), 1.0);
         if evergreen {
-            winter.add(wall_sun(crown, w, latitude, &WINTER));
+            winter.add_share(wall_sun(crown, w, latitude, &WINTER), 1.0);
         }
     }
     Energy {
@@ -233,27 +234,12 @@ mod tests {
 
     #[test]
     fn energy_follows_the_blocked_heat() {
-        let mut crown_tree = Skeleton::default();
         // A dense block of leaves between trunk and wall, 2-6 m up.
-        for i in 0..16 {
-            for j in 0..8 {
-                for k in 0..8 {
-                    crown_tree.leaves.push(crate::skeleton::Leaf {
-                        position: glam::Vec3::new(
-                            -4.0 + i as f32 * 0.5,
-                            1.0 + j as f32 * 0.35,
-                            2.0 + k as f32 * 0.5,
-                        ),
-                        orientation: glam::Quat::IDENTITY,
-                        length: 0.4,
-                        width: 0.4,
-                        shape: crate::skeleton::LeafShape::Square,
-                        stem: crate::StemId(0),
-                        light: 1.0,
-                    });
-                }
-            }
-        }
+        let crown_tree = super::super::crown::leaf_block(
+            glam::Vec3::new(-4.0, 1.0, 2.0),
+            [16, 8, 8],
+            glam::Vec3::new(0.5, 0.35, 0.5),
+        );
         let crown = Crown::of(&crown_tree);
         let e = energy(&crown, &wall(180.0), 37.64, true);
         assert!(e.summer.blocked_kwh > 0.0 && e.summer.blocked_kwh < e.summer.incident_kwh);
