@@ -223,11 +223,35 @@ fn by_category(r: &sylva::street::rank::Ranked, basis: Basis) -> serde_json::Val
 
 /// `--calibrate`: the site model around the standard house beside i-Tree's figures.
 fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
-    use sylva::street::calibrate::{STANDARD_HOUSE, TARGETS_CM, calibrate_all};
-    let rows: Vec<_> = calibrate_all(species, &TARGETS_CM, args.seed)
+    use sylva::street::calibrate::{
+        STANDARD_HOUSE, TARGETS_CM, add_climate_left_out, calibrate_all, fit_region,
+    };
+    let mut rows: Vec<_> = calibrate_all(species, &TARGETS_CM, args.seed)
         .into_iter()
         .flatten()
         .collect();
+    if args.fit {
+        let Some(c) = fit_region(&args.region, &rows) else {
+            bail!(
+                "--fit: {} has no grown crown beside an i-Tree row, or no deciduous broadleaf, \
+                 to fit its climate effect to",
+                args.region
+            );
+        };
+        println!(
+            "{},{:.4},{:.4},{},{},{},{}",
+            c.region,
+            c.cooling_kwh_per_m2,
+            c.heating_kbtu_per_m2,
+            c.useful_winter_share
+                .map_or(String::new(), |u| format!("{u:.4}")),
+            c.points.0,
+            c.points.1,
+            c.points.2
+        );
+        return Ok(());
+    }
+    add_climate_left_out(&mut rows);
     if args.json {
         for r in &rows {
             println!(
@@ -235,6 +259,12 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
                 serde_json::json!({
                     "species": r.code, "dbh_target_cm": r.target_cm,
                     "age": r.reached.map(|x| x.0), "dbh_cm": r.reached.map(|x| x.1),
+                    "projection_m2": r.reached.map(|_| r.projection_m2),
+                    "shade_cooling_kwh": r.reached.map(|_| r.shade.0),
+                    "shade_gas_kbtu": r.reached.map(|_| r.shade.1),
+                    "climate_cooling_kwh": r.climate.map(|c| c.0),
+                    "climate_gas_kbtu": r.climate.map(|c| c.1),
+                    "useful_winter_share": r.useful_share,
                     "cooling_kwh": r.reached.map(|_| r.cooling_kwh),
                     "itree_electricity_kwh": r.reached.map(|_| r.itree.0),
                     "gas_kbtu": r.reached.map(|_| r.gas_kbtu),
@@ -250,21 +280,37 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
     println!(
         "The site model at typical position: each tree around a {:.1} m square one-storey house \
          ({:.0}% of each wall glass), at 3, 9 and 15 m and eight directions, weighted evenly \
-         (i-Tree's position frequencies were not reachable); beside i-Tree Streets' figures at \
-         the same DBH. Bounds: cooling within 35% of i-Tree's; gas within 50% or 30 kBtu, same \
-         sign.",
+         (i-Tree's position frequencies were not reachable); its shade (an evergreen's winter \
+         penalty at the region's useful share of winter sun), plus the region's climate effect \
+         per m² of crown projection (+clim), both fitted to the region's other species, beside \
+         i-Tree Streets' figures at the same DBH. Bounds: cooling within 35% of \
+         i-Tree's; gas within 50% or 30 kBtu, same sign.",
         h.side,
         h.glass * 100.0
     );
     println!(
-        "  {:<8} {:>6} {:>4} {:>7}  {:>9} {:>9} {:>6}  {:>9} {:>9}",
-        "species", "DBH", "age", "grown", "cooling", "i-Tree", "", "gas kBtu", "i-Tree"
+        "  {:<8} {:>4} {:>4} {:>6} {:>6}  {:>7} {:>7} {:>7} {:>7} {:>5}  {:>7} {:>7} {:>7} {:>7} {:>5}",
+        "species",
+        "DBH",
+        "age",
+        "grown",
+        "m2",
+        "shade",
+        "+clim",
+        "kWh",
+        "i-Tree",
+        "",
+        "shade",
+        "+clim",
+        "kBtu",
+        "i-Tree",
+        ""
     );
     let (mut cool, mut heat, mut n) = (0, 0, 0);
     for r in &rows {
         let Some((age, dbh)) = r.reached else {
             println!(
-                "  {:<8} {:>6.0} its data end before it reaches this DBH",
+                "  {:<8} {:>4.0} its data end before it reaches this DBH",
                 r.code, r.target_cm
             );
             continue;
@@ -273,15 +319,21 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
         cool += usize::from(r.cooling_in_bounds());
         heat += usize::from(r.heating_in_bounds());
         let mark = |ok: bool| if ok { "in" } else { "MISS" };
+        let clim = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
         println!(
-            "  {:<8} {:>6.0} {:>4.0} {:>7.1}  {:>9.1} {:>9.1} {:>6}  {:>9.1} {:>9.1} {}",
+            "  {:<8} {:>4.0} {:>4.0} {:>6.1} {:>6.1}  {:>7.1} {:>7} {:>7.1} {:>7.1} {:>5}  {:>7.1} {:>7} {:>7.1} {:>7.1} {:>5}",
             r.code,
             r.target_cm,
             age,
             dbh,
+            r.projection_m2,
+            r.shade.0,
+            clim(r.climate.map(|c| c.0)),
             r.cooling_kwh,
             r.itree.0,
             mark(r.cooling_in_bounds()),
+            r.shade.1 * r.useful_share.unwrap_or(1.0),
+            clim(r.climate.map(|c| c.1)),
             r.gas_kbtu,
             r.itree.1,
             mark(r.heating_in_bounds())

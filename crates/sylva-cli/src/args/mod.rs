@@ -576,10 +576,16 @@ pub struct RankArgs {
 
     /// Instead of ranking: grow each species to 20, 30 and 40 cm DBH, place it around a
     /// standard house at i-Tree Streets' 24 positions (three distance classes, eight
-    /// directions, weighted evenly), and print the shade's cooling and heating beside
-    /// i-Tree's figures at the same DBH.
+    /// directions, weighted evenly), and print its shade's cooling and heating, plus the
+    /// region's climate effect fitted to the other species, beside i-Tree's figures at the
+    /// same DBH.
     #[arg(long)]
     pub calibrate: bool,
+
+    /// With --calibrate: print only the region's climate effect fitted to all the species, as
+    /// a row of data/itree-streets/climate-effect.csv (tools/fit-climate-effect.sh).
+    #[arg(long, requires = "calibrate")]
+    pub fit: bool,
 
     /// Print one JSON object per species instead of the table.
     #[arg(long)]

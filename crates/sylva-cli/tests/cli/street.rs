@@ -328,7 +328,7 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         "InlVal",
         "--calibrate",
         "--species",
-        "CICA",
+        "CICA,PLAC",
         "--json",
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
@@ -336,13 +336,64 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
-    assert_eq!(rows.len(), 3, "20, 30 and 40 cm");
-    for r in &rows {
-        assert_eq!(r["species"], "CICA");
+    assert_eq!(rows.len(), 6, "two species at 20, 30 and 40 cm");
+    // The climate effect each species is held to was fitted to the other one alone: camphor's
+    // is London plane's fit (`--fit --species PLAC`) times camphor's own crown projection.
+    let fit = |species: &str| {
+        sylva(&[
+            "rank",
+            "--region",
+            "InlVal",
+            "--calibrate",
+            "--fit",
+            "--species",
+            species,
+        ])
+    };
+    let run = fit("PLAC");
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let plac: Vec<String> = text(&run.stdout)
+        .trim()
+        .split(',')
+        .map(String::from)
+        .collect();
+    // region, kWh/m², kBtu/m², useful share (none: no evergreen), points, deciduous, evergreen.
+    assert_eq!(plac.len(), 7, "{plac:?}");
+    assert_eq!(
+        (plac[0].as_str(), plac[3].as_str(), &plac[4..]),
+        (
+            "InlVal",
+            "",
+            &["3".to_string(), "3".to_string(), "0".to_string()][..]
+        )
+    );
+    let per_m2: f64 = plac[1].parse().unwrap();
+    assert!(per_m2 > 0.0, "{plac:?}");
+    for r in rows.iter().filter(|r| r["species"] == "CICA") {
         assert!(r["dbh_cm"].as_f64().unwrap() >= r["dbh_target_cm"].as_f64().unwrap());
         assert!(r["itree_natural_gas_kbtu"].as_f64().unwrap() < 0.0, "{r}");
         assert!(r["heating_in_bounds"].is_boolean());
+        let expected = per_m2 * r["projection_m2"].as_f64().unwrap();
+        let got = r["climate_cooling_kwh"].as_f64().unwrap();
+        assert!(
+            (got - expected).abs() <= 1e-3 * expected.abs() + 0.01,
+            "{got} {expected} {r}"
+        );
+        let total = r["shade_cooling_kwh"].as_f64().unwrap() + got;
+        assert!(
+            (r["cooling_kwh"].as_f64().unwrap() - total).abs() < 1e-6,
+            "{r}"
+        );
     }
+    // An evergreen alone leaves nothing to fit heating to: a clear error, no row.
+    let run = fit("CICA");
+    assert_eq!(run.status.code(), Some(1));
+    assert!(
+        text(&run.stderr).contains("no deciduous broadleaf"),
+        "{}",
+        text(&run.stderr)
+    );
+    assert!(run.stdout.is_empty());
     let run = sylva(&["rank", "--calibrate", "--species", "NOPE"]);
     assert_eq!(run.status.code(), Some(1));
     assert!(

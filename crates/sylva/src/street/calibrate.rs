@@ -15,8 +15,9 @@
 //! Conservation Code's standard reference design for residential performance rating sets them
 //! (IRC N1102 / IECC R405, "Specifications for the standard reference and proposed designs").
 
+use super::climate_effect::{ClimateEffect, Point, fit};
 use super::crown::{Crown, leaves_of};
-use super::shade::{Energy, Wall, energy_of_walls};
+use super::shade::{Energy, Sky, Wall, energy_of_walls};
 use super::typical::Reference;
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
@@ -90,19 +91,13 @@ pub fn walls_seen(house: &House, bearing: f64, distance: f64) -> Vec<Wall> {
 }
 
 /// The crown's energy effect on `house`, averaged evenly over the 24 positions.
-pub fn typical_energy(crown: &Crown, house: &House, latitude: f64, evergreen: bool) -> Energy {
+pub fn typical_energy(crown: &Crown, house: &House, sky: &Sky, evergreen: bool) -> Energy {
     let mut sum = Energy::default();
     let n = (DISTANCES.len() * BEARINGS.len()) as f64;
     for (_, d) in DISTANCES {
         for b in BEARINGS {
-            let e = energy_of_walls(
-                crown,
-                &walls_seen(house, b, d),
-                house.glass,
-                latitude,
-                evergreen,
-            );
-            sum.cooling_kwh += e.cooling_kwh / n;
+            let e = energy_of_walls(crown, &walls_seen(house, b, d), house.glass, sky, evergreen);
+            sum.shade_cooling_kwh += e.shade_cooling_kwh / n;
             sum.heating_penalty_kbtu += e.heating_penalty_kbtu / n;
             sum.summer.add_share(e.summer, n);
             sum.winter.add_share(e.winter, n);
@@ -114,15 +109,30 @@ pub fn typical_energy(crown: &Crown, house: &House, latitude: f64, evergreen: bo
 /// One species at one DBH: Sylva's shade at typical position beside i-Tree's figures.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Row {
+    /// Region code.
+    pub region: String,
     /// Species code.
     pub code: String,
     /// The DBH asked for, cm.
     pub target_cm: f64,
     /// The age the grown tree first reached it, and its DBH then; `None` if its data end first.
     pub reached: Option<(f64, f64)>,
-    /// Sylva: cooling saved, kWh.
+    /// The grown crown's projection, m².
+    pub projection_m2: f64,
+    /// Whether the species is a deciduous broadleaf (its tree type `BD*`).
+    pub deciduous_broadleaf: bool,
+    /// Whether it keeps its leaves in winter (its tree type `?E?`).
+    pub evergreen: bool,
+    /// Sylva's shade alone: electricity saved, kWh, and natural gas saved (negative), kBtu.
+    pub shade: (f64, f64),
+    /// The region's climate effect added to it, fitted without this species
+    /// ([`add_climate_left_out`]); `None` until then, or where it cannot be fitted.
+    pub climate: Option<(f64, f64)>,
+    /// The useful share of winter sun the shade's penalty was counted at, fitted likewise.
+    pub useful_share: Option<f64>,
+    /// Sylva: electricity saved, kWh (shade and climate effect).
     pub cooling_kwh: f64,
-    /// Sylva: natural gas saved, kBtu (negative: the winter penalty).
+    /// Sylva: natural gas saved, kBtu (negative: the winter penalty exceeds the climate effect).
     pub gas_kbtu: f64,
     /// i-Tree at the same DBH: electricity, kWh, and natural gas, kBtu.
     pub itree: (f64, f64),
@@ -146,9 +156,10 @@ impl Row {
 
 /// Grows `m` yearly and, as it first reaches each DBH of `targets` (cm, rising), sets its
 /// shade at typical position around the standard house beside i-Tree's figures.
-pub fn calibrate(m: &Measured, targets: &[f64], seed: u64, latitude: f64) -> Vec<Row> {
+pub fn calibrate(m: &Measured, targets: &[f64], seed: u64, sky: &Sky) -> Vec<Row> {
     let reference = Reference::of(m).ok();
     let evergreen = m.species.tree_type.get(1..2) == Some("E");
+    let deciduous_broadleaf = m.species.tree_type.starts_with("BD");
     let mut cohort = Cohort::new(vec![m.clone()], seed);
     let mut out = Vec::new();
     let mut next = 0;
@@ -159,13 +170,20 @@ pub fn calibrate(m: &Measured, targets: &[f64], seed: u64, latitude: f64) -> Vec
         let dbh = cohort.history[0].last().map_or(0.0, |r| r.model.dbh);
         while next < targets.len() && dbh >= targets[next] {
             let crown = Crown::with_leaves(&skeleton, &leaves_of(&skeleton));
-            let e = typical_energy(&crown, &STANDARD_HOUSE, latitude, evergreen);
+            let e = typical_energy(&crown, &STANDARD_HOUSE, sky, evergreen);
             let t = reference.as_ref().map(|r| r.at(dbh, None).amounts);
             out.push(Row {
+                region: m.region.code.clone(),
                 code: m.species.code.clone(),
                 target_cm: targets[next],
                 reached: Some((age, dbh)),
-                cooling_kwh: e.cooling_kwh,
+                projection_m2: crown.projection,
+                deciduous_broadleaf,
+                evergreen,
+                shade: (e.shade_cooling_kwh, -e.heating_penalty_kbtu),
+                climate: None,
+                useful_share: None,
+                cooling_kwh: e.shade_cooling_kwh,
                 gas_kbtu: -e.heating_penalty_kbtu,
                 itree: t.map_or((f64::NAN, f64::NAN), |t| {
                     (t.electricity_kwh, t.natural_gas_kbtu)
@@ -177,9 +195,16 @@ pub fn calibrate(m: &Measured, targets: &[f64], seed: u64, latitude: f64) -> Vec
     }
     for &t in &targets[next..] {
         out.push(Row {
+            region: m.region.code.clone(),
             code: m.species.code.clone(),
             target_cm: t,
             reached: None,
+            projection_m2: f64::NAN,
+            deciduous_broadleaf,
+            evergreen,
+            shade: (f64::NAN, f64::NAN),
+            climate: None,
+            useful_share: None,
             cooling_kwh: f64::NAN,
             gas_kbtu: f64::NAN,
             itree: (f64::NAN, f64::NAN),
@@ -196,9 +221,47 @@ pub fn calibrate_all(species: &[Measured], targets: &[f64], seed: u64) -> Vec<Ve
         .par_iter()
         .filter_map(|m| {
             let c = super::climate::climate(&m.region.code)?;
-            Some(calibrate(m, targets, seed, c.latitude))
+            Some(calibrate(m, targets, seed, &Sky::of(c)))
         })
         .collect()
+}
+
+fn points<'a>(rows: impl Iterator<Item = &'a Row>) -> Vec<Point> {
+    rows.filter(|r| r.reached.is_some() && r.itree.0.is_finite())
+        .map(|r| Point {
+            projection_m2: r.projection_m2,
+            shade: r.shade,
+            itree: r.itree,
+            deciduous_broadleaf: r.deciduous_broadleaf,
+            evergreen: r.evergreen,
+        })
+        .collect()
+}
+
+/// The climate effect of `region` fitted to all its rows (`sylva rank --calibrate --fit`).
+pub fn fit_region(region: &str, rows: &[Row]) -> Option<ClimateEffect> {
+    fit(region, &points(rows.iter().filter(|r| r.region == region)))
+}
+
+/// Adds to each row its region's climate effect fitted to the region's other species, so
+/// that no species is held to a figure fitted to itself (leave-one-species-out).
+pub fn add_climate_left_out(rows: &mut [Row]) {
+    for i in 0..rows.len() {
+        if rows[i].reached.is_none() {
+            continue;
+        }
+        let (region, code) = (rows[i].region.clone(), rows[i].code.clone());
+        let others = points(rows.iter().filter(|r| r.region == region && r.code != code));
+        let Some(c) = fit(&region, &others) else {
+            continue;
+        };
+        let r = &mut rows[i];
+        let (kwh, kbtu) = c.of(r.projection_m2);
+        r.climate = Some((kwh, kbtu));
+        r.useful_share = Some(c.useful_share());
+        r.cooling_kwh = r.shade.0 + kwh;
+        r.gas_kbtu = c.useful_share() * r.shade.1 + kbtu;
+    }
 }
 
 /// The DBHs the site model is calibrated at, cm (inside i-Tree's class midpoints,
@@ -252,12 +315,20 @@ mod tests {
         );
         let crown = Crown::of(&tree);
         let h = STANDARD_HOUSE;
-        let at = |b: f64| energy_of_walls(&crown, &walls_seen(&h, b, 3.0), h.glass, 37.64, false);
+        let at = |b: f64| {
+            energy_of_walls(
+                &crown,
+                &walls_seen(&h, b, 3.0),
+                h.glass,
+                &Sky::clear(37.64),
+                false,
+            )
+        };
         // The afternoon sun is low in the west; a low crown 3 m off a south wall is under
         // the high noon sun's rays, so only west against north is asserted.
         let (west, north) = (at(270.0), at(0.0));
         assert!(
-            west.cooling_kwh > 2.0 * north.cooling_kwh,
+            west.shade_cooling_kwh > 2.0 * north.shade_cooling_kwh,
             "{west:?} {north:?}"
         );
     }
@@ -267,7 +338,7 @@ mod tests {
         let camphor = crate::growth::Database::builtin()
             .find("InlVal", "CICA")
             .unwrap();
-        let rows = calibrate(&camphor, &[20.0, 500.0], 0, 37.64);
+        let rows = calibrate(&camphor, &[20.0, 500.0], 0, &Sky::clear(37.64));
         assert_eq!(rows.len(), 2);
         let (age, dbh) = rows[0].reached.unwrap();
         assert!(dbh >= 20.0 && age > 5.0, "{:?}", rows[0]);

@@ -1,9 +1,13 @@
 //! What the benefit models need to know about a region's reference city: where the sun stands
-//! (latitude) and how much rain falls, in how many events.
+//! (latitude), how often it shines, and how much rain falls, in how many events.
 //!
 //! Latitudes are the reference cities' (U.S. Census Bureau Gazetteer place coordinates, rounded
-//! to 0.01 degree). Rainfall is given only where a source was found; elsewhere interception is
-//! reported as not computed, never as zero.
+//! to 0.01 degree). Sunshine is NOAA's percent of possible sunshine at the nearest station of its
+//! Comparative Climatic Data (`data/climate/possible-sunshine.csv`, whose README names the file
+//! and its version). Rainfall is given only where a source was found; elsewhere the crown's own
+//! interception falls back on i-Tree's (`street::ledger`).
+
+use std::sync::OnceLock;
 
 /// A year's rain: total depth and the number of days it falls on.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -143,6 +147,73 @@ pub fn climate(region: &str) -> Option<&'static Climate> {
     CLIMATES.iter().find(|c| c.region == region)
 }
 
+/// How much of the possible sunshine a region's reference city gets, month by month.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sunshine {
+    /// Region code.
+    pub region: String,
+    /// The NOAA station read, as NOAA names it.
+    pub station: String,
+    /// Its distance from the reference city, km.
+    pub km: f64,
+    /// Share of the possible sunshine, January to December, 0..1.
+    pub share: [f64; 12],
+}
+
+const SUNSHINE_CSV: &str = include_str!("../../data/climate/possible-sunshine.csv");
+
+/// Reads `possible-sunshine.csv`: a header, then one row per region (`region, reference_city,
+/// station, wban, period, jan … dec, km`), each month a whole percent from 0 to 100.
+pub fn parse_sunshine(text: &str) -> Result<Vec<Sunshine>, String> {
+    let mut lines = text.lines().enumerate();
+    let header = lines.next().map(|l| l.1).unwrap_or_default();
+    let cols: Vec<&str> = header.split(',').collect();
+    if cols.len() != 18 || cols[0] != "region" || cols[5] != "jan" || cols[17] != "km" {
+        return Err(format!(
+            "possible-sunshine.csv: header {header:?} is not region, reference_city, station, \
+             wban, period, jan … dec, km"
+        ));
+    }
+    let mut out = Vec::new();
+    for (n, line) in lines.filter(|(_, l)| !l.trim().is_empty()) {
+        let f: Vec<&str> = line.split(',').collect();
+        let bad = |what: &str| format!("possible-sunshine.csv line {}: {what}", n + 1);
+        if f.len() != 18 {
+            return Err(bad(&format!("{} fields, 18 expected", f.len())));
+        }
+        let mut share = [0.0; 12];
+        for (m, v) in f[5..17].iter().enumerate() {
+            let p: f64 = v
+                .parse()
+                .map_err(|_| bad(&format!("{} is {v:?}, not a number", cols[5 + m])))?;
+            if !(0.0..=100.0).contains(&p) {
+                return Err(bad(&format!(
+                    "{} is {p}; a percentage is 0 to 100",
+                    cols[5 + m]
+                )));
+            }
+            share[m] = p / 100.0;
+        }
+        let km: f64 = f[17].parse().map_err(|_| bad("km is not a number"))?;
+        out.push(Sunshine {
+            region: f[0].to_string(),
+            station: f[2].to_string(),
+            km,
+            share,
+        });
+    }
+    Ok(out)
+}
+
+/// The sunshine of a region, if the built-in table has it.
+pub fn sunshine(region: &str) -> Option<&'static Sunshine> {
+    static TABLE: OnceLock<Vec<Sunshine>> = OnceLock::new();
+    TABLE
+        .get_or_init(|| parse_sunshine(SUNSHINE_CSV).expect("the built-in sunshine table parses"))
+        .iter()
+        .find(|s| s.region == region)
+}
+
 /// Storage of water on plant surfaces, mm per m² of leaf or bark surface: i-Tree Hydro's
 /// interception storage (Wang, Endreny & Nowak 2008, J. American Water Resources Association
 /// 44(1):75-85, after Aston 1979).
@@ -171,6 +242,30 @@ mod tests {
             assert!(climate(&r.code).is_some(), "{}", r.code);
         }
         assert_eq!(climate("InlVal").unwrap().rain.unwrap().days, 56.0);
+    }
+
+    #[test]
+    fn every_region_has_its_sunshine_and_a_damaged_table_is_refused() {
+        for c in &CLIMATES {
+            let s = sunshine(c.region).unwrap_or_else(|| panic!("{}", c.region));
+            assert!(s.share.iter().all(|v| (0.0..=1.0).contains(v)), "{s:?}");
+        }
+        // Modesto reads Sacramento: tule-fog Decembers, cloudless Julys (NOAA CCD 2018).
+        let v = sunshine("InlVal").unwrap();
+        assert_eq!(v.station, "SACRAMENTO CA");
+        assert_eq!((v.share[11], v.share[6]), (0.47, 0.97));
+        let head = SUNSHINE_CSV.lines().next().unwrap();
+        let row = |r: &str| format!("{head}\n{r}\n");
+        let e = parse_sunshine(&row("X,c,s,1,p,1,2,3,4,5,6,7,8,9,10,11,120,0")).unwrap_err();
+        assert!(
+            e.contains("line 2") && e.contains("dec") && e.contains("0 to 100"),
+            "{e}"
+        );
+        let e = parse_sunshine(&row("X,c,s,1,p,1,2,3,4,5,6,7,8,9,10,11,x,0")).unwrap_err();
+        assert!(e.contains("dec is \"x\""), "{e}");
+        let e = parse_sunshine(&row("X,c,s,1,p,1,2")).unwrap_err();
+        assert!(e.contains("7 fields"), "{e}");
+        assert!(parse_sunshine("a,b\n").unwrap_err().contains("header"));
     }
 
     #[test]

@@ -17,12 +17,13 @@
 use super::StreetError;
 use super::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
 use super::climate::{Climate, climate, interception_m3};
+use super::climate_effect::climate_effect;
 use super::conflicts::{Conflict, conflicts_with};
 use super::costs::{Costs, YearCosts};
 use super::crown::{Crown, leaves_of};
 use super::money::{Basis, Money};
 use super::prices::Prices;
-use super::shade::{Energy, energy};
+use super::shade::{Energy, Sky, energy};
 use super::site::Site;
 use super::typical::{AirQuality, EmissionFactors, Reference, Typical};
 use crate::Skeleton;
@@ -117,12 +118,7 @@ impl Assessor {
                 m.species.code, m.species.scientific
             ));
         }
-        if climate.and_then(|c| c.rain).is_none() {
-            missing.push(format!(
-                "rainfall interception: no sourced rainfall for {} ({})",
-                region, m.region.city
-            ));
-        }
+        let has_rain = climate.and_then(|c| c.rain).is_some();
         if site.as_ref().and_then(|s| s.facade.as_ref()).is_none() {
             missing.push("energy: no façade to shade (give --site with a [facade])".into());
         }
@@ -154,6 +150,14 @@ impl Assessor {
                 ))
             })
             .ok();
+        // Without a sourced rainfall, i-Tree's own rain (in its interception per m² of leaf)
+        // stands in; without either, interception is not computed.
+        if !has_rain && reference.is_none() {
+            missing.push(format!(
+                "rainfall interception: no sourced rainfall for {} ({}), and no i-Tree row",
+                region, m.region.city
+            ));
+        }
         if prices.as_ref().and_then(|p| p.leaf_gain_per_m2).is_none() {
             missing.push(
                 "aesthetics and property value: the leaf area gained is counted (m²) but not \
@@ -232,7 +236,14 @@ impl Assessor {
             || {
                 let crown = Crown::with_leaves(skeleton, &leaves);
                 let energy = match (facade, self.climate) {
-                    (Some(f), Some(c)) => Some(energy(&crown, f, c.latitude, self.evergreen)),
+                    (Some(f), Some(c)) => {
+                        let mut e = energy(&crown, f, &Sky::of(c), self.evergreen);
+                        if let Some(k) = climate_effect(c.region) {
+                            e.climate = Some(k.of(crown.projection));
+                            e.useful_winter_share = k.useful_share();
+                        }
+                        Some(e)
+                    }
                     _ => None,
                 };
                 (crown, energy)
@@ -257,12 +268,28 @@ impl Assessor {
         if let Some(now) = stored {
             self.last = Some((age, now));
         }
-        let interception = self
-            .climate
-            .and_then(|c| c.rain)
-            .map(|r| interception_m3(&r, crown.leaf_area + crown.bark_area, crown.projection));
         let p = self.prices.as_ref();
         let typical = self.reference.as_ref().map(|r| r.at(dbh, p));
+        // i-Tree's per-tree amounts that scale with leaf (air quality, and rain where no
+        // rainfall is sourced) are carried over per m² of leaf at this DBH to the grown crown.
+        let per_leaf = typical.as_ref().map(|t| {
+            if t.amounts.leaf_area_m2 > 0.0 {
+                crown.leaf_area / t.amounts.leaf_area_m2
+            } else {
+                0.0
+            }
+        });
+        let interception = match self.climate.and_then(|c| c.rain) {
+            Some(r) => Some(interception_m3(
+                &r,
+                crown.leaf_area + crown.bark_area,
+                crown.projection,
+            )),
+            None => typical
+                .as_ref()
+                .zip(per_leaf)
+                .map(|(t, k)| t.amounts.stormwater_m3 * k),
+        };
         let leaf_gain = match self.last_leaf {
             Some((a, before)) if age > a => ((crown.leaf_area - before) / (age - a)).max(0.0),
             // The first year of a run: the mean gain since planting.
@@ -270,19 +297,14 @@ impl Assessor {
         };
         self.last_leaf = Some((age, crown.leaf_area));
         // Energy saved on the façade, as i-Tree counts it: kWh, and kBtu of gas (negative).
-        let saved = energy.map(|e| (e.cooling_kwh, -e.heating_penalty_kbtu));
+        let saved = energy.map(|e| (e.electricity_kwh(), e.natural_gas_kbtu()));
         let avoided = saved
             .zip(self.factors)
             .map(|((kwh, kbtu), f)| f.avoided(kwh, kbtu));
         // i-Tree's uptake and BVOC emission per square metre of leaf at this DBH, on the
         // grown crown's own leaf area.
-        let air = typical.as_ref().map(|t| {
+        let air = typical.as_ref().zip(per_leaf).map(|(t, k)| {
             let a = &t.amounts;
-            let k = if a.leaf_area_m2 > 0.0 {
-                crown.leaf_area / a.leaf_area_m2
-            } else {
-                0.0
-            };
             AirQuality {
                 ozone_kg: a.air.ozone_kg * k,
                 nox_kg: a.air.nox_kg * k,
@@ -299,11 +321,11 @@ impl Assessor {
             co2_avoided: price(avoided.map(|a| a.0), p.and_then(|p| p.co2_per_kg)),
             stormwater: price(interception, p.and_then(|p| p.stormwater_per_m3)),
             cooling: price(
-                energy.map(|e| e.cooling_kwh),
+                energy.map(|e| e.electricity_kwh()),
                 p.and_then(|p| p.electricity_per_kwh),
             ),
             heating: price(
-                energy.map(|e| -e.heating_penalty_kbtu),
+                energy.map(|e| e.natural_gas_kbtu()),
                 p.and_then(|p| p.natural_gas_per_kbtu),
             ),
             air_quality: air_value.map(|v| v.0),

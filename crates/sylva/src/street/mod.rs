@@ -1,15 +1,17 @@
 //! What a street tree gives, costs and runs into, year by year (Linsen et al. 2005's benefit
 //! and cost bars; Rudnick et al. 2007's conflicts with the street).
 //!
-//! Every figure is driven by the grown tree itself, read from its [`Skeleton`](crate::Skeleton)
-//! and its measured dimensions, never by a table of typical trees:
+//! Every "this site" figure is driven by the grown tree itself, read from its
+//! [`Skeleton`](crate::Skeleton) and its measured dimensions; the typical-position account
+//! beside it reads i-Tree's tables:
 //!
 //! - [`carbon`]: CO2 stored and taken up, from the grown DBH by Jenkins et al. (2003).
-//! - [`climate`]: each region's latitude and rain; rainfall interception by leaf and bark
-//!   storage.
-//! - [`sun`] and [`shade`]: the sun's clear-day path and the crown's shadow on the site's
-//!   façade ([`crown`] holds the crown's leaf area density), turned into cooling saved and an
-//!   evergreen's winter heating penalty.
+//! - [`climate`]: each region's latitude, sunshine and rain; rainfall interception by leaf and
+//!   bark storage.
+//! - [`sun`] and [`shade`]: the sun's path, beam and sky light, and the crown's shadow on the
+//!   site's façade ([`crown`] holds the crown's leaf area density), turned into cooling saved
+//!   and an evergreen's winter heating penalty; [`climate_effect`]: the canopy's effect on air
+//!   and wind, which does not depend on the tree's position, calibrated against i-Tree.
 //! - [`prices`] and [`costs`]: what each unit is worth and what a tree costs, built in or
 //!   from TOML.
 //! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it.
@@ -27,6 +29,7 @@
 pub mod calibrate;
 pub mod carbon;
 pub mod climate;
+pub mod climate_effect;
 pub mod conflicts;
 pub mod costs;
 pub mod crown;

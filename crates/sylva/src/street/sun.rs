@@ -57,6 +57,20 @@ pub fn beam_irradiance(elevation: f64) -> f64 {
     1353.0 * 0.7f64.powf(air_mass.powf(0.678))
 }
 
+/// The clear-day ratio of diffuse sky irradiance on a horizontal surface to the direct normal
+/// beam, January to December: the `C` of the ASHRAE clear-day model (ASHRAE Handbook of
+/// Fundamentals 1985, ch. 27, Table 1, after Threlkeld and Jordan 1958). Hazier summer skies
+/// scatter more.
+pub const DIFFUSE_RATIO: [f64; 12] = [
+    0.058, 0.060, 0.071, 0.097, 0.121, 0.134, 0.136, 0.122, 0.092, 0.073, 0.063, 0.057,
+];
+
+/// Clear-day diffuse sky irradiance on a horizontal surface in month `month` (0 = January) with
+/// the sun `elevation` degrees up, W/m²: ASHRAE's ratio [`DIFFUSE_RATIO`] times the beam.
+pub fn diffuse_horizontal(month: usize, elevation: f64) -> f64 {
+    DIFFUSE_RATIO[month] * beam_irradiance(elevation)
+}
+
 /// First day of each month in a 365-day year, and the day after the last.
 pub const MONTH_STARTS: [u32; 13] = [1, 32, 60, 91, 121, 152, 182, 213, 244, 274, 305, 335, 366];
 
@@ -96,5 +110,8 @@ mod tests {
         assert!((beam_irradiance(90.0) - 947.1).abs() < 0.5);
         assert!(beam_irradiance(10.0) < beam_irradiance(30.0));
         assert_eq!(beam_irradiance(-1.0), 0.0);
+        // ASHRAE's July ratio: 0.136 of the beam comes from the sky on a horizontal surface.
+        assert!((diffuse_horizontal(6, 90.0) - 0.136 * 947.1).abs() < 0.1);
+        assert_eq!(diffuse_horizontal(0, -5.0), 0.0);
     }
 }

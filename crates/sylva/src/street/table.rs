@@ -25,9 +25,26 @@ const COLUMNS: &[Column] = &[
     ("co2_sequestered_kg", |a| cell(a.co2_sequestered_kg, 2)),
     ("co2_avoided_kg", |a| cell(a.co2_avoided_kg, 2)),
     ("interception_m3", |a| cell(a.interception_m3, 3)),
-    ("cooling_kwh", |a| cell(a.energy.map(|e| e.cooling_kwh), 1)),
+    ("cooling_kwh", |a| {
+        cell(a.energy.map(|e| e.electricity_kwh()), 1)
+    }),
+    ("natural_gas_kbtu", |a| {
+        cell(a.energy.map(|e| e.natural_gas_kbtu()), 1)
+    }),
+    ("shade_cooling_kwh", |a| {
+        cell(a.energy.map(|e| e.shade_cooling_kwh), 1)
+    }),
     ("heating_penalty_kbtu", |a| {
         cell(a.energy.map(|e| e.heating_penalty_kbtu), 1)
+    }),
+    ("useful_winter_share", |a| {
+        cell(a.energy.map(|e| e.useful_winter_share), 3)
+    }),
+    ("climate_cooling_kwh", |a| {
+        cell(a.energy.and_then(|e| e.climate).map(|c| c.0), 1)
+    }),
+    ("climate_heating_kbtu", |a| {
+        cell(a.energy.and_then(|e| e.climate).map(|c| c.1), 1)
     }),
     ("facade_shaded_m2h", |a| {
         cell(a.energy.map(|e| e.summer.shaded_m2h), 0)
@@ -204,8 +221,13 @@ pub fn json(a: &YearAccount) -> serde_json::Value {
         "co2_sequestered_kg": round(a.co2_sequestered_kg, 100.0),
         "co2_avoided_kg": round(a.co2_avoided_kg, 100.0),
         "interception_m3": round(a.interception_m3, 1e3),
-        "cooling_kwh": round(e.map(|e| e.cooling_kwh), 10.0),
+        "cooling_kwh": round(e.map(|e| e.electricity_kwh()), 10.0),
+        "natural_gas_kbtu": round(e.map(|e| e.natural_gas_kbtu()), 10.0),
+        "shade_cooling_kwh": round(e.map(|e| e.shade_cooling_kwh), 10.0),
         "heating_penalty_kbtu": round(e.map(|e| e.heating_penalty_kbtu), 10.0),
+        "useful_winter_share": round(e.map(|e| e.useful_winter_share), 1e3),
+        "climate_cooling_kwh": round(e.and_then(|e| e.climate).map(|c| c.0), 10.0),
+        "climate_heating_kbtu": round(e.and_then(|e| e.climate).map(|c| c.1), 10.0),
         "facade_shaded_m2h": round(e.map(|e| e.summer.shaded_m2h), 1.0),
         "air_removed_kg": round(a.air.map(|q| q.removed_kg()), 1e3),
         "bvoc_kg": round(a.air.map(|q| q.bvoc_kg), 1e3),
