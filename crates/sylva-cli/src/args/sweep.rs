@@ -25,6 +25,12 @@ pub struct SweepArgs {
     #[arg(long)]
     pub json: bool,
 
+    /// Instead of the sweep: grow each species and, at these ages (comma-separated years),
+    /// report the share of a beam its crown stops over its outline, in leaf and bare, seen from
+    /// the side and along a sun 60 degrees up (street::opacity).
+    #[arg(long, value_delimiter = ',', value_name = "AGES")]
+    pub beam: Vec<f64>,
+
     /// Also write the summary, misses and data-limited targets as Markdown tables.
     #[arg(long, value_name = "FILE.md")]
     pub markdown: Option<PathBuf>,

@@ -367,4 +367,51 @@ fn sweep_grows_species_of_regions_and_writes_its_tables() {
         &["--region Atlantis", "InlVal"],
         empty.path(),
     );
+    refuses(
+        &[
+            "sweep",
+            "--region",
+            "InlVal",
+            "--species",
+            "LIST",
+            "--beam",
+            "0",
+        ],
+        &["--beam 0", "1 or more"],
+        empty.path(),
+    );
+}
+
+#[test]
+fn sweep_beam_measures_how_much_light_a_crown_stops_in_leaf_and_bare() {
+    let rows = json_lines(&[
+        "sweep",
+        "--region",
+        "InlVal",
+        "--species",
+        "LIST",
+        "--beam",
+        "6,3",
+        "--json",
+    ]);
+    // Ages come sorted, one row each.
+    let ages: Vec<f64> = rows.iter().map(|r| r["age"].as_f64().unwrap()).collect();
+    assert_eq!(ages, vec![3.0, 6.0]);
+    for r in &rows {
+        for view in ["side", "sun"] {
+            let (leaf, bare) = (&r[view]["leaf"], &r[view]["bare"]);
+            let (l, b) = (
+                leaf["stopped"].as_f64().unwrap(),
+                bare["stopped"].as_f64().unwrap(),
+            );
+            // Leaves and wood stop more than wood alone, and neither all nor nothing.
+            assert!(0.0 < b && b < l && l < 1.0, "{view}: {r}");
+            assert!(leaf["outline_m2"].as_f64().unwrap() > 0.0, "{r}");
+        }
+        assert!(r["leaf_area_m2"].as_f64().unwrap() > 0.0);
+    }
+    // An older crown stops more of the beam than a sapling's.
+    assert!(
+        rows[1]["side"]["leaf"]["stopped"].as_f64() > rows[0]["side"]["leaf"]["stopped"].as_f64()
+    );
 }

@@ -23,6 +23,16 @@ pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
+/// Runs a command that must succeed and prints one JSON object a line: the objects.
+pub fn json_lines(args: &[&str]) -> Vec<serde_json::Value> {
+    let run = sylva(args);
+    assert!(run.status.success(), "{args:?}: {}", text(&run.stderr));
+    text(&run.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect()
+}
+
 pub fn arbaro(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/data/arbaro-species")

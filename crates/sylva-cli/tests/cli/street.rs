@@ -322,7 +322,7 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         }
     }
     // The site model set beside i-Tree's figures around the standard house.
-    let run = sylva(&[
+    let rows = json_lines(&[
         "rank",
         "--region",
         "InlVal",
@@ -331,11 +331,6 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         "CICA,PLAC",
         "--json",
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
-    let rows: Vec<serde_json::Value> = text(&run.stdout)
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
     assert_eq!(rows.len(), 6, "two species at 20, 30 and 40 cm");
     // The climate effect each species is held to was fitted to the other one alone: camphor's
     // is London plane's fit (`--fit --species PLAC`) times camphor's own crown projection.

@@ -33,6 +33,10 @@ const MAX_CELLS: usize = 300;
 /// area a beam sees per unit path (Ross 1981, "The Radiation Regime and Architecture of Plant
 /// Stands"; Monsi & Saeki 1953's Beer-Lambert law for canopies).
 pub const G: f64 = 0.5;
+/// Projection coefficient of wood per unit of its silhouette (diameter x length): a randomly
+/// oriented cylinder shows on average pi/4 of its silhouette to a beam (the mean of sin over
+/// the sphere), ends left out.
+pub const G_WOOD: f64 = std::f64::consts::FRAC_PI_4;
 
 /// Every leaf as its centre and area, m² (leaves of no area or off the map left out).
 pub fn leaves_of(skeleton: &Skeleton) -> Vec<(Vec3, f64)> {
@@ -59,6 +63,19 @@ pub struct Crown {
     dims: [usize; 3],
     /// Leaf area per cell volume, m²/m³.
     density: Vec<f32>,
+    /// Wood silhouette (diameter x length) per cell volume, m²/m³, within the leaves' box;
+    /// empty unless [`Crown::with_wood`] added it.
+    wood: Vec<f32>,
+}
+
+/// How much of a beam a crown stops over its outline seen along the beam.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BeamStop {
+    /// The outline's area: every ray between the first and the last that meets the crown in
+    /// its row, m².
+    pub outline_m2: f64,
+    /// Mean share of the beam stopped over the outline, 0..1.
+    pub stopped: f64,
 }
 
 impl Crown {
@@ -92,6 +109,7 @@ impl Crown {
                 cell: CELL,
                 dims: [0; 3],
                 density: Vec::new(),
+                wood: Vec::new(),
             };
         }
         let span = (hi - lo).as_dvec3();
@@ -116,27 +134,129 @@ impl Crown {
             cell,
             dims,
             density: area.iter().map(|a| (a / volume) as f32).collect(),
+            wood: Vec::new(),
         }
     }
 
-    /// Share of a beam from `from` along unit `dir` that passes the leaves (Beer-Lambert:
-    /// `exp(-G * leaf area crossed per unit cross-section)`).
-    pub fn transmittance(&self, from: DVec3, dir: DVec3) -> f64 {
+    /// The crown with its wood as well: every stem segment's silhouette spread along it in
+    /// steps of half a cell, inside the leaves' box (the trunk below the crown is not crown).
+    pub fn with_wood(mut self, skeleton: &Skeleton) -> Crown {
         if self.density.is_empty() {
-            return 1.0;
+            return self;
+        }
+        let mut wood = vec![0.0f64; self.density.len()];
+        let size = DVec3::new(
+            self.dims[0] as f64,
+            self.dims[1] as f64,
+            self.dims[2] as f64,
+        ) * self.cell;
+        for stem in &skeleton.stems {
+            let s = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
+            for w in s.windows(2) {
+                let (a, b) = (w[0].position.as_dvec3(), w[1].position.as_dvec3());
+                let len = a.distance(b);
+                let silhouette = (w[0].radius + w[1].radius) as f64 * len;
+                let n = (len / (self.cell * 0.5)).ceil().max(1.0);
+                for j in 0..n as usize {
+                    let p = a.lerp(b, (j as f64 + 0.5) / n) - self.origin;
+                    if (0..3).any(|k| p[k] < 0.0 || p[k] >= size[k]) {
+                        continue;
+                    }
+                    let i = [0, 1, 2].map(|k| ((p[k] / self.cell) as usize).min(self.dims[k] - 1));
+                    wood[(i[2] * self.dims[1] + i[1]) * self.dims[0] + i[0]] += silhouette / n;
+                }
+            }
+        }
+        let volume = self.cell * self.cell * self.cell;
+        self.wood = wood.iter().map(|a| (a / volume) as f32).collect();
+        self
+    }
+
+    /// Optical depth along the ray from `from` along unit `dir` through the crown's box: leaves
+    /// (`G` x leaf area crossed per unit cross-section) where `leaves`, plus wood (`G_WOOD` x
+    /// silhouette crossed) where the crown has it.
+    pub fn optical_depth(&self, from: DVec3, dir: DVec3, leaves: bool) -> f64 {
+        let Some((t0, n, step)) = self.span(from, dir) else {
+            return 0.0;
+        };
+        let (mut leaf, mut wood) = (0.0f64, 0.0f64);
+        for j in 0..n {
+            let c = self.cell_at(from + dir * (t0 + (j as f64 + 0.5) * step));
+            leaf += self.density[c] as f64;
+            wood += self.wood.get(c).copied().unwrap_or(0.0) as f64;
+        }
+        (if leaves { G * leaf } else { 0.0 } + G_WOOD * wood) * step
+    }
+
+    /// The share of a parallel beam along unit `dir` that the crown stops over its outline:
+    /// rays half a cell apart, rows across the beam's most vertical cross direction, each row's
+    /// outline from its first ray that meets the crown to its last, as a picture's covered
+    /// outline is measured between its outermost drawn pixels. `leaves: false` is the crown in
+    /// winter, wood only ([`Crown::with_wood`]).
+    pub fn beam(&self, dir: DVec3, leaves: bool) -> BeamStop {
+        if self.density.is_empty() {
+            return BeamStop::default();
+        }
+        let dir = dir.normalize();
+        // u across the beam and level; v across it and as vertical as it can be.
+        let u = if dir.cross(DVec3::Z).length() > 1e-9 {
+            dir.cross(DVec3::Z).normalize()
+        } else {
+            DVec3::X
+        };
+        let v = u.cross(dir).normalize();
+        let size = DVec3::new(
+            self.dims[0] as f64,
+            self.dims[1] as f64,
+            self.dims[2] as f64,
+        ) * self.cell;
+        let centre = self.origin + size * 0.5;
+        let reach = size.length() * 0.5;
+        let h = self.cell * 0.5;
+        let n = (2.0 * reach / h).ceil() as i64;
+        let (mut rays, mut stopped) = (0usize, 0.0f64);
+        for row in 0..n {
+            let y = -reach + (row as f64 + 0.5) * h;
+            let shares: Vec<f64> = (0..n)
+                .map(|col| {
+                    let x = -reach + (col as f64 + 0.5) * h;
+                    let from = centre + u * x + v * y - dir * (reach + self.cell);
+                    1.0 - (-self.optical_depth(from, dir, leaves)).exp()
+                })
+                .collect();
+            let hit = |s: &&f64| **s > 1e-9;
+            let (Some(first), Some(last)) = (
+                shares.iter().position(|s| hit(&s)),
+                shares.iter().rposition(|s| hit(&s)),
+            ) else {
+                continue;
+            };
+            rays += last - first + 1;
+            stopped += shares[first..=last].iter().sum::<f64>();
+        }
+        BeamStop {
+            outline_m2: rays as f64 * h * h,
+            stopped: if rays > 0 { stopped / rays as f64 } else { 0.0 },
+        }
+    }
+
+    /// The part of the ray from `from` along unit `dir` inside the grid's box: where it enters,
+    /// how many steps of at most 0.75 cell, and their length; `None` if it misses.
+    fn span(&self, from: DVec3, dir: DVec3) -> Option<(f64, usize, f64)> {
+        if self.density.is_empty() {
+            return None;
         }
         let size = DVec3::new(
             self.dims[0] as f64,
             self.dims[1] as f64,
             self.dims[2] as f64,
         ) * self.cell;
-        // Clip the ray to the grid's box (slabs).
         let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
         for k in 0..3 {
             let o = from[k] - self.origin[k];
             if dir[k].abs() < 1e-12 {
                 if o < 0.0 || o > size[k] {
-                    return 1.0;
+                    return None;
                 }
                 continue;
             }
@@ -145,17 +265,31 @@ impl Crown {
             t1 = t1.min(a.max(b));
         }
         if t0 >= t1 {
-            return 1.0;
+            return None;
         }
+        let n = ((t1 - t0) / (self.cell * 0.75)).ceil().max(1.0);
+        Some((t0, n as usize, (t1 - t0) / n))
+    }
+
+    /// The grid cell holding point `p` (clamped to the grid).
+    fn cell_at(&self, p: DVec3) -> usize {
+        let p = p - self.origin;
+        let i = [0, 1, 2].map(|k| ((p[k] / self.cell).max(0.0) as usize).min(self.dims[k] - 1));
+        (i[2] * self.dims[1] + i[1]) * self.dims[0] + i[0]
+    }
+
+    /// Share of a beam from `from` along unit `dir` that passes the leaves (Beer-Lambert:
+    /// `exp(-G * leaf area crossed per unit cross-section)`).
+    pub fn transmittance(&self, from: DVec3, dir: DVec3) -> f64 {
         // Steps of at most 0.75 cell, evened out over the path so that it is summed whole:
         // each cell is sampled once or twice.
-        let n = ((t1 - t0) / (self.cell * 0.75)).ceil().max(1.0);
-        let step = (t1 - t0) / n;
+        let Some((t0, n, step)) = self.span(from, dir) else {
+            return 1.0;
+        };
         let mut optical = 0.0f64;
-        for j in 0..n as usize {
-            let p = from + dir * (t0 + (j as f64 + 0.5) * step) - self.origin;
-            let i = [0, 1, 2].map(|k| ((p[k] / self.cell).max(0.0) as usize).min(self.dims[k] - 1));
-            optical += self.density[(i[2] * self.dims[1] + i[1]) * self.dims[0] + i[0]] as f64;
+        for j in 0..n {
+            optical +=
+                self.density[self.cell_at(from + dir * (t0 + (j as f64 + 0.5) * step))] as f64;
         }
         (-G * optical * step).exp()
     }
@@ -249,5 +383,58 @@ mod tests {
         let crown = Crown::of(&Skeleton::default());
         assert_eq!(crown.transmittance(DVec3::ZERO, DVec3::Z), 1.0);
         assert_eq!(crown.leaf_area, 0.0);
+    }
+
+    #[test]
+    fn a_beam_through_a_uniform_cube_is_stopped_as_beer_lambert_says() {
+        // 2 m²/m³ over 2 m: optical depth 0.5 x 2 x 2 = 2 on every level ray through the cube.
+        let crown = Crown::of(&cube(0.25));
+        let b = crown.beam(DVec3::Y, true);
+        let expected = 1.0 - (-2.0f64).exp();
+        assert!((b.stopped - expected).abs() < 0.01, "{b:?} vs {expected}");
+        // The outline is the cube's 2 m x 2 m face, to half a cell.
+        assert!((b.outline_m2 - 4.0).abs() < 1.0, "{b:?}");
+        // Without wood, a bare crown stops nothing.
+        assert_eq!(crown.beam(DVec3::Y, false).stopped, 0.0);
+    }
+
+    #[test]
+    fn wood_stops_light_by_its_silhouette() {
+        // A leaf cube with a 0.2 m thick limb, 2 m long, laid along y through its middle.
+        let mut tree = cube(0.25);
+        let section = |y: f32| crate::skeleton::CrossSection {
+            position: Vec3::new(0.1, y, 4.1),
+            orientation: Quat::IDENTITY,
+            radius: 0.1,
+            z: 0.0,
+        };
+        tree.sections = vec![section(-1.0), section(1.0)];
+        tree.stems.push(crate::skeleton::Stem {
+            level: 1,
+            parent: None,
+            clone_of: None,
+            offset: 0.0,
+            length: 2.0,
+            sections: 0..2,
+            lobes: 0,
+            lobe_depth: 0.0,
+        });
+        let crown = Crown::of(&tree).with_wood(&tree);
+        // The leaves' box runs from y = -0.75 (the first leaf centre), so 1.75 m of the limb,
+        // 0.35 m² of its silhouette, lies in the 0.25 m² column a ray along it crosses.
+        let from = DVec3::new(0.1, -5.0, 4.1);
+        let bare = crown.optical_depth(from, DVec3::Y, false);
+        let expected = G_WOOD * 0.35 / 0.25;
+        assert!((bare / expected - 1.0).abs() < 0.1, "{bare} vs {expected}");
+        let leafy = crown.optical_depth(from, DVec3::Y, true);
+        assert!((leafy - bare - 2.0).abs() < 0.05, "{leafy} {bare}");
+        let b = crown.beam(DVec3::Y, false);
+        assert!(
+            b.stopped > 0.0 && b.stopped < crown.beam(DVec3::Y, true).stopped,
+            "{b:?}"
+        );
+        // The leaf-only transmittance the shade model reads is unchanged by the wood.
+        let t = crown.transmittance(from, DVec3::Y);
+        assert!((t - (-2.0f64).exp()).abs() < 0.01, "{t}");
     }
 }

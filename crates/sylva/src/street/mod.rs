@@ -18,6 +18,8 @@
 //! - [`itree`] and [`typical`]: i-Tree Streets' per-tree tables, and the typical-position
 //!   account they give a species at the grown DBH; [`calibrate`]: the site model's shade
 //!   around a standard house beside them.
+//! - [`opacity`]: how much of a beam the grown crown stops, in leaf and bare (`sylva sweep
+//!   --beam`).
 //! - [`money`]: a year's dollars in i-Tree's categories; [`ledger`]: one year's account of all
 //!   of these, the grown tree's own and the typical position's; [`rank`]: a region's species side by
 //!   side over the years; [`wires`]: the wire model against the database's own records;
@@ -36,6 +38,7 @@ pub mod crown;
 pub mod itree;
 pub mod ledger;
 pub mod money;
+pub mod opacity;
 pub mod picture;
 pub mod prices;
 pub mod rank;
