@@ -288,6 +288,9 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
         h.side,
         h.glass * 100.0
     );
+    if let Some((_, Some(why))) = sylva::street::itree::reference_region(&args.region) {
+        println!("{why}.");
+    }
     println!(
         "  {:<8} {:>4} {:>4} {:>6} {:>6}  {:>7} {:>7} {:>7} {:>7} {:>5}  {:>7} {:>7} {:>7} {:>7} {:>5}",
         "species",

@@ -380,6 +380,21 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
             "{r}"
         );
     }
+    // The Sacramento Valley's table says whose tables stand in for i-Tree's.
+    let run = sylva(&[
+        "rank",
+        "--region",
+        "SacVal",
+        "--calibrate",
+        "--species",
+        "PLAC",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("Inland Valleys' (Modesto) tables stand in"),
+        "{}",
+        text(&run.stdout)
+    );
     // An evergreen alone leaves nothing to fit heating to: a clear error, no row.
     let run = fit("CICA");
     assert_eq!(run.status.code(), Some(1));
