@@ -189,27 +189,40 @@ fn wall_points(wall: &Wall, spacing: f64) -> (Vec<DVec3>, f64) {
 
 /// Sun on a wall over the months `months` under `sky`, with the crown in front of it.
 pub fn wall_sun(crown: &Crown, wall: &Wall, sky: &Sky, months: &[usize]) -> FacadeSun {
+    wall_sun_hidden(crown, wall, sky, months, hidden_sky_m2(crown, wall))
+}
+
+/// The share of the wall's sky the crown hides, summed over the wall (m²): the same in every
+/// hour and season, since diffuse light comes evenly from the whole sky, so a wall's seasons
+/// share it. It changes slowly along the wall, so it is sampled on a coarser grid.
+fn hidden_sky_m2(crown: &Crown, wall: &Wall) -> f64 {
+    if crown.leaf_area <= 0.0 {
+        return 0.0;
+    }
+    let dirs = sky_directions();
+    let (coarse, coarse_area) = wall_points(wall, SKY_SPACING);
+    coarse
+        .iter()
+        .map(|&p| {
+            let hidden: f64 = dirs
+                .iter()
+                .map(|&(d, w)| w * (1.0 - crown.transmittance(p, d)))
+                .sum();
+            hidden * coarse_area
+        })
+        .sum()
+}
+
+/// [`wall_sun`] with the hidden sky already measured.
+fn wall_sun_hidden(
+    crown: &Crown,
+    wall: &Wall,
+    sky: &Sky,
+    months: &[usize],
+    hidden_m2: f64,
+) -> FacadeSun {
     let (points, cell_area) = wall_points(wall, SPACING);
     let mut out = FacadeSun::default();
-    // The share of the wall's sky the crown hides, summed over the wall (m²): the same in every
-    // hour, since diffuse light comes evenly from the whole sky.
-    // The hidden sky changes slowly along the wall, so it is sampled on a coarser grid.
-    let hidden_m2: f64 = if crown.leaf_area > 0.0 {
-        let dirs = sky_directions();
-        let (coarse, coarse_area) = wall_points(wall, SKY_SPACING);
-        coarse
-            .iter()
-            .map(|&p| {
-                let hidden: f64 = dirs
-                    .iter()
-                    .map(|&(d, w)| w * (1.0 - crown.transmittance(p, d)))
-                    .sum();
-                hidden * coarse_area
-            })
-            .sum()
-    } else {
-        0.0
-    };
     let wall_area = cell_area * points.len() as f64;
     for &m in months {
         let days = (MONTH_STARTS[m + 1] - MONTH_STARTS[m]) as f64;
@@ -310,9 +323,10 @@ pub fn energy_of_walls(
 ) -> Energy {
     let (mut summer, mut winter) = (FacadeSun::default(), FacadeSun::default());
     for w in walls {
-        summer.add_share(wall_sun(crown, w, sky, &SUMMER), 1.0);
+        let hidden = hidden_sky_m2(crown, w);
+        summer.add_share(wall_sun_hidden(crown, w, sky, &SUMMER, hidden), 1.0);
         if evergreen {
-            winter.add_share(wall_sun(crown, w, sky, &WINTER), 1.0);
+            winter.add_share(wall_sun_hidden(crown, w, sky, &WINTER, hidden), 1.0);
         }
     }
     let gain = heat_gain_share(glass);
