@@ -17,8 +17,9 @@ tmp=$(mktemp)
   echo "# Each region's climate effect per m² of crown projection, calibrated against i-Tree Streets'"
   echo "# energy figures (see crates/sylva/src/street/climate_effect.rs and docs/benefits.md)."
   echo "# Written by tools/fit-climate-effect.sh (seed 0); rerun it whenever the shade model or growth changes."
-  echo "# points: calibration rows (species x DBH) the cooling fit read; deciduous_points: the heating"
-  echo "# fit's; evergreen_points: the useful winter share's (empty where there is none to fit)."
+  echo "# points: calibration rows (species x DBH) the cooling fit read; deciduous_points and"
+  echo "# evergreen_points: the rows the heating and useful winter share fit read together (the share"
+  echo "# is empty where the region has no evergreen to fit it)."
   echo "region,cooling_kwh_per_m2,heating_kbtu_per_m2,useful_winter_share,points,deciduous_points,evergreen_points"
   for r in $regions; do
     "$sylva" rank --region "$r" --calibrate --fit

@@ -280,8 +280,9 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
     println!(
         "The site model at typical position: each tree around a {:.1} m square one-storey house \
          ({:.0}% of each wall glass), at 3, 9 and 15 m and eight directions, weighted evenly \
-         (i-Tree's position frequencies were not reachable); its shade (an evergreen's winter \
-         penalty at the region's useful share of winter sun), plus the region's climate effect \
+         (i-Tree's position frequencies were not reachable); its shade (the winter shade's \
+         penalty, an evergreen's leaves or a deciduous tree's bare wood, at the region's useful \
+         share of winter sun), plus the region's climate effect \
          per m² of crown projection (+clim), both fitted to the region's other species, beside \
          i-Tree Streets' figures at the same DBH. Bounds: cooling within 35% of \
          i-Tree's; gas within 50% or 30 kBtu, same sign.",

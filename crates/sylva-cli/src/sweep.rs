@@ -3,11 +3,16 @@
 //! count within bounds, and the targets the data themselves limit.
 
 use crate::args::SweepArgs;
-use crate::shared::with_progress;
-use anyhow::{Result, bail};
+use crate::shared::{headless, save_picture, with_progress};
+use anyhow::{Context, Result, bail};
 use sylva::export::write_atomically;
 use sylva::growth::Database;
+use sylva::growth::report;
 use sylva::growth::sweep::{QUANTITIES, growable_pairs, markdown, sweep_all};
+use sylva::growth::{Month, dressed_mesh};
+use sylva::skeleton::Skeleton;
+use sylva::street::crown::leaf_centre;
+use sylva_render::coverage::{self, Coverage};
 
 pub fn run(args: &SweepArgs) -> Result<()> {
     let db = Database::builtin();
@@ -99,25 +104,91 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     Ok(())
 }
 
-/// `--beam AGES`: the share of a beam each crown stops, in leaf and bare.
+/// A crown's picture measured in leaf and bare (`--picture`).
+type Pictured = Option<(Coverage, Coverage)>;
+
+/// `--beam AGES`: the share of a beam each crown stops, in leaf and bare; with `--picture`,
+/// what its picture covers too.
 fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
     use sylva::street::opacity::opacity_all;
     if let Some(a) = args.beam.iter().find(|a| !a.is_finite() || **a < 1.0) {
         bail!("--beam {a}: ages are years from planting, 1 or more");
     }
+    if let Some(px) = args.picture.filter(|px| !(64..=8192).contains(px)) {
+        bail!("--picture {px}: expected 64 to 8192 pixels a side");
+    }
     let mut ages = args.beam.clone();
     ages.sort_by(f64::total_cmp);
     ages.dedup();
+    if pairs.iter().all(|m| ages[0] > m.ages.1) {
+        let m = &pairs[0];
+        bail!(
+            "--beam {}: {} in {} is grown to {:.0} years (the ages its data cover)",
+            ages[0],
+            m.species.code,
+            m.region.code,
+            m.ages.1
+        );
+    }
+    // Ages past a species' data are left out of its rows, and said so.
+    for m in pairs {
+        let past: Vec<String> = ages
+            .iter()
+            .filter(|&&a| a > m.ages.1)
+            .map(|a| a.to_string())
+            .collect();
+        if !past.is_empty() {
+            eprintln!(
+                "sylva: {} in {}: its data end at {:.0} years; age {} left out",
+                m.species.code,
+                m.region.code,
+                m.ages.1,
+                past.join(", ")
+            );
+        }
+    }
+    let renderer = args.picture.map(|_| headless()).transpose()?;
+    if let Some(dir) = &args.pictures {
+        std::fs::create_dir_all(dir).with_context(|| format!("--pictures {}", dir.display()))?;
+    }
+    let picture =
+        |m: &sylva::growth::Measured, age: f64, skeleton: &Skeleton| -> Result<Pictured> {
+            let (Some(renderer), Some(px)) = (&renderer, args.picture) else {
+                return Ok(None);
+            };
+            let (mesh, _) = dressed_mesh(skeleton, m, Some(Month::SUMMER), &report::MESH);
+            // The crown's heights, as the model's beam takes them: its leaves'.
+            let crown = skeleton
+                .leaves
+                .iter()
+                .map(|l| leaf_centre(l).z)
+                .fold((f32::MAX, f32::MIN), |(lo, hi), z| (lo.min(z), hi.max(z)));
+            let (leaf, leaf_png) = coverage::measure(renderer, &mesh, 0.0, px, true, crown)?;
+            let (bare, bare_png) = coverage::measure(renderer, &mesh, 0.0, px, false, crown)?;
+            if let Some(dir) = &args.pictures {
+                for (what, png) in [("leaf", leaf_png), ("bare", bare_png)] {
+                    let name = format!("{}-{}-{age}-{what}.png", m.region.code, m.species.code);
+                    save_picture(&dir.join(name), &png)?;
+                }
+            }
+            Ok(Some((leaf, bare)))
+        };
     let rows = with_progress(pairs.len(), |tick| {
-        opacity_all(pairs, &ages, args.seed, &tick)
+        opacity_all(pairs, &ages, args.seed, &picture, &tick)
     });
     if !args.json {
         println!(
             "Share of a beam the crown stops over its outline (street::opacity), in leaf and \
              bare, seen from the side and along a sun 60 degrees up. Published: 65-80% in leaf, \
-             30-40% bare (Heisler 1986, inside street trees' shadows)."
+             30-40% bare (Heisler 1986, inside street trees' shadows).{}",
+            if args.picture.is_some() {
+                " Picture: the share of the outline the renderer's picture from the side covers, \
+                 in leaf and bare, and the leaf share of what it covers."
+            } else {
+                ""
+            }
         );
-        println!(
+        print!(
             "{:<7} {:<7} {:>4} {:>7} {:>7}  {:>6} {:>6}  {:>6} {:>6}  {:>8}",
             "region",
             "species",
@@ -130,10 +201,16 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
             "bare",
             "outline"
         );
+        if args.picture.is_some() {
+            print!("   {:>6} {:>6} {:>6}", "pic", "bare", "leaf%");
+        }
+        println!();
     }
-    for r in rows.iter().flatten() {
+    for (r, pictured) in rows.iter().flatten() {
+        let pictured = pictured.as_ref().map_err(|e| anyhow::anyhow!("{e:#}"))?;
         if args.json {
             let b = |s: sylva::street::crown::BeamStop| serde_json::json!({"stopped": s.stopped, "outline_m2": s.outline_m2});
+            let c = |c: &Coverage| serde_json::json!({"covered": c.covered, "leaf_share": c.leaf_share, "outline_m2": c.outline_px * c.metres_per_px * c.metres_per_px});
             println!(
                 "{}",
                 serde_json::json!({
@@ -141,10 +218,11 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
                     "leaf_area_m2": r.leaf_area_m2, "bark_area_m2": r.bark_area_m2,
                     "side": {"leaf": b(r.side.0), "bare": b(r.side.1)},
                     "sun": {"leaf": b(r.sun.0), "bare": b(r.sun.1)},
+                    "picture": pictured.as_ref().map(|(l, w)| serde_json::json!({"leaf": c(l), "bare": c(w)})),
                 })
             );
         } else {
-            println!(
+            print!(
                 "{:<7} {:<7} {:>4.0} {:>7.0} {:>7.0}  {:>5.0}% {:>5.0}%  {:>5.0}% {:>5.0}%  {:>6.1} m2",
                 r.region,
                 r.code,
@@ -157,6 +235,15 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
                 r.sun.1.stopped * 100.0,
                 r.side.0.outline_m2
             );
+            if let Some((l, w)) = pictured {
+                print!(
+                    "   {:>5.0}% {:>5.0}% {:>5.0}%",
+                    l.covered * 100.0,
+                    w.covered * 100.0,
+                    l.leaf_share * 100.0
+                );
+            }
+            println!();
         }
     }
     Ok(())

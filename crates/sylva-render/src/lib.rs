@@ -22,6 +22,7 @@
 
 mod camera;
 pub mod caption;
+pub mod coverage;
 mod cpu;
 mod forest;
 mod frame;

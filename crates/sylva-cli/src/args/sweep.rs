@@ -31,6 +31,18 @@ pub struct SweepArgs {
     #[arg(long, value_delimiter = ',', value_name = "AGES")]
     pub beam: Vec<f64>,
 
+    /// With --beam: also draw each crown level from the south with the renderer, in a square
+    /// picture of this many pixels (3000 puts 5 mm in a pixel of a 15 m tree), in leaf (its
+    /// summer dress) and bare, and report the share of the outline the picture covers and the
+    /// leaf share of what it covers.
+    #[arg(long, value_name = "PX", requires = "beam")]
+    pub picture: Option<u32>,
+
+    /// With --picture: write the pictures into this folder, as REGION-SPECIES-AGE-leaf.png
+    /// and -bare.png.
+    #[arg(long, value_name = "DIR", requires = "picture")]
+    pub pictures: Option<PathBuf>,
+
     /// Also write the summary, misses and data-limited targets as Markdown tables.
     #[arg(long, value_name = "FILE.md")]
     pub markdown: Option<PathBuf>,

@@ -354,7 +354,7 @@ fn form_problems(code: &str, run: &Fidelity, habit: &habit::Habit) -> Vec<String
         let angle = f.scaffold_angle.unwrap_or(f64::NAN);
         let exponent = f.pipe_exponent.unwrap_or(f64::NAN);
         check(
-            (exponent - 2.5).abs() < 0.2,
+            (exponent - model::PIPE_EXPONENT as f64).abs() < 0.2,
             format!("pipe exponent {exponent:.2}"),
         );
         if decurrent {

@@ -16,7 +16,7 @@
 //! (IRC N1102 / IECC R405, "Specifications for the standard reference and proposed designs").
 
 use super::climate_effect::{ClimateEffect, Point, fit};
-use super::crown::{Crown, leaves_of};
+use super::crown::Crown;
 use super::shade::{Energy, Sky, Wall, energy_of_walls};
 use super::typical::Reference;
 use crate::growth::Measured;
@@ -169,7 +169,7 @@ pub fn calibrate(m: &Measured, targets: &[f64], seed: u64, sky: &Sky) -> Vec<Row
         let skeleton = cohort.advance_to(age).remove(0);
         let dbh = cohort.history[0].last().map_or(0.0, |r| r.model.dbh);
         while next < targets.len() && dbh >= targets[next] {
-            let crown = Crown::with_leaves(&skeleton, &leaves_of(&skeleton));
+            let crown = Crown::of(&skeleton);
             let e = typical_energy(&crown, &STANDARD_HOUSE, sky, evergreen);
             let t = reference.as_ref().map(|r| r.at(dbh, None).amounts);
             out.push(Row {

@@ -13,15 +13,15 @@
 //!
 //! - Cooling: a least-squares fit through the origin of (i-Tree's electricity − Sylva's shade)
 //!   against the crown projection, over the region's species at 20, 30 and 40 cm DBH.
-//! - Heating: the same fit of i-Tree's natural gas over the region's deciduous broadleaves
-//!   only. Their bare winter crowns cast little shade in i-Tree's model and none in Sylva's, so
-//!   their gas is nearly all climate effect.
-//! - The useful share of winter sun: Sylva's shade model counts every kWh of winter sun an
-//!   evergreen keeps off the walls as heat the furnace must replace. Only part of it is: on a
-//!   sunny winter day a house's solar and internal gains can exceed its losses, and the excess
-//!   is not useful (ISO 13790's gain utilisation). The share is fitted over the region's
-//!   evergreens: i-Tree's gas = heating term - share x Sylva's penalty, least squares, held to
-//!   0..1. Where the region has no evergreen to fit, the whole penalty counts.
+//! - Heating and the useful share of winter sun, fitted together. Sylva's shade model counts
+//!   every kWh of winter sun a crown keeps off the walls (an evergreen's leaves, a deciduous
+//!   tree's bare wood) as heat the furnace must replace. Only part of it is: on a sunny winter
+//!   day a house's solar and internal gains can exceed its losses, and the excess is not useful
+//!   (ISO 13790's gain utilisation). i-Tree's gas = heating x projection - share x Sylva's
+//!   penalty: heating is fitted through the origin over the region's deciduous broadleaves
+//!   (their bare wood's penalty counted at the share), the share over its evergreens (whose
+//!   leaves' penalty is large) with that heating term, both at once; the share is held to 0..1.
+//!   Where the region has no evergreen, the whole penalty counts.
 //!
 //! The fitted term absorbs whatever Sylva's shade model leaves out of i-Tree's: the roof, a
 //! cooling season longer than June to August, older and less efficient buildings. It is a
@@ -97,11 +97,43 @@ pub fn fit(region: &str, points: &[Point]) -> Option<ClimateEffect> {
             .map(|p| (p.projection_m2, p.itree.0 - p.shade.0)),
     )?;
     let deciduous = || points.iter().filter(|p| p.deciduous_broadleaf);
-    let heating = slope(deciduous().map(|p| (p.projection_m2, p.itree.1 - p.shade.1)))?;
-    // i-Tree's gas = heating x projection - share x penalty, the penalty being -shade.1.
     let evergreen = || points.iter().filter(|p| p.evergreen && p.shade.1 < 0.0);
-    let useful = slope(evergreen().map(|p| (-p.shade.1, heating * p.projection_m2 - p.itree.1)))
-        .map(|s| s.clamp(0.0, 1.0));
+    // i-Tree's gas = heating x projection - share x penalty, the penalty being -shade.1 (a
+    // deciduous tree's from its bare wood, an evergreen's from its leaves). Heating is read
+    // from the deciduous trees with their penalty at the share: heating = h0 + share x k. The
+    // share is read from the evergreens, whose penalty is large, with that heating term:
+    // share = heating x m - q. Both hold at once where share = (h0 m - q) / (1 - k m).
+    let sums = |it: &mut dyn Iterator<Item = &Point>, f: &dyn Fn(&Point) -> (f64, f64)| {
+        it.map(f)
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y))
+    };
+    let (d_ay, d_aa) = sums(&mut deciduous(), &|p| {
+        (
+            p.projection_m2 * p.itree.1,
+            p.projection_m2 * p.projection_m2,
+        )
+    });
+    let (d_ab, _) = sums(&mut deciduous(), &|p| (-p.projection_m2 * p.shade.1, 0.0));
+    if d_aa <= 0.0 {
+        return None;
+    }
+    let (h0, k) = (d_ay / d_aa, d_ab / d_aa);
+    let (e_ab, e_bb) = sums(&mut evergreen(), &|p| {
+        (-p.shade.1 * p.projection_m2, p.shade.1 * p.shade.1)
+    });
+    let (e_by, _) = sums(&mut evergreen(), &|p| (-p.shade.1 * p.itree.1, 0.0));
+    let useful = (e_bb > 0.0)
+        .then(|| {
+            let (m, q) = (e_ab / e_bb, e_by / e_bb);
+            let share = (h0 * m - q) / (1.0 - k * m);
+            share.is_finite().then_some(share)
+        })
+        .flatten()
+        // Held to 0..1 (and never -0, which would print as "-0.0000").
+        .map(|s| if s > 0.0 { s.min(1.0) } else { 0.0 });
+    // With none fitted, the whole penalty counts.
+    let heating = h0 + useful.unwrap_or(1.0) * k;
     Some(ClimateEffect {
         region: region.to_string(),
         cooling_kwh_per_m2: cooling,
@@ -200,16 +232,27 @@ mod tests {
     #[test]
     fn the_fit_recovers_a_known_climate_effect() {
         // i-Tree = shade + 1.5 kWh/m² and, for deciduous trees, 2 kBtu/m².
+        // Gas: 2 kBtu/m² less 0.7 of each tree's winter shade penalty (a deciduous tree's from
+        // its bare wood, an evergreen's from its leaves).
         let pts = [
-            point(50.0, (20.0, 0.0), (95.0, 100.0), true),
-            point(100.0, (40.0, 0.0), (190.0, 200.0), true),
-            // An evergreen: its gas is not fitted (its penalty is Sylva's own).
-            point(80.0, (30.0, -300.0), (150.0, -50.0), false),
+            point(50.0, (20.0, -10.0), (95.0, 100.0 - 7.0), true),
+            point(100.0, (40.0, -15.0), (190.0, 200.0 - 10.5), true),
+            point(80.0, (30.0, -300.0), (150.0, 160.0 - 210.0), false),
         ];
         let c = fit("X", &pts).unwrap();
         assert!((c.cooling_kwh_per_m2 - 1.5).abs() < 1e-12, "{c:?}");
-        assert!((c.heating_kbtu_per_m2 - 2.0).abs() < 1e-12, "{c:?}");
-        assert_eq!(c.of(10.0), (15.0, 20.0));
+        assert!((c.heating_kbtu_per_m2 - 2.0).abs() < 1e-9, "{c:?}");
+        assert!((c.useful_winter_share.unwrap() - 0.7).abs() < 1e-9, "{c:?}");
+        assert_eq!(c.of(10.0).0, 15.0);
+        // Without an evergreen the share is not fitted: the whole penalty counts.
+        let c = fit("X", &pts[..2]).unwrap();
+        assert_eq!(c.useful_winter_share, None);
+        assert!((c.heating_kbtu_per_m2 - (50.0 * 103.0 + 100.0 * 204.5) / 12500.0).abs() < 1e-9);
+        // A share past 1 is held to 1 and heating refitted with it.
+        let mut far = pts;
+        far[2].itree.1 = 160.0 - 600.0;
+        let c = fit("X", &far).unwrap();
+        assert_eq!(c.useful_winter_share, Some(1.0));
         // Without a deciduous broadleaf there is nothing to fit heating to.
         assert!(fit("X", &pts[2..]).is_none());
     }

@@ -79,9 +79,9 @@ pub struct BeamStop {
 }
 
 impl Crown {
-    /// Measures a grown tree.
+    /// Measures a grown tree: its leaves and its wood.
     pub fn of(skeleton: &Skeleton) -> Crown {
-        Crown::with_leaves(skeleton, &leaves_of(skeleton))
+        Crown::with_leaves(skeleton, &leaves_of(skeleton)).with_wood(skeleton)
     }
 
     /// Measures a grown tree whose leaves [`leaves_of`] has listed.
@@ -278,20 +278,22 @@ impl Crown {
         (i[2] * self.dims[1] + i[1]) * self.dims[0] + i[0]
     }
 
-    /// Share of a beam from `from` along unit `dir` that passes the leaves (Beer-Lambert:
-    /// `exp(-G * leaf area crossed per unit cross-section)`).
+    /// Share of a beam from `from` along unit `dir` that passes the crown in leaf
+    /// (Beer-Lambert: `exp(-optical depth)`, [`Crown::optical_depth`]): its leaves, and its
+    /// wood where [`Crown::with_wood`] added it.
     pub fn transmittance(&self, from: DVec3, dir: DVec3) -> f64 {
-        // Steps of at most 0.75 cell, evened out over the path so that it is summed whole:
-        // each cell is sampled once or twice.
-        let Some((t0, n, step)) = self.span(from, dir) else {
-            return 1.0;
-        };
-        let mut optical = 0.0f64;
-        for j in 0..n {
-            optical +=
-                self.density[self.cell_at(from + dir * (t0 + (j as f64 + 0.5) * step))] as f64;
-        }
-        (-G * optical * step).exp()
+        self.transmittance_in(from, dir, true)
+    }
+
+    /// [`Crown::transmittance`] in leaf (`leaves`) or bare: a deciduous crown in winter
+    /// stops the sun with its wood alone.
+    pub fn transmittance_in(&self, from: DVec3, dir: DVec3, leaves: bool) -> f64 {
+        (-self.optical_depth(from, dir, leaves)).exp()
+    }
+
+    /// Whether the crown's wood is on its grid ([`Crown::with_wood`]).
+    pub fn has_wood(&self) -> bool {
+        !self.wood.is_empty()
     }
 }
 
@@ -419,7 +421,7 @@ mod tests {
             lobes: 0,
             lobe_depth: 0.0,
         });
-        let crown = Crown::of(&tree).with_wood(&tree);
+        let crown = Crown::of(&tree);
         // The leaves' box runs from y = -0.75 (the first leaf centre), so 1.75 m of the limb,
         // 0.35 m² of its silhouette, lies in the 0.25 m² column a ray along it crosses.
         let from = DVec3::new(0.1, -5.0, 4.1);
@@ -433,8 +435,14 @@ mod tests {
             b.stopped > 0.0 && b.stopped < crown.beam(DVec3::Y, true).stopped,
             "{b:?}"
         );
-        // The leaf-only transmittance the shade model reads is unchanged by the wood.
+        // The shade model's transmittance reads the same crown: leaves and wood in leaf, wood
+        // alone bare; without its wood the crown passes what its leaves pass.
         let t = crown.transmittance(from, DVec3::Y);
+        assert!((t - (-leafy).exp()).abs() < 1e-12, "{t}");
+        let t = crown.transmittance_in(from, DVec3::Y, false);
+        assert!((t - (-bare).exp()).abs() < 1e-12, "{t}");
+        let leaves_only = Crown::with_leaves(&tree, &leaves_of(&tree));
+        let t = leaves_only.transmittance(from, DVec3::Y);
         assert!((t - (-2.0f64).exp()).abs() < 0.01, "{t}");
     }
 }

@@ -234,7 +234,7 @@ impl Assessor {
         // sum (`sylva bench --street`).
         let ((crown, energy), conflicts) = rayon::join(
             || {
-                let crown = Crown::with_leaves(skeleton, &leaves);
+                let crown = Crown::with_leaves(skeleton, &leaves).with_wood(skeleton);
                 let energy = match (facade, self.climate) {
                     (Some(f), Some(c)) => {
                         let mut e = energy(&crown, f, &Sky::of(c), self.evergreen);

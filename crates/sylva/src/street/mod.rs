@@ -9,8 +9,9 @@
 //! - [`climate`]: each region's latitude, sunshine and rain; rainfall interception by leaf and
 //!   bark storage.
 //! - [`sun`] and [`shade`]: the sun's path, beam and sky light, and the crown's shadow on the
-//!   site's façade ([`crown`] holds the crown's leaf area density), turned into cooling saved
-//!   and an evergreen's winter heating penalty; [`climate_effect`]: the canopy's effect on air
+//!   site's façade ([`crown`] holds the crown's leaf area density and wood), turned into
+//!   cooling saved and the winter shade's heating penalty (an evergreen's leaves, a deciduous
+//!   tree's bare wood); [`climate_effect`]: the canopy's effect on air
 //!   and wind, which does not depend on the tree's position, calibrated against i-Tree.
 //! - [`prices`] and [`costs`]: what each unit is worth and what a tree costs, built in or
 //!   from TOML.

@@ -10,6 +10,7 @@
 use super::crown::{BeamStop, Crown, leaves_of};
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
+use crate::skeleton::Skeleton;
 use glam::DVec3;
 
 /// One species at one age.
@@ -38,15 +39,21 @@ pub fn beams() -> [DVec3; 2] {
 }
 
 /// Grows `m` yearly and measures its crown at each of `ages` (rising; ages its data do not
-/// reach are left out).
-pub fn opacity(m: &Measured, ages: &[f64], seed: u64) -> Vec<Opacity> {
+/// reach are left out), with `also`'s own measure of the same tree at that age (a picture of it,
+/// say).
+pub fn opacity<T>(
+    m: &Measured,
+    ages: &[f64],
+    seed: u64,
+    also: &(dyn Fn(&Measured, f64, &Skeleton) -> T + Sync),
+) -> Vec<(Opacity, T)> {
     let mut cohort = Cohort::new(vec![m.clone()], seed);
     let mut out = Vec::new();
     for &age in ages.iter().filter(|&&a| a >= 1.0 && a <= m.ages.1) {
         let skeleton = cohort.advance_to(age).remove(0);
         let crown = Crown::with_leaves(&skeleton, &leaves_of(&skeleton)).with_wood(&skeleton);
         let [side, sun] = beams();
-        out.push(Opacity {
+        let row = Opacity {
             region: m.region.code.clone(),
             code: m.species.code.clone(),
             age,
@@ -54,23 +61,25 @@ pub fn opacity(m: &Measured, ages: &[f64], seed: u64) -> Vec<Opacity> {
             bark_area_m2: crown.bark_area,
             side: (crown.beam(side, true), crown.beam(side, false)),
             sun: (crown.beam(sun, true), crown.beam(sun, false)),
-        });
+        };
+        out.push((row, also(m, age, &skeleton)));
     }
     out
 }
 
 /// [`opacity`] for many species at once, in parallel; `tick` after each.
-pub fn opacity_all(
+pub fn opacity_all<T: Send>(
     species: &[Measured],
     ages: &[f64],
     seed: u64,
+    also: &(dyn Fn(&Measured, f64, &Skeleton) -> T + Sync),
     tick: &(dyn Fn() + Sync),
-) -> Vec<Vec<Opacity>> {
+) -> Vec<Vec<(Opacity, T)>> {
     use rayon::prelude::*;
     species
         .par_iter()
         .map(|m| {
-            let rows = opacity(m, ages, seed);
+            let rows = opacity(m, ages, seed, also);
             tick();
             rows
         })

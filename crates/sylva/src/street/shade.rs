@@ -3,8 +3,10 @@
 //!
 //! The sun walks its clear-day path (`sun.rs`) at the region's latitude on the 15th of each
 //! month of the season, every hour from sunrise to sunset. Each beam that reaches a point of the
-//! wall passes the crown's leaf area density (`crown.rs`); what the leaves stop is solar heat the
-//! wall does not receive. Two things make the clear day a real month:
+//! wall passes the crown's leaf area density and its wood's silhouette (`crown.rs`); what they
+//! stop is solar heat the wall does not receive. A deciduous crown in winter stops it with its
+//! bare wood alone (Heisler 1986 measured leafless street crowns stopping 30-40%). Two things make
+//! the clear day a real month:
 //! - the beam shines only for the month's share of possible sunshine at the region's nearest
 //!   NOAA station (`climate::sunshine`); Modesto's tule-fog Decembers get 47% of it, its Julys
 //!   97%;
@@ -189,13 +191,21 @@ fn wall_points(wall: &Wall, spacing: f64) -> (Vec<DVec3>, f64) {
 
 /// Sun on a wall over the months `months` under `sky`, with the crown in front of it.
 pub fn wall_sun(crown: &Crown, wall: &Wall, sky: &Sky, months: &[usize]) -> FacadeSun {
-    wall_sun_hidden(crown, wall, sky, months, hidden_sky_m2(crown, wall))
+    wall_sun_hidden(
+        crown,
+        wall,
+        sky,
+        months,
+        hidden_sky_m2(crown, wall, true),
+        true,
+    )
 }
 
 /// The share of the wall's sky the crown hides, summed over the wall (m²): the same in every
 /// hour and season, since diffuse light comes evenly from the whole sky, so a wall's seasons
-/// share it. It changes slowly along the wall, so it is sampled on a coarser grid.
-fn hidden_sky_m2(crown: &Crown, wall: &Wall) -> f64 {
+/// share it (those the crown is in leaf in, or bare: `leaves`). It changes slowly along the
+/// wall, so it is sampled on a coarser grid.
+fn hidden_sky_m2(crown: &Crown, wall: &Wall, leaves: bool) -> f64 {
     if crown.leaf_area <= 0.0 {
         return 0.0;
     }
@@ -206,20 +216,22 @@ fn hidden_sky_m2(crown: &Crown, wall: &Wall) -> f64 {
         .map(|&p| {
             let hidden: f64 = dirs
                 .iter()
-                .map(|&(d, w)| w * (1.0 - crown.transmittance(p, d)))
+                .map(|&(d, w)| w * (1.0 - crown.transmittance_in(p, d, leaves)))
                 .sum();
             hidden * coarse_area
         })
         .sum()
 }
 
-/// [`wall_sun`] with the hidden sky already measured.
+/// [`wall_sun`] with the hidden sky already measured, through the crown in leaf or bare
+/// (`leaves`).
 fn wall_sun_hidden(
     crown: &Crown,
     wall: &Wall,
     sky: &Sky,
     months: &[usize],
     hidden_m2: f64,
+    leaves: bool,
 ) -> FacadeSun {
     let (points, cell_area) = wall_points(wall, SPACING);
     let mut out = FacadeSun::default();
@@ -252,7 +264,7 @@ fn wall_sun_hidden(
             // kWh per m² of beam, in the month's share of sunny hours.
             let on_wall = beam * incidence * STEP_H * days / 1000.0 * sunny;
             for &p in &points {
-                let stopped = 1.0 - crown.transmittance(p, dir);
+                let stopped = 1.0 - crown.transmittance_in(p, dir, leaves);
                 out.incident_kwh += on_wall * cell_area;
                 out.blocked_kwh += on_wall * cell_area * stopped;
                 out.shaded_m2h += stopped * cell_area * STEP_H * days * sunny;
@@ -267,12 +279,12 @@ fn wall_sun_hidden(
 pub struct Energy {
     /// Summer sun on the wall.
     pub summer: FacadeSun,
-    /// Winter sun on the wall (zero for a tree that is bare then).
+    /// Winter sun on the wall, through the crown's leaves or, bare, its wood.
     pub winter: FacadeSun,
     /// Air-conditioning electricity the shade saves, kWh.
     pub shade_cooling_kwh: f64,
-    /// Extra furnace gas if all the winter sun kept out had been useful heat, kBtu (evergreens
-    /// only; >= 0).
+    /// Extra furnace gas if all the winter sun kept out had been useful heat, kBtu (>= 0;
+    /// a deciduous tree's from its bare wood).
     pub heating_penalty_kbtu: f64,
     /// The share of that penalty counted: the region's useful share of winter sun
     /// (`climate_effect`), 1 until a caller sets it.
@@ -313,7 +325,8 @@ impl FacadeSun {
 
 /// The energy a crown's shade saves and costs the walls of a building whose walls are `glass`
 /// windows (a share, 0..1), under `sky`. `evergreen` trees keep their leaves in winter; a
-/// deciduous tree's bare winter branches are not counted.
+/// deciduous tree's bare winter wood stops what it stops where the crown has its wood
+/// ([`Crown::with_wood`]).
 pub fn energy_of_walls(
     crown: &Crown,
     walls: &[Wall],
@@ -323,10 +336,14 @@ pub fn energy_of_walls(
 ) -> Energy {
     let (mut summer, mut winter) = (FacadeSun::default(), FacadeSun::default());
     for w in walls {
-        let hidden = hidden_sky_m2(crown, w);
-        summer.add_share(wall_sun_hidden(crown, w, sky, &SUMMER, hidden), 1.0);
+        let hidden = hidden_sky_m2(crown, w, true);
+        summer.add_share(wall_sun_hidden(crown, w, sky, &SUMMER, hidden, true), 1.0);
         if evergreen {
-            winter.add_share(wall_sun_hidden(crown, w, sky, &WINTER, hidden), 1.0);
+            winter.add_share(wall_sun_hidden(crown, w, sky, &WINTER, hidden, true), 1.0);
+        } else if crown.has_wood() {
+            // A deciduous crown's bare wood still stops some of the winter sun.
+            let bare = hidden_sky_m2(crown, w, false);
+            winter.add_share(wall_sun_hidden(crown, w, sky, &WINTER, bare, false), 1.0);
         }
     }
     let gain = heat_gain_share(glass);

@@ -5,6 +5,10 @@
 use super::*;
 use rayon::prelude::*;
 
+/// Mean share of a cylinder's silhouette (diameter x length) it shows to light from a random
+/// direction: pi/4, the projection of a randomly oriented cylinder.
+const WOOD_G: f32 = std::f32::consts::FRAC_PI_4;
+
 /// Segments whose shade one task works out.
 const SHADE_RUN: usize = 2048;
 
@@ -237,10 +241,10 @@ impl Grower {
                     let leaves = self.leaves_on.get(i).copied().unwrap_or(0) as f32;
                     // Leaves lie at all angles: on average half their area faces up.
                     let leaf_share = leaves * leaf_area * 0.5 / pieces as f32;
-                    // A cylinder piece seen from above covers about its diameter times its
-                    // horizontal length (its end disc when it stands upright).
-                    let horizontal = piece * (1.0 - s.direction.z * s.direction.z).sqrt();
-                    let covered = 2.0 * r * horizontal + PI * r * r * s.direction.z.abs();
+                    // Light comes from the whole sky, as it does to the leaves: a cylinder piece
+                    // shows it pi/4 of its silhouette (diameter x length) on average over
+                    // directions, as the shade model's crown counts it (`street::crown::G_WOOD`).
+                    let covered = WOOD_G * 2.0 * r * piece;
                     out.extend((0..pieces).filter_map(|k| {
                         let p = s.start + s.direction * piece * (k as f32 + 0.5);
                         grid.occluder(p, covered, leaf_share)
