@@ -100,7 +100,7 @@ impl Grower {
             {
                 continue;
             }
-            self.for_each_leaf(i, (leaf, tree_top, floor), |p, q| {
+            self.for_each_leaf(i, (leaf, tree_top, floor), |p, q, _| {
                 let tip = p + q * Vec3::new(0.0, 0.0, leaf);
                 lo = lo.min(p.min(tip));
                 hi = hi.max(p.max(tip));

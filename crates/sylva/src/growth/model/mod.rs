@@ -77,7 +77,7 @@ const MAX_LIGHT_CELLS: usize = 28;
 /// spiral, so buds never stack above each other.
 const DIVERGENCE: f32 = 137.5;
 /// How far the leaves reach out beyond the shoots at the crown's edge, in leaf lengths (they
-/// leave the shoot at 50 degrees and turn their blades to the sky).
+/// leave the shoot at 50 degrees).
 const LEAF_REACH: f32 = 0.5;
 /// Crown height below which a tree is vigorous enough to branch in mid-season, m.
 const SYLLEPTIC_CROWN: f64 = 5.0;

@@ -242,7 +242,7 @@ impl Grower {
             .map(|(run, part)| {
                 let mut k = 0;
                 for &(b, id) in run {
-                    self.for_each_leaf(b, (leaf_len, top, floor), |position, orientation| {
+                    self.for_each_leaf(b, (leaf_len, top, floor), |position, _, orientation| {
                         part[k] = Leaf {
                             light: self.light.light_at(position),
                             position,

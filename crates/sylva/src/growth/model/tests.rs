@@ -180,3 +180,27 @@ fn a_crape_myrtle_grows_three_stems_held_together_to_its_dbh() {
         assert!(most < 0.8 * total, "{code}: stems {r:?}");
     }
 }
+
+#[test]
+fn a_crowns_leaves_show_half_their_area_from_every_side() {
+    // The shade model and the light grid take leaves as spherically oriented (G = 1/2 from
+    // every direction); the drawn blades must be so too, or the picture of the crown from the
+    // street is thinner than the crown that casts the shade.
+    let skeleton = grown("InlVal", "PLAC", 8.0).skeleton();
+    assert!(skeleton.leaves.len() > 1000, "a crown grew");
+    let area: f32 = skeleton.leaves.iter().map(|l| l.length * l.width).sum();
+    let g = |d: Vec3| {
+        let seen: f32 = (skeleton.leaves.iter())
+            .map(|l| l.length * l.width * (l.orientation * Vec3::Y).dot(d).abs())
+            .sum();
+        seen / area
+    };
+    for d in [Vec3::X, Vec3::Y, Vec3::Z, Vec3::new(0.0, -0.5, 0.866)] {
+        let g = g(d);
+        assert!((0.42..=0.58).contains(&g), "G along {d} is {g:.3}, not 1/2");
+    }
+    assert!(
+        (skeleton.leaves.iter()).all(|l| (l.orientation * Vec3::Y).z >= 0.0),
+        "every blade's upper side faces the sky's half"
+    );
+}
