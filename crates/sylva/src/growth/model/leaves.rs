@@ -270,8 +270,8 @@ impl Grower {
 
     /// The leaves of branch `b`, spiralling at a fixed divergence, tilted 50 degrees off the
     /// shoot, none above the tree's top or below `floor` ([`Grower::leaf_floor`]): each one's
-    /// position, its frame rolled to the sky ([`leaf_frame`]) and its blade's frame as drawn
-    /// ([`blade_frame`]), about the same axis.
+    /// position, its frame rolled to the sky ([`leaf_frame`]) and its [`Blade`], whose frame as
+    /// drawn has the same axis and is worked out only by those that draw it.
     ///
     /// The growth measures its crown by the first (`Grower::crown_above`) and the skeleton draws
     /// the second. The roll is a drawing choice, and the crown's fit is chaotic: measured by the
@@ -282,7 +282,7 @@ impl Grower {
         &self,
         b: usize,
         (length, top, floor): (f32, f32, f32),
-        mut f: impl FnMut(Vec3, Quat, Quat),
+        mut f: impl FnMut(Vec3, Quat, Blade),
     ) {
         let mut turn = 0.0f32;
         let mut turns = leaf_turns().iter();
@@ -311,7 +311,15 @@ impl Grower {
                     tip = (q * Vec3::Z).z * length + p.z;
                 }
                 if tip <= top && tip.min(p.z) >= floor {
-                    f(p, q, blade_frame(base, turned, tilt));
+                    f(
+                        p,
+                        q,
+                        Blade {
+                            shoot: base,
+                            turn: turned,
+                            tilt,
+                        },
+                    );
                 }
             }
         }
@@ -342,13 +350,34 @@ fn leaf_turns() -> &'static [(f32, f32)] {
 /// as near to up as it can be). Built from its axes: the leaf's axis is the shoot frame applied
 /// to z turned and tilted, and the roll leaves that axis alone, so there is no need to compose
 /// the three rotations and measure the roll's angle.
-pub(super) fn leaf_frame(shoot: Quat, (sin_turn, cos_turn): (f32, f32), tilt: f32) -> Quat {
+pub(super) fn leaf_frame(shoot: Quat, turn: (f32, f32), tilt: f32) -> Quat {
+    let (z, y) = turned_tilted(shoot, turn, tilt);
+    // A leaf standing upright keeps the roll it came with.
+    facing_sky(z, || y)
+}
+
+/// The axis (z) and normal (y) of the frame `shoot` turned about its axis by the angle whose
+/// sine and cosine are `turn`, then tilted `tilt` off it (radians).
+fn turned_tilted(shoot: Quat, (sin_turn, cos_turn): (f32, f32), tilt: f32) -> (Vec3, Vec3) {
     let (sin_tilt, cos_tilt) = tilt.sin_cos();
     let z = shoot * Vec3::new(sin_turn * sin_tilt, -cos_turn * sin_tilt, cos_tilt);
-    // A leaf standing upright keeps the roll it came with.
-    facing_sky(z, || {
-        shoot * Vec3::new(-cos_tilt * sin_turn, cos_tilt * cos_turn, sin_tilt)
-    })
+    let y = shoot * Vec3::new(-cos_tilt * sin_turn, cos_tilt * cos_turn, sin_tilt);
+    (z, y)
+}
+
+/// Where a blade leaves its shoot, for its frame as drawn ([`Blade::frame`]).
+#[derive(Clone, Copy)]
+pub(super) struct Blade {
+    shoot: Quat,
+    turn: (f32, f32),
+    tilt: f32,
+}
+
+impl Blade {
+    /// The blade's frame as drawn ([`blade_frame`]).
+    pub(super) fn frame(self) -> Quat {
+        blade_frame(self.shoot, self.turn, self.tilt)
+    }
 }
 
 /// The frame of a blade as drawn, on a shoot whose frame is `shoot`: the axis of
@@ -365,10 +394,8 @@ pub(super) fn leaf_frame(shoot: Quat, (sin_turn, cos_turn): (f32, f32), tilt: f3
 /// third of the picture's covered outline was wood). Measured broadleaf crowns run from
 /// planophile to spherical (Chianucci et al. 2018, Ann. For. Sci. 75:50, 138 species);
 /// Sylva's species data hold no leaf angles.
-pub(super) fn blade_frame(shoot: Quat, (sin_turn, cos_turn): (f32, f32), tilt: f32) -> Quat {
-    let (sin_tilt, cos_tilt) = tilt.sin_cos();
-    let z = shoot * Vec3::new(sin_turn * sin_tilt, -cos_turn * sin_tilt, cos_tilt);
-    let y = shoot * Vec3::new(-cos_tilt * sin_turn, cos_tilt * cos_turn, sin_tilt);
+pub(super) fn blade_frame(shoot: Quat, turn: (f32, f32), tilt: f32) -> Quat {
+    let (z, y) = turned_tilted(shoot, turn, tilt);
     // Turned over, a blade keeps its projection from every side: only its upper side's colour
     // tells, and that faces up.
     let y = if y.z < 0.0 { -y } else { y };

@@ -242,11 +242,11 @@ impl Grower {
             .map(|(run, part)| {
                 let mut k = 0;
                 for &(b, id) in run {
-                    self.for_each_leaf(b, (leaf_len, top, floor), |position, _, orientation| {
+                    self.for_each_leaf(b, (leaf_len, top, floor), |position, _, blade| {
                         part[k] = Leaf {
                             light: self.light.light_at(position),
                             position,
-                            orientation,
+                            orientation: blade.frame(),
                             length: leaf_len,
                             width: leaf_width,
                             shape: self.leaf_shape,
