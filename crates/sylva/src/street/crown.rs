@@ -460,7 +460,8 @@ mod tests {
             lobe_depth: 0.0,
         });
         let crown = Crown::of(&tree);
-        // The leaves' box is the cube, so 0.6 m of the limb, 0.012 m² of its silhouette, lies in the 0.0225 m² column a ray along it crosses.
+        // The leaves' box is the cube, so 0.6 m of the limb, 0.012 m² of its silhouette, lies
+        // in the 0.0225 m² column a ray along it crosses.
         let from = DVec3::new(0.0, -5.0, 3.3);
         let bare = crown.optical_depth(from, DVec3::Y, false);
         let expected = G_WOOD * 0.012 / 0.0225;
