@@ -19,7 +19,12 @@ export class Street {
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.shadowMap.enabled = true;
-    this.renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+    // Soft shadows look up the shadow map several times a pixel. Without a GPU that doubles
+    // the cost of a frame of the coarsest trees (a street and two 50-year leaf shells: 34-38
+    // ms soft, 21-27 ms hard, SwiftShader on two cores), so there the shadows are hard-edged.
+    // The map is drawn anew with every change of trees, and a smaller one there saves another
+    // 6 ms a change (texels of about 6 cm over a street of two trees).
+    this.renderer.shadowMap.type = this.software ? THREE.BasicShadowMap : THREE.PCFSoftShadowMap;
     // The sun and everything that casts a shadow stand still while the view turns, so the
     // shadow map is drawn again only when the street or the trees change (see `changed`).
     this.renderer.shadowMap.autoUpdate = false;
@@ -34,7 +39,7 @@ export class Street {
     this.scene.add(new THREE.HemisphereLight(0xdfeaf5, 0x5a5346, 1.1));
     this.sun = new THREE.DirectionalLight(0xffffff, 2.2);
     this.sun.castShadow = true;
-    this.sun.shadow.mapSize.set(2048, 2048);
+    this.sun.shadow.mapSize.setScalar(this.software ? 1024 : 2048);
     this.sun.shadow.bias = -0.0005;
     this.sun.shadow.normalBias = 0.02;
     this.scene.add(this.sun, this.sun.target);
@@ -182,7 +187,7 @@ export class Street {
     this.controls.update();
   }
 
-  // Draws a frame with a stand-in bark mesh and leaf mesh, so that every shader the trees
+  // Draws a frame with a stand-in bark, leaf and shell mesh, so that every shader the trees
   // need is compiled while their files are still on the way (a browser drawing WebGL on its
   // CPU takes a second over it).
   warm() {
@@ -191,8 +196,10 @@ export class Street {
     const grey = new Float32Array(leafBox.attributes.position.count * 3).fill(1);
     leafBox.setAttribute('color', new THREE.BufferAttribute(grey, 3));
     const leaves = new THREE.Mesh(leafBox, material(0xffffff, true, THREE.DoubleSide));
-    for (const m of [bark, leaves]) { m.castShadow = m.receiveShadow = true; m.position.y = -5; }
-    this.trees.add(bark, leaves);
+    // The coarsest level's leaf shell: shaded like leaves, but one-sided.
+    const shell = new THREE.Mesh(leafBox, material(0xffffff, true, THREE.FrontSide));
+    for (const m of [bark, leaves, shell]) { m.castShadow = m.receiveShadow = true; m.position.y = -5; }
+    this.trees.add(bark, leaves, shell);
     this.changed = true;
     const ms = this.timedDraw();
     this.trees.clear();
@@ -207,8 +214,10 @@ export class Street {
     scenes.forEach((s, i) => {
       if (!s) return;
       s.position.x = this.slots[i] ?? 0;
+      // A leaf shell takes no shadow: its leaves' own light is drawn on it already, and a hard
+      // shadow map draws stripes on a surface lit at a grazing angle.
       s.traverse((o) => {
-        if (o.isMesh) { o.castShadow = true; o.receiveShadow = true; }
+        if (o.isMesh) { o.castShadow = true; o.receiveShadow = o.material.name !== 'leaf shell'; }
       });
       lambert(s);
       this.trees.add(s);

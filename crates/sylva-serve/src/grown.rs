@@ -6,10 +6,10 @@
 use std::sync::OnceLock;
 use sylva::ExportError;
 use sylva::Skeleton;
-use sylva::export::{Materials, to_glb};
+use sylva::export::{Materials, shelled_glb, to_glb};
 use sylva::growth::report::{AgeRecord, Cohort, MESH};
 use sylva::growth::{Dress, Measured, dressed_mesh};
-use sylva::lod::LodTree;
+use sylva::lod::{LodTree, leaf_shell};
 use sylva::mesh::{MeshOptions, TreeMesh, leaf_template};
 use sylva::skeleton::LeafShape;
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
@@ -182,32 +182,45 @@ pub const WEB_MESH: MeshOptions = MeshOptions {
 const KITE_WIDENING: f32 = 0.70 / 0.50;
 
 /// Most detail levels the page may ask for: 0 is the whole tree, each next one draws about
-/// half the triangles.
-pub const DETAIL_LEVELS: u32 = 4;
+/// half the triangles, and the last, [`SHELL`], draws the crown as a leaf shell.
+pub const DETAIL_LEVELS: u32 = 5;
+
+/// The coarsest level: the trunk and the largest limbs, and the crown as a leaf shell
+/// ([`leaf_shell`]), which a browser drawing WebGL on its CPU fills about a third as fast as
+/// the coarsest crown of leaves (see `sylva-serve/tests/web/e2e.mjs`).
+pub const SHELL: u32 = DETAIL_LEVELS - 1;
 
 /// The level the page asks for first, the coarsest.
-pub const OPENING: u32 = DETAIL_LEVELS - 1;
+pub const OPENING: u32 = SHELL;
 
 /// Items of each of the four lists of a [`LodTree`] (stems by level, then leaves) that each
-/// detail level keeps, as Weber & Penn's degradation at range thins a tree: twigs and leaves
-/// first, the trunk and limbs never. The leaves that remain grow to keep the crown's leaf
-/// area ([`LodTree::engine_mesh`]).
-const DETAIL: [[f64; 4]; DETAIL_LEVELS as usize] = [
+/// detail level but the shell keeps, as Weber & Penn's degradation at range thins a tree: twigs
+/// and leaves first, the trunk and limbs never. The leaves that remain grow to keep the crown's
+/// leaf area ([`LodTree::engine_mesh`]).
+const DETAIL: [[f64; 4]; SHELL as usize] = [
     [16.0, 16.0, 16.0, 4.0],
     [16.0, 16.0, 8.0, 2.0],
     [16.0, 8.0, 2.0, 1.0],
     [16.0, 4.0, 1.0, 0.5],
 ];
 
+/// The stems the shell level draws: the trunk and the largest eighth of the limbs (the rest
+/// lie inside the shell).
+const SHELL_STEMS: [f64; 4] = [16.0, 2.0, 0.0, 0.0];
+
 /// A grown tree as the page draws it at `detail` (0 to [`DETAIL_LEVELS`] - 1), in a GLB. A
 /// browser without a GPU draws some hundred thousand triangles a second, so the page asks for
 /// the level its own frame times allow.
 pub fn web_glb(m: &Measured, entry: &AgeEntry, detail: u32) -> Result<Vec<u8>, ExportError> {
-    let mesh = entry
-        .lod
-        .engine_mesh(DETAIL[detail.min(DETAIL_LEVELS - 1) as usize]);
     let (bark, leaves) = m.colours();
-    to_glb(&mesh, &m.label(), &Materials::from_srgb(bark, leaves))
+    let materials = Materials::from_srgb(bark, leaves);
+    if detail >= SHELL {
+        let wood = entry.lod.mesh_at(SHELL_STEMS).bark;
+        let shell = leaf_shell(&entry.skeleton.leaves);
+        return Ok(shelled_glb(&wood, &shell, &m.label(), &materials)?.to_vec());
+    }
+    let mesh = entry.lod.engine_mesh(DETAIL[detail as usize]);
+    to_glb(&mesh, &m.label(), &materials)
 }
 
 /// The skeleton with every leaf drawn as a kite of the same area: ovals widened by
@@ -325,5 +338,20 @@ mod tests {
             );
             before = m.triangle_count();
         }
+        // The shell level: the trunk and largest limbs, and one closed surface for the crown,
+        // under the coarsest leaves' triangles and bytes.
+        let (shell, coarsest) = (
+            web_glb(&plane, &got[5], SHELL).unwrap(),
+            web_glb(&plane, &got[5], SHELL - 1).unwrap(),
+        );
+        let shell_triangles =
+            lod.mesh_at(SHELL_STEMS).triangle_count() + leaf_shell(&s.leaves).triangle_count();
+        println!(
+            "shell: {shell_triangles} triangles, {} bytes (level {}: {} bytes)",
+            shell.len(),
+            SHELL - 1,
+            coarsest.len()
+        );
+        assert!(shell_triangles < before && shell.len() < coarsest.len());
     }
 }

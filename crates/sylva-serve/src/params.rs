@@ -180,7 +180,7 @@ impl Query<'_> {
         })
     }
 
-    /// The detail level of a tree for the page (default 0, the whole tree).
+    /// The detail level of a tree for the page (default 0, the whole tree; the last, the leaf shell).
     pub fn detail(&self) -> Result<u32, ApiError> {
         let top = crate::grown::DETAIL_LEVELS - 1;
         let allowed = format!("a whole number from 0 (every twig and leaf) to {top} (coarsest)");

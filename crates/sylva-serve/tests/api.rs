@@ -195,7 +195,7 @@ async fn bad_parameters_get_400_naming_them() {
         ),
         ("/api/compare.png?species=LAIN&age=5&size=9x9", "size"),
         ("/api/tree.glb?species=LAIN,PRCE&age=5", "species"),
-        ("/api/tree.glb?species=LAIN&age=5&detail=4", "detail"),
+        ("/api/tree.glb?species=LAIN&age=5&detail=5", "detail"),
     ];
     for (uri, parameter) in cases {
         let (status, kind, body) = get(&s, uri).await;

@@ -1,7 +1,7 @@
 // The parts of three.js (r187) that Sylva's page uses, bundled and minified by esbuild:
 // see crates/sylva-serve/assets/vendor/README.md.
 export {
-  BoxGeometry, BufferAttribute, Color, DoubleSide, FrontSide, CylinderGeometry, DirectionalLight, Group, HemisphereLight, Mesh,
+  BasicShadowMap, BoxGeometry, BufferAttribute, Color, DoubleSide, FrontSide, CylinderGeometry, DirectionalLight, Group, HemisphereLight, Mesh,
   MeshLambertMaterial, PCFSoftShadowMap, PerspectiveCamera, PlaneGeometry, SRGBColorSpace,
   Scene, SphereGeometry, Vector2, Vector3, WebGLRenderer,
 } from 'three';

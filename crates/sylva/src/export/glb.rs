@@ -176,7 +176,7 @@ impl<'a> Builder<'a> {
         })
     }
 
-    fn primitive(
+    pub(super) fn primitive(
         &mut self,
         mesh: &'a Mesh,
         material: json::Index<json::Material>,

@@ -9,6 +9,7 @@ mod atomic;
 mod glb;
 mod instanced;
 mod obj;
+mod shelled;
 
 pub use atomic::{write_atomically, write_atomically_with};
 pub use glb::{
@@ -19,6 +20,7 @@ pub use instanced::{
     SharedMesh, instanced_glb,
 };
 pub use obj::{to_obj, write_obj};
+pub use shelled::shelled_glb;
 
 /// Z-up model coordinates to Y-up file coordinates.
 #[inline]

@@ -16,10 +16,12 @@ pub mod expand;
 pub mod impostor;
 pub mod order;
 pub mod packed;
+mod shell;
 pub mod sway;
 
 pub use budget::{Choice, PER_SQUARE_PIXEL, THINNED_OUTLINE, card_scale, share_out, tree_cap};
 pub use impostor::{IMPOSTOR_PIXELS, IMPOSTOR_WHOLE_PIXELS, impostor_share, view_blend};
+pub use shell::leaf_shell;
 
 use crate::skeleton::LeafShape;
 use order::prefix_len;
