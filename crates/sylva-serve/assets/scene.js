@@ -57,6 +57,7 @@ export class Street {
     const w = this.canvas.clientWidth || 640;
     const h = this.canvas.clientHeight || 480;
     this.renderer.setSize(w, h, false);
+    viewportHeight.value = this.renderer.getDrawingBufferSize(new THREE.Vector2()).y;
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     this.draw();
@@ -192,14 +193,18 @@ export class Street {
   // CPU takes a second over it).
   warm() {
     const bark = new THREE.Mesh(new THREE.BoxGeometry(0.1, 0.1, 0.1), material(0xffffff, false, THREE.FrontSide));
+    // Stems that carry their radius, widened where thinner than a pixel.
+    const stemBox = new THREE.BoxGeometry(0.1, 0.1, 0.1);
+    stemBox.setAttribute('_radius', new THREE.BufferAttribute(new Float32Array(stemBox.attributes.position.count).fill(0.05), 1));
+    const stems = new THREE.Mesh(stemBox, material(0xffffff, false, THREE.FrontSide, true));
     const leafBox = new THREE.BoxGeometry(0.1, 0.1, 0.1);
     const grey = new Float32Array(leafBox.attributes.position.count * 3).fill(1);
     leafBox.setAttribute('color', new THREE.BufferAttribute(grey, 3));
     const leaves = new THREE.Mesh(leafBox, material(0xffffff, true, THREE.DoubleSide));
     // The coarsest level's leaf shell: shaded like leaves, but one-sided.
     const shell = new THREE.Mesh(leafBox, material(0xffffff, true, THREE.FrontSide));
-    for (const m of [bark, leaves, shell]) { m.castShadow = m.receiveShadow = true; m.position.y = -5; }
-    this.trees.add(bark, leaves, shell);
+    for (const m of [bark, stems, leaves, shell]) { m.castShadow = m.receiveShadow = true; m.position.y = -5; }
+    this.trees.add(bark, stems, leaves, shell);
     this.changed = true;
     const ms = this.timedDraw();
     this.trees.clear();
@@ -256,10 +261,16 @@ function softwareGl() {
 // files load as physically based materials, whose shaders a browser without a GPU compiles
 // and fills several times slower, and a tree's bark and leaves are matte anyway.
 const materials = new Map();
-function material(color, vertexColors, side) {
+function material(color, vertexColors, side, thin = false) {
   const c = new THREE.Color(color);
-  const key = `${c.getHexString()}|${vertexColors}|${side}`;
-  if (!materials.has(key)) materials.set(key, new THREE.MeshLambertMaterial({ color: c, vertexColors, side }));
+  const key = `${c.getHexString()}|${vertexColors}|${side}|${thin}`;
+  if (!materials.has(key)) {
+    // Stems that may be thinner than a pixel are blended over what lies behind them, after
+    // every opaque thing is drawn; they still write depth, so a trunk hides the twigs behind it.
+    const m = new THREE.MeshLambertMaterial({ color: c, vertexColors, side, transparent: thin });
+    if (thin) widenThin(m);
+    materials.set(key, m);
+  }
   return materials.get(key);
 }
 
@@ -267,8 +278,45 @@ function lambert(root) {
   root.traverse((o) => {
     if (!o.isMesh || o.material.isMeshLambertMaterial) return;
     const m = o.material;
-    o.material = material(m.color, !!m.vertexColors, m.side);
+    o.material = material(m.color, !!m.vertexColors, m.side, !!o.geometry.attributes._radius);
   });
+}
+
+// The drawing buffer's height in pixels, shared by every material that widens thin stems.
+const viewportHeight = { value: 1 };
+
+// Stems thinner than a pixel, as the forest renderer draws far stems: each vertex of a stem
+// whose radius (the GLB's _RADIUS) is under half a pixel at its distance moves out along its
+// normal to half a pixel, so the stem is drawn one pixel wide, with the opacity of the share of
+// that pixel its true width covers (radius over half a pixel). Without this a twig of 4 mm seen
+// from 30 m either misses a pixel's centre or fills the pixel: drawn as broken dots without
+// multisampling, and never as the faint line it is.
+function widenThin(m) {
+  m.onBeforeCompile = (shader) => {
+    shader.uniforms.sylvaViewportHeight = viewportHeight;
+    shader.vertexShader = shader.vertexShader
+      .replace('#include <common>', `#include <common>
+attribute float _radius;
+uniform float sylvaViewportHeight;
+varying float vSylvaCover;`)
+      .replace('#include <begin_vertex>', `#include <begin_vertex>
+{
+  // A pixel's height at this vertex's distance: projectionMatrix[1][1] is 1 / tan(fov / 2).
+  float depth = -(modelViewMatrix * vec4(transformed, 1.0)).z;
+  float half_pixel = depth / (projectionMatrix[1][1] * sylvaViewportHeight);
+  vSylvaCover = 1.0;
+  if (_radius < half_pixel) {
+    transformed += normalize(objectNormal) * (half_pixel - _radius);
+    vSylvaCover = _radius / half_pixel;
+  }
+}`);
+    shader.fragmentShader = shader.fragmentShader
+      .replace('#include <common>', `#include <common>
+varying float vSylvaCover;`)
+      .replace('#include <color_fragment>', `#include <color_fragment>
+diffuseColor.a *= vSylvaCover;`);
+  };
+  m.customProgramCacheKey = () => 'sylva-thin-stems';
 }
 
 // A 1.8 m person: legs, body, arms and head in plain shapes.

@@ -214,6 +214,7 @@ mod tests {
                 uvs: vec![[0.0, 0.0]; 4],
                 indices: vec![0, 1, 2, 0, 2, 3],
                 shades: vec![],
+                radii: vec![],
             },
             leaves: Mesh::default(),
             flowers: Mesh::default(),

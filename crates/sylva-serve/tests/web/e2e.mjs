@@ -100,13 +100,28 @@ try {
   await pinned.close();
   check(shells.detail === 4, `the page keeps a pinned level: ${shells.detail}`);
   console.log(`two 50-year trees as leaf shells (${shells.triangles} triangles): a frame as the view turns ${shells.turning.toFixed(0)} ms, the first frame ${shells.first.toFixed(0)} ms`);
-  // 5. The typical position is the site menu's first choice and what the page opens on; its
+  // 5. Stems thinner than a pixel cover the share of it their width does: the bark alone of two
+  // 30-year trees at the level a computer without a GPU draws (3), black on white, at the
+  // canvas's resolution and at four times it. The twigs are drawn as partly covered pixels, and
+  // the bark covers the same area at both resolutions (a twig widened to a pixel but drawn
+  // opaque would cover several times its area at the coarser one).
+  const thin = await browser.newPage({ viewport: { width: 1600, height: 1000 } });
+  watch(thin);
+  await thin.goto(`${server.url}?species=PLAC,PICH&age=30&detail=3`);
+  await waitUntil('the 30-year trees', () => thin.evaluate(() => window.sylva?.firstTreeMs), 60);
+  const stems = await thin.evaluate(thinStems);
+  await thin.close();
+  console.log(`bark of two 30-year trees: ${stems.partial.toFixed(2)} of its pixels partly covered; covered area ${stems.area[0].toFixed(0)} px at the canvas's resolution, ${stems.area[1].toFixed(0)} at four times it (in the canvas's pixels)`);
+  check(stems.partial > 0.3, 'thin stems drawn as partly covered pixels');
+  check(Math.abs(stems.area[0] / stems.area[1] - 1) < 0.2, 'the bark covers the same area at either resolution');
+
+  // 6. The typical position is the site menu's first choice and what the page opens on; its
   // bars are i-Tree's categories.
   const menu = await page.evaluate(() => [...document.querySelectorAll('#site option')].map((o) => o.value));
   const note = await page.locator('#table .note').textContent();
   check(menu[0] === 'typical' && menu.length >= 2 && /typical position/i.test(note),
     `site menu ${menu.join(', ')}; table says: ${note}`);
-  // 6. Four trees in a row are framed whole: the outermost crowns' edges, at the ground and
+  // 7. Four trees in a row are framed whole: the outermost crowns' edges, at the ground and
   // at the tallest, fall inside the canvas at the default camera.
   const framed = await page.evaluate(() => {
     const s = window.sylvaStreet;
@@ -135,6 +150,50 @@ try {
 } finally {
   await browser.close();
   await server.stop();
+}
+
+// In the page: the bark alone (leaves and street hidden) drawn black on white at pixel ratios
+// 1 and 4. Blending black over white leaves each pixel at 255 times the share not covered, so
+// the covered area is the sum of the pixels' darkness. Returns the share of the bark's pixels
+// that are partly covered at ratio 1, and the covered area at both ratios, in pixels of ratio 1.
+function thinStems() {
+  const s = window.sylvaStreet;
+  const gl = s.renderer.getContext();
+  const hidden = [];
+  const recoloured = new Map();
+  s.site.visible = false;
+  s.trees.traverse((o) => {
+    if (!o.isMesh) return;
+    if (!o.geometry.attributes._radius) { o.visible = false; hidden.push(o); return; }
+    if (!recoloured.has(o.material)) recoloured.set(o.material, o.material.color.clone());
+    o.material.color.setRGB(0, 0, 0);
+  });
+  const background = s.scene.background;
+  s.scene.background = background.clone().setRGB(1, 1, 1);
+  const ratio = s.renderer.getPixelRatio();
+  const draw = (r) => {
+    s.renderer.setPixelRatio(r);
+    s.resize();
+    const [w, h] = [gl.drawingBufferWidth, gl.drawingBufferHeight];
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let area = 0, touched = 0, partial = 0;
+    for (let i = 0; i < px.length; i += 4) {
+      const dark = 1 - px[i + 1] / 255;
+      area += dark;
+      if (dark > 0.02) { touched++; if (dark < 0.98) partial++; }
+    }
+    return { area: area / (r * r), partial: partial / Math.max(1, touched) };
+  };
+  const one = draw(1);
+  const four = draw(4);
+  s.renderer.setPixelRatio(ratio);
+  for (const [m, c] of recoloured) m.color.copy(c);
+  for (const o of hidden) o.visible = true;
+  s.site.visible = true;
+  s.scene.background = background;
+  s.resize();
+  return { partial: one.partial, area: [one.area, four.area] };
 }
 
 // Prints a timing against its target; fails past five times the target.

@@ -217,6 +217,12 @@ impl<'a> Builder<'a> {
             self.root.accessors[colour.value()].normalized = true;
             attributes.insert(Valid(json::mesh::Semantic::Colors(0)), colour);
         }
+        if mesh.radii.len() == n {
+            // An application's own attribute, which glTF names with a leading underscore.
+            let v = self.view(Piece::Bytes(bytes_of(&mesh.radii)), Target::ArrayBuffer);
+            let radius = self.accessor(v, n, C::F32, T::Scalar, None);
+            attributes.insert(Valid(json::mesh::Semantic::Extras("RADIUS".into())), radius);
+        }
         triangles(attributes, idx, material)
     }
 }

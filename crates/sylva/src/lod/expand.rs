@@ -79,6 +79,8 @@ impl Tube {
                 let (p, normal) = self.vertex(end, i, run, slope);
                 mesh.push(p, normal, [i as f32 / n as f32, end as f32]);
             }
+            mesh.radii
+                .extend(std::iter::repeat_n(self.radius[end], n as usize + 1));
         }
         let (a, b) = (first, first + n + 1);
         for i in 0..n {
@@ -195,6 +197,7 @@ impl LodTree {
             }
         }
         out.bark.reserve(vertices, indices);
+        out.bark.radii.reserve_exact(vertices);
         for (i, list) in self.lists[..3].iter().enumerate() {
             for run in &list.runs {
                 let n = prefix_len(run.len(), list.mass, x[i]) as u32;

@@ -291,3 +291,43 @@ fn an_empty_or_leafless_tree_is_stored_and_drawn_as_nothing() {
     assert!(t.primitives(&c) <= 1000);
     assert_eq!(c.leaf_grow, 1.0);
 }
+
+#[test]
+fn engine_meshes_carry_each_stem_vertexs_radius_to_the_glb() {
+    let t = lod("quaking_aspen", 1.0);
+    let mesh = t.engine_mesh([16.0, 16.0, 8.0, 2.0]);
+    assert_eq!(mesh.bark.radii.len(), mesh.bark.vertex_count());
+    assert!(mesh.leaves.radii.is_empty());
+    let trunk = mesh.bark.radii.iter().cloned().fold(0.0f32, f32::max);
+    let twig = mesh.bark.radii.iter().cloned().fold(f32::MAX, f32::min);
+    assert!(trunk > 0.05 && twig < 0.01, "radii {twig} .. {trunk} m");
+    // The first ring: its vertices at its radius from their mean (the seam vertex repeats
+    // the first, so the mean of the others is the centre; lobes move them a little).
+    let sides = t.lists[0].runs[0].sides as usize;
+    let ring: Vec<glam::Vec3> = mesh.bark.positions[..sides]
+        .iter()
+        .map(|p| glam::Vec3::from(*p))
+        .collect();
+    let centre = ring.iter().sum::<glam::Vec3>() / sides as f32;
+    for p in &ring {
+        let r = (*p - centre).length();
+        assert!(
+            (r / mesh.bark.radii[0] - 1.0).abs() < 0.3,
+            "{r} vs {}",
+            mesh.bark.radii[0]
+        );
+    }
+    let glb = crate::export::to_glb(
+        &mesh,
+        "aspen",
+        &crate::export::Materials::from_srgb([0.4; 3], [0.2, 0.5, 0.2]),
+    )
+    .unwrap();
+    let gltf = gltf::Gltf::from_slice(&glb).unwrap();
+    let bark = gltf.meshes().next().unwrap().primitives().next().unwrap();
+    let radius = bark
+        .attributes()
+        .find(|(s, _)| matches!(s, gltf::Semantic::Extras(name) if name == "RADIUS"))
+        .expect("the bark carries _RADIUS");
+    assert_eq!(radius.1.count(), mesh.bark.vertex_count());
+}

@@ -32,6 +32,10 @@ pub struct Mesh {
     /// Luminance factor of each vertex (0..1), or empty where every vertex is fully lit: the
     /// leaves of a grown crown in their ten light classes. glTF's COLOR_0.
     pub shades: Vec<f32>,
+    /// The stem's radius at each vertex, metres, or empty: a renderer widens a stem thinner
+    /// than a pixel to one pixel and covers that share of it (the web page does). Only the
+    /// meshes of an engine's level of detail carry it. glTF's `_RADIUS`.
+    pub radii: Vec<f32>,
 }
 
 impl Mesh {

@@ -204,3 +204,42 @@ fn a_crowns_leaves_show_half_their_area_from_every_side() {
         "every blade's upper side faces the sky's half"
     );
 }
+
+#[test]
+fn shed_and_self_pruned_branches_stay_shed() {
+    // A London plane of Modesto, year by year: a branch shed below the rising crown base or
+    // killed by shade never comes back, nothing grows on it, and the skeleton draws none of it.
+    let measured = Database::builtin()
+        .find("InlVal", "PLAC")
+        .expect("built in");
+    let mut g = Grower::new(measured, GrowthOptions::default());
+    let first = g.age();
+    let mut dead: Vec<bool> = Vec::new();
+    let mut shed = 0;
+    for year in 1..=15 {
+        g.advance_to(first + f64::from(year));
+        for (i, b) in g.branches.iter().enumerate() {
+            if i < dead.len() && dead[i] {
+                assert!(!b.alive, "branch {i} came back in year {year}");
+            }
+        }
+        // No branch sprang this year from one that was dead (buds left on dead wood are
+        // pruned at the next flush, before any can break).
+        for b in &g.branches[dead.len().max(1)..] {
+            if let Some((parent, _)) = b.parent {
+                let p = parent as usize;
+                assert!(!(p < dead.len() && dead[p]), "a shoot from dead branch {p}");
+            }
+        }
+        dead = g.branches.iter().map(|b| !b.alive).collect();
+        shed = dead.iter().filter(|&&d| d).count();
+    }
+    assert!(shed > 10, "only {shed} branches shed in 15 years");
+    let (live, _) = g.branch_counts();
+    let skeleton = g.skeleton();
+    assert!(
+        skeleton.stems.len() <= live + 1,
+        "{} stems drawn from {live} live branches and the trunk",
+        skeleton.stems.len()
+    );
+}
