@@ -202,7 +202,10 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
             "outline"
         );
         if args.picture.is_some() {
-            print!("   {:>6} {:>6} {:>6}", "pic", "bare", "leaf%");
+            print!(
+                "   {:>6} {:>6} {:>6} {:>6}",
+                "pic", "bare", "leaf%", "tips%"
+            );
         }
         println!();
     }
@@ -210,7 +213,7 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
         let pictured = pictured.as_ref().map_err(|e| anyhow::anyhow!("{e:#}"))?;
         if args.json {
             let b = |s: sylva::street::crown::BeamStop| serde_json::json!({"stopped": s.stopped, "outline_m2": s.outline_m2});
-            let c = |c: &Coverage| serde_json::json!({"covered": c.covered, "leaf_share": c.leaf_share, "outline_m2": c.outline_px * c.metres_per_px * c.metres_per_px});
+            let c = |c: &Coverage| serde_json::json!({"covered": c.covered, "leaf_share": c.leaf_share, "bare_tips": c.bare_tips, "outline_m2": c.outline_px * c.metres_per_px * c.metres_per_px});
             println!(
                 "{}",
                 serde_json::json!({
@@ -237,10 +240,11 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
             );
             if let Some((l, w)) = pictured {
                 print!(
-                    "   {:>5.0}% {:>5.0}% {:>5.0}%",
+                    "   {:>5.0}% {:>5.0}% {:>5.0}% {:>5.1}%",
                     l.covered * 100.0,
                     w.covered * 100.0,
-                    l.leaf_share * 100.0
+                    l.leaf_share * 100.0,
+                    l.bare_tips * 100.0
                 );
             }
             println!();

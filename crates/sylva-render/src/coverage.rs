@@ -27,6 +27,10 @@ pub struct Coverage {
     pub covered: f64,
     /// Share of the covered pixels that is leaf rather than wood.
     pub leaf_share: f64,
+    /// Share of the covered pixels that is wood outside the leaves: beyond a row's outermost
+    /// leaf on either side, or above its column's highest leaf. Bare whips poking past the
+    /// foliage in summer; 0 where no leaf is drawn (a bare crown has no foliage to pass).
+    pub bare_tips: f64,
     /// Metres a pixel spans at the tree, about.
     pub metres_per_px: f64,
 }
@@ -80,27 +84,65 @@ pub fn measure(
 /// uncovered share, is lit wood (red) and lit leaf (green).
 pub fn of_picture(picture: &Picture, clear: [f32; 2], rows: Range<usize>) -> Coverage {
     let (w, h) = (picture.width as usize, picture.height as usize);
-    let (mut outline, mut covered, mut leaf) = (0.0f64, 0.0f64, 0.0f64);
-    for y in rows.start.min(h)..rows.end.min(h) {
-        let row = &picture.rgba[y * w * 4..(y + 1) * w * 4];
-        let alpha = |x: usize| row[x * 4 + 3] as f64 / 255.0;
-        let Some(first) = (0..w).find(|&x| alpha(x) > 0.0) else {
+    let rows = rows.start.min(h)..rows.end.min(h);
+    // Each pixel's cover and the share of it that is leaf.
+    let pixel = |x: usize, y: usize| -> (f64, f64) {
+        let p = &picture.rgba[(y * w + x) * 4..(y * w + x) * 4 + 4];
+        let a = p[3] as f64 / 255.0;
+        if a <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let lin = |k: usize, c: f32| {
+            (srgb_to_linear(p[k] as f32 / 255.0) - (1.0 - a as f32) * c).max(0.0)
+        };
+        let (r, g) = (lin(0, clear[0]), lin(1, clear[1]));
+        (
+            a,
+            if r + g > 0.0 {
+                (g / (r + g)) as f64
+            } else {
+                0.0
+            },
+        )
+    };
+    // A pixel mostly covered by leaf marks where the foliage reaches.
+    let is_leaf = |(a, g): (f64, f64)| a * g >= 0.5;
+    let mut top_leaf = vec![usize::MAX; w];
+    for y in rows.clone() {
+        for (x, top) in top_leaf.iter_mut().enumerate() {
+            if *top == usize::MAX && is_leaf(pixel(x, y)) {
+                *top = y;
+            }
+        }
+    }
+    let any_leaf = top_leaf.iter().any(|&t| t != usize::MAX);
+    let (mut outline, mut covered, mut leaf, mut tips) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for y in rows {
+        let alpha = |x: usize| picture.rgba[(y * w + x) * 4 + 3];
+        let Some(first) = (0..w).find(|&x| alpha(x) > 0) else {
             continue;
         };
-        let last = (first..w).rev().find(|&x| alpha(x) > 0.0).unwrap_or(first);
+        let last = (first..w).rev().find(|&x| alpha(x) > 0).unwrap_or(first);
         outline += (last - first + 1) as f64;
-        for x in first..=last {
-            let a = alpha(x);
-            if a <= 0.0 {
-                continue;
-            }
+        // The row's foliage, from its outermost leaf on one side to that on the other, and
+        // always as far as the picture's middle, where the tree stands: wood between the trunk
+        // and a row's leaves (the limbs at the crown base) is inside the crown, not past it.
+        let middle = w / 2;
+        let leaves = (first..=last).find(|&x| is_leaf(pixel(x, y))).map(|lo| {
+            let hi = (lo..=last)
+                .rev()
+                .find(|&x| is_leaf(pixel(x, y)))
+                .unwrap_or(lo);
+            lo.min(middle)..=hi.max(middle)
+        });
+        for (x, &top) in top_leaf.iter().enumerate().take(last + 1).skip(first) {
+            let (a, g) = pixel(x, y);
             covered += a;
-            let lin = |k: usize, c: f32| {
-                (srgb_to_linear(row[x * 4 + k] as f32 / 255.0) - (1.0 - a as f32) * c).max(0.0)
-            };
-            let (r, g) = (lin(0, clear[0]), lin(1, clear[1]));
-            if r + g > 0.0 {
-                leaf += a * (g / (r + g)) as f64;
+            leaf += a * g;
+            // A row without a leaf (the crown's base) is judged by its columns alone.
+            let within_row = leaves.as_ref().is_none_or(|l| l.contains(&x));
+            if any_leaf && !(within_row && y >= top) {
+                tips += a * (1.0 - g);
             }
         }
     }
@@ -112,6 +154,7 @@ pub fn of_picture(picture: &Picture, clear: [f32; 2], rows: Range<usize>) -> Cov
             0.0
         },
         leaf_share: if covered > 0.0 { leaf / covered } else { 0.0 },
+        bare_tips: if covered > 0.0 { tips / covered } else { 0.0 },
         metres_per_px: 0.0,
     }
 }
@@ -154,6 +197,32 @@ mod tests {
         // Leaf: the half pixel's unmixed green and the full leaf pixel, of 2.5 covered.
         let leaf = (128.0 / 255.0 + 1.0) / (1.0 + 128.0 / 255.0 + 1.0);
         assert!((c.leaf_share - leaf).abs() < 0.01, "{c:?}");
+    }
+
+    /// Wood past the foliage: a twig sticking out of a row's leaves sideways and one above its
+    /// column's highest leaf count; wood between leaves, and below them, does not.
+    #[test]
+    fn bare_tips_are_wood_past_the_leaves() {
+        const L: [u8; 4] = [0, 255, 0, 255];
+        const W: [u8; 4] = [255, 0, 0, 255];
+        const O: [u8; 4] = [0, 0, 0, 0];
+        // Five columns, four rows: a whip above the leaves (row 0, column 2), a bare twig out to
+        // the right (row 1, column 4), wood inside (row 2, column 2) and a trunk below (row 3).
+        let p = picture(
+            &[
+                O, O, W, O, O, //
+                L, L, L, L, W, //
+                L, L, W, L, O, //
+                O, O, W, O, O, //
+            ],
+            5,
+        );
+        let c = of_picture(&p, [0.0, 0.0], 0..4);
+        let covered = 1.0 + 5.0 + 4.0 + 1.0;
+        assert!((c.bare_tips - 2.0 / covered).abs() < 1e-9, "{c:?}");
+        // No leaves at all: nothing to pass.
+        let bare = of_picture(&picture(&[W, W, O, W], 2), [0.0, 0.0], 0..2);
+        assert_eq!(bare.bare_tips, 0.0);
     }
 
     /// A picture with nothing on it has no outline.

@@ -33,8 +33,8 @@ pub struct SweepArgs {
 
     /// With --beam: also draw each crown level from the south with the renderer, in a square
     /// picture of this many pixels (3000 puts 5 mm in a pixel of a 15 m tree), in leaf (its
-    /// summer dress) and bare, and report the share of the outline the picture covers and the
-    /// leaf share of what it covers.
+    /// summer dress) and bare, and report the share of the outline the picture covers, the
+    /// leaf share of what it covers, and the share that is bare wood past the leaves (tips%).
     #[arg(long, value_name = "PX", requires = "beam")]
     pub picture: Option<u32>,
 
