@@ -11,15 +11,15 @@ import { QUANTITIES, lineChart, barChart } from '/charts.js';
 
 const COLOURS = ['#2f7d4f', '#c0612b', '#3b6fb6', '#8e4fa8'];
 // Detail levels of /api/tree.glb: 0 every twig and leaf; each next level about half the
-// triangles, leaf area kept (Weber & Penn's degradation); the last, the crown's clumps of
-// leaves each drawn as one closed surface (a leaf shell), which a computer drawing WebGL on its
+// triangles, leaf area kept (Weber & Penn's degradation); the last, each crown drawn as one
+// closed surface out to its outer leaves (a leaf shell), which a computer drawing WebGL on its
 // CPU fills several times faster than separate leaves. The page starts at the coarsest, so
 // that the first trees come quickly, and moves one level at a time to keep a frame within
 // FRAME_MS: a GPU soon draws the whole trees, a computer drawing WebGL on its CPU a thinner
 // crown that still turns smoothly. A level found too slow is not gone back to (`floor`), so
 // the page does not swing between two levels.
 const DETAIL_NAMES = ['every twig and leaf', 'half the twigs and leaves', 'a quarter of the twigs and leaves',
-  'an eighth of the twigs and leaves', 'leaf shells (each clump of leaves as one surface)'];
+  'an eighth of the twigs and leaves', 'leaf shells (each crown one surface, out to its outer leaves)'];
 const COARSEST = DETAIL_NAMES.length - 1;
 const FRAME_MS = [25, 100];
 // `?detail=N` in the address pins the level (0 to COARSEST): for a computer whose frame times

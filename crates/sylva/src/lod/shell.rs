@@ -51,7 +51,8 @@ pub fn leaf_shell(leaves: &[Leaf]) -> Mesh {
     );
     let middle = 0.5 * (lo + hi);
     let n = sphere.directions.len();
-    // Each leaf's distance (to its blade's far half) in its nearest direction.
+    // Each leaf's reach from the middle (its blade's centre, plus half a blade) in the
+    // direction nearest it.
     let mut reach: Vec<Vec<f32>> = vec![Vec::new(); n];
     let mut bin = Vec::with_capacity(leaves.len());
     for (leaf, c) in leaves.iter().zip(&centres) {
