@@ -354,4 +354,43 @@ mod tests {
         );
         assert!(shell_triangles < before && shell.len() < coarsest.len());
     }
+
+    /// The page's coarsest trees keep the grown crown's size: the shell's width (the mean of its
+    /// x and y extents, as the survey measures a crown) and top are the grown tree's, within the
+    /// reach the shell leaves out (the outermost tenth of each direction's leaves) and the
+    /// roughness it adds.
+    #[test]
+    fn a_leaf_shell_is_as_wide_and_tall_as_its_crown() {
+        let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+        let mut got = Vec::new();
+        grow_all(&plane, 0, |e| {
+            if (e.record.age as u32).is_multiple_of(5) {
+                got.push(e);
+            }
+            got.len() < 4
+        });
+        for e in &got {
+            let shell = leaf_shell(&e.skeleton.leaves);
+            let (lo, hi) = shell.bounds().unwrap();
+            let width = f64::from((hi[0] - lo[0]) + (hi[1] - lo[1])) / 2.0;
+            let model = e.record.model;
+            println!(
+                "age {}: shell {width:.2} m wide, top {:.2} m; crown {:.2} m, height {:.2} m",
+                e.record.age, hi[2], model.crown_diameter, model.height
+            );
+            assert!(
+                (width / model.crown_diameter - 1.0).abs() < 0.06,
+                "age {}: shell {width:.2} m, crown {:.2} m",
+                e.record.age,
+                model.crown_diameter
+            );
+            assert!(
+                (f64::from(hi[2]) / model.height - 1.0).abs() < 0.05,
+                "age {}: shell top {:.2} m, tree {:.2} m",
+                e.record.age,
+                hi[2],
+                model.height
+            );
+        }
+    }
 }
