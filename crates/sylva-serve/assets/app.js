@@ -196,14 +196,18 @@ async function drawTrees(stoppedAt) {
   placeLabels();
   const now = performance.now();
   if (timing.firstTreeMs === null) timing.firstTreeMs = now;
-  if (stoppedAt != null) timing.ageDraws.push({ age, ms: now - stoppedAt, frame, detail });
+  if (stoppedAt != null) timing.ageDraws.push({ age, ms: now - stoppedAt, frame, busy: frame + (street.pendingMs ?? 0), detail });
   timing.shownAge = age;
   status('');
   // Keep the next frames within FRAME_MS: one level coarser or finer, and redraw this age.
-  // The first frame of new trees is the one judged: it also uploads them, as every new age
-  // must, so a level that keeps it short keeps the slider quick too.
-  if (frame > FRAME_MS[1]) floor = Math.min(COARSEST, Math.max(floor, detail + 1));
-  let next = frame > FRAME_MS[1] ? floor : frame < FRAME_MS[0] ? Math.max(floor, detail - 1) : detail;
+  // What is judged is how long the browser was busy with the first frame of new trees: the
+  // frame, which uploads them as every new age must, and the charts of the age drawn before
+  // it. A level that keeps that short keeps the slider quick too (judged by the frame alone,
+  // a computer without a GPU went down to every twig and leaf on young trees, and new ages
+  // of 30 to 50 years then took 400-500 ms).
+  const busy = frame + (street.pendingMs ?? 0);
+  if (busy > FRAME_MS[1]) floor = Math.min(COARSEST, Math.max(floor, detail + 1));
+  let next = busy > FRAME_MS[1] ? floor : busy < FRAME_MS[0] ? Math.max(floor, detail - 1) : detail;
   if (PINNED != null) next = PINNED;
   timing.detail = detail;
   $('detail').textContent = `Drawn with ${DETAIL_NAMES[detail]} (a frame takes ${frame.toFixed(0)} ms here).`;

@@ -75,15 +75,17 @@ export class Street {
   // Draws and waits for the frame to be finished (reading one pixel back makes the browser
   // finish it): how long this computer takes to draw the street, ms. What the browser was
   // still drawing before (the page's charts, drawn in the same turn as a new age) is finished
-  // first, so that the time is the frame's own.
+  // first, so that the time is the frame's own; that wait is kept in `pendingMs`.
   timedDraw() {
     const gl = this.renderer.getContext();
     const pixel = new Uint8Array(4);
-    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
     const t0 = performance.now();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+    const t1 = performance.now();
     this.draw();
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
-    return performance.now() - t0;
+    this.pendingMs = t1 - t0;
+    return performance.now() - t1;
   }
 
   // Lays out `count` tree slots `spacing` metres apart on `site`, with the sun of `latitude`

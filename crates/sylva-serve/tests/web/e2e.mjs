@@ -142,7 +142,7 @@ try {
   });
   check(framed.every(Boolean), `four trees framed whole: ${framed.join(', ')}`);
   const worst = Math.max(...draws.map((d) => d.ms));
-  console.log(`new age drawn after the slider stopped: ${draws.map((d) => `${d.age}: ${d.ms.toFixed(0)} ms (detail ${d.detail}, frame ${d.frame.toFixed(0)} ms)`).join(', ')}`);
+  console.log(`new age drawn after the slider stopped: ${draws.map((d) => `${d.age}: ${d.ms.toFixed(0)} ms (detail ${d.detail}, frame ${d.frame.toFixed(0)} ms, busy ${d.busy.toFixed(0)} ms)`).join(', ')}`);
   target('slowest new age drawn after the slider stopped', worst, 300);
   target('a frame of two 50-year leaf shells as the view turns', shells.turning, 100);
   target('the first frame of two 50-year leaf shells', shells.first, 100);
