@@ -194,9 +194,11 @@ async function drawTrees(stoppedAt) {
   const frame = street.setTrees(scenes.map((s) => s.clone()));
   (timing.frames ??= []).push([detail, Math.round(frame), street.triangles()]);
   placeLabels();
+  // How long the browser was busy with this first frame: see the level's choice below.
+  const busy = frame + street.pendingMs;
   const now = performance.now();
   if (timing.firstTreeMs === null) timing.firstTreeMs = now;
-  if (stoppedAt != null) timing.ageDraws.push({ age, ms: now - stoppedAt, frame, busy: frame + (street.pendingMs ?? 0), detail });
+  if (stoppedAt != null) timing.ageDraws.push({ age, ms: now - stoppedAt, frame, busy, detail });
   timing.shownAge = age;
   status('');
   // Keep the next frames within FRAME_MS: one level coarser or finer, and redraw this age.
@@ -205,7 +207,6 @@ async function drawTrees(stoppedAt) {
   // it. A level that keeps that short keeps the slider quick too (judged by the frame alone,
   // a computer without a GPU went down to every twig and leaf on young trees, and new ages
   // of 30 to 50 years then took 400-500 ms).
-  const busy = frame + (street.pendingMs ?? 0);
   if (busy > FRAME_MS[1]) floor = Math.min(COARSEST, Math.max(floor, detail + 1));
   let next = busy > FRAME_MS[1] ? floor : busy < FRAME_MS[0] ? Math.max(floor, detail - 1) : detail;
   if (PINNED != null) next = PINNED;

@@ -49,6 +49,7 @@ export class Street {
     this.slots = [];
     this.framed = null;
     this.changed = true;
+    this.pendingMs = 0;
     new ResizeObserver(() => this.resize()).observe(canvas);
     this.resize();
   }

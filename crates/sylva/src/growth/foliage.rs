@@ -194,7 +194,16 @@ pub fn appearance(code: &str) -> Option<&'static Foliage> {
 /// The whole table, or what is wrong with it.
 pub fn table() -> Result<&'static [Foliage], &'static str> {
     static TABLE: OnceLock<Result<Vec<Foliage>, String>> = OnceLock::new();
-    match TABLE.get_or_init(|| parse(include_str!("foliage.csv"), "foliage.csv")) {
+    parsed(&TABLE, include_str!("foliage.csv"), "foliage.csv")
+}
+
+/// A table parsed once into `cell`.
+fn parsed(
+    cell: &'static OnceLock<Result<Vec<Foliage>, String>>,
+    text: &str,
+    file: &str,
+) -> Result<&'static [Foliage], &'static str> {
+    match cell.get_or_init(|| parse(text, file)) {
         Ok(rows) => Ok(rows),
         Err(e) => Err(e),
     }
@@ -207,10 +216,7 @@ pub fn table() -> Result<&'static [Foliage], &'static str> {
 /// size, outline and arrangement wait in `foliage-held.csv` until the growth carries them.
 pub fn held() -> Result<&'static [Foliage], &'static str> {
     static HELD: OnceLock<Result<Vec<Foliage>, String>> = OnceLock::new();
-    match HELD.get_or_init(|| parse(include_str!("foliage-held.csv"), "foliage-held.csv")) {
-        Ok(rows) => Ok(rows),
-        Err(e) => Err(e),
-    }
+    parsed(&HELD, include_str!("foliage-held.csv"), "foliage-held.csv")
 }
 
 /// Sylva's rendering of a colour word of the table, or `None` for a word it does not know.

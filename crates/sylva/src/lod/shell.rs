@@ -118,11 +118,7 @@ pub fn leaf_shell(leaves: &[Leaf]) -> Mesh {
 
 /// A fixed pseudo-random number in 0..1 for a vertex: the same shell every time.
 fn hash01(vertex: u32) -> f32 {
-    let mut h = vertex.wrapping_mul(0x9E37_79B9) ^ 0x85EB_CA6B;
-    h ^= h >> 15;
-    h = h.wrapping_mul(0x2C1B_3C6D);
-    h ^= h >> 12;
-    (h & 0xFFFF) as f32 / 65535.0
+    (crate::rng::mix64(u64::from(vertex)) >> 40) as f32 / (1u64 << 24) as f32
 }
 
 /// The middle of a leaf's blade (its frame's z runs along the blade from its base).
