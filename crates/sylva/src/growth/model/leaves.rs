@@ -12,6 +12,16 @@ const WOOD_G: f32 = std::f32::consts::FRAC_PI_4;
 /// Segments whose shade one task works out.
 const SHADE_RUN: usize = 2048;
 
+/// What `Grower::leaf_room` needs to know of the shoots beside the tree: each one's light, and
+/// whether it is its branch's outermost; the lowest a leafy shoot may be; and the weight of
+/// spurs in the sharing out.
+struct Shoots<'a> {
+    lights: &'a [f32],
+    tip_shoot: &'a [bool],
+    floor: f32,
+    spur_weight: f32,
+}
+
 impl Grower {
     /// Leaves on young, thin, lit shoots, adding up to f_LA.
     pub(super) fn allocate_leaves(&mut self) {
@@ -33,69 +43,35 @@ impl Grower {
                 tip_shoot[s as usize] = true;
             }
         }
-        let radii = &self.radii;
         let lights: Vec<f32> = self
             .segments
             .par_iter()
             .map(|s| self.light.light_at(s.start + s.direction * s.length * 0.5))
             .collect();
-        // Young, thin, lit shoots first; where they cannot hold the measured leaf area, older
-        // and thicker shoots carry leaves too, step by step.
-        let levels = [
-            (LEAF_SHOOT_YEARS, LEAF_MAX_RADIUS, LEAF_MIN_LIGHT),
-            (4.0, 0.03, 0.08),
-            (8.0, 0.05, 0.04),
-            (f64::INFINITY, f32::INFINITY, 0.0),
-        ];
         // Spurs come with a mature crown: a sapling leafs out on its long shoots, and its few
         // branches set its width. They fade in as the crown grows from 3 to 6 m tall.
         let spur_weight = SPUR_WEIGHT * ((t.crown_height as f32 - 3.0) / 3.0).clamp(0.0, 1.0);
+        let shoots = Shoots {
+            lights: &lights,
+            tip_shoot: &tip_shoot,
+            floor,
+            spur_weight,
+        };
         let mut weights = vec![0.0f32; self.segments.len()];
         let mut capacity = vec![0u32; self.segments.len()];
-        // Each shoot's room and weight depend on that shoot alone, so they are worked out on
-        // every core; the sums over them below stay in shoot order.
-        for (k, &(years, radius, min_light)) in levels.iter().enumerate() {
-            let room: usize = (self.segments.par_iter().enumerate())
-                .zip(weights.par_iter_mut().zip(capacity.par_iter_mut()))
-                .map(|((i, s), (weight_i, capacity_i))| {
-                    let b = &self.branches[s.branch as usize];
-                    // The leader's young shoot is leafy too, or it would stand bare above
-                    // the crown.
-                    let leader = b.order == 0 && self.age - s.born <= LEAF_SHOOT_YEARS;
-                    let placed_ok =
-                        b.alive && (b.order > 0 || leader) && s.start.z.min(s.end().z) >= floor;
-                    let eligible = placed_ok
-                        && (self.age - s.born <= years || tip_shoot[i])
-                        && radii[i] <= radius
-                        && lights[i] >= min_light;
-                    // Short shoots (spurs) on older lit limbs: each bears a rosette of leaves
-                    // a year, so the crown is leafy along its limbs inside, not only at its
-                    // rim.
-                    let spur = !eligible
-                        && spur_weight > 0.0
-                        && placed_ok
-                        && radii[i] <= SPUR_MAX_RADIUS
-                        && lights[i] >= LEAF_MIN_LIGHT;
-                    let (slots, weight) = if eligible {
-                        (s.length / self.leaf_spacing, 1.0)
-                    } else if spur {
-                        (s.length / self.leaf_spacing * SPUR_DENSITY, spur_weight)
-                    } else {
-                        (0.0, 0.0)
-                    };
-                    // Truncation is the floor here: `as u32` takes anything below zero to 0.
-                    *capacity_i = slots as u32;
-                    *weight_i = if *capacity_i > 0 {
-                        weight * s.length * lights[i].max(0.01).sqrt()
-                    } else {
-                        0.0
-                    };
-                    *capacity_i as usize
-                })
-                .sum();
-            if room >= wanted || k == levels.len() - 1 {
-                break;
-            }
+        let room = self.leaf_room(&shoots, wanted, 1.0, &mut weights, &mut capacity);
+        // A sapling's few shoots hold fewer of a small leaf than of the generic one: rather
+        // than draw its leaves larger than life, each node carries more of them, up to as
+        // many as carry the generic leaf's area. Across woody species, leaves per unit of
+        // shoot fall in proportion as each leaf's size rises (an isometric trade-off: Kleiman
+        // & Aarssen 2007, J. Ecol. 95:376-382; Yang, Li & Sun 2008, Ann. Bot.,
+        // doi:10.1093/aob/mcn135, over 107 species), so a shoot carries about the same leaf
+        // area whatever its leaves' size. Trees whose shoots hold their leaf area one leaf a
+        // node are unchanged.
+        let crowding = self.crowding(area);
+        if room > 0 && room < wanted && crowding > 1.0 {
+            let per_node = (wanted as f32 / room as f32).min(crowding);
+            self.leaf_room(&shoots, wanted, per_node, &mut weights, &mut capacity);
         }
         let total: f32 = weights.iter().sum();
         self.leaves_on.clear();
@@ -133,6 +109,86 @@ impl Grower {
         if placed > 0 && placed < wanted {
             let fits = (self.longest_leaf() / self.drawn_leaf_size().0).powi(2);
             self.leaf_boost = (wanted as f32 / placed as f32).min(16.0).min(fits).max(1.0);
+        }
+    }
+
+    /// Each shoot's leaf slots (`capacity`, `per_node` leaves at each of its nodes) and its
+    /// weight in the sharing out: young, thin, lit shoots first; where they cannot hold the
+    /// `wanted` leaves, older and thicker shoots carry leaves too, step by step. Returns the
+    /// room at the step it stopped at.
+    fn leaf_room(
+        &self,
+        shoots: &Shoots,
+        wanted: usize,
+        per_node: f32,
+        weights: &mut [f32],
+        capacity: &mut [u32],
+    ) -> usize {
+        let levels = [
+            (LEAF_SHOOT_YEARS, LEAF_MAX_RADIUS, LEAF_MIN_LIGHT),
+            (4.0, 0.03, 0.08),
+            (8.0, 0.05, 0.04),
+            (f64::INFINITY, f32::INFINITY, 0.0),
+        ];
+        let (radii, lights) = (&self.radii, shoots.lights);
+        let mut room = 0;
+        // Each shoot's room and weight depend on that shoot alone, so they are worked out on
+        // every core; the sums over them below stay in shoot order.
+        for &(years, radius, min_light) in &levels {
+            room = (self.segments.par_iter().enumerate())
+                .zip(weights.par_iter_mut().zip(capacity.par_iter_mut()))
+                .map(|((i, s), (weight_i, capacity_i))| {
+                    let b = &self.branches[s.branch as usize];
+                    // The leader's young shoot is leafy too, or it would stand bare above
+                    // the crown.
+                    let leader = b.order == 0 && self.age - s.born <= LEAF_SHOOT_YEARS;
+                    let placed_ok = b.alive
+                        && (b.order > 0 || leader)
+                        && s.start.z.min(s.end().z) >= shoots.floor;
+                    let eligible = placed_ok
+                        && (self.age - s.born <= years || shoots.tip_shoot[i])
+                        && radii[i] <= radius
+                        && lights[i] >= min_light;
+                    // Short shoots (spurs) on older lit limbs: each bears a rosette of leaves
+                    // a year, so the crown is leafy along its limbs inside, not only at its
+                    // rim.
+                    let spur = !eligible
+                        && shoots.spur_weight > 0.0
+                        && placed_ok
+                        && radii[i] <= SPUR_MAX_RADIUS
+                        && lights[i] >= LEAF_MIN_LIGHT;
+                    let nodes = s.length / self.leaf_spacing;
+                    let (slots, weight) = if eligible {
+                        (nodes * per_node, 1.0)
+                    } else if spur {
+                        (nodes * SPUR_DENSITY * per_node, shoots.spur_weight)
+                    } else {
+                        (0.0, 0.0)
+                    };
+                    // Truncation is the floor here: `as u32` takes anything below zero to 0.
+                    *capacity_i = slots as u32;
+                    *weight_i = if *capacity_i > 0 {
+                        weight * s.length * lights[i].max(0.01).sqrt()
+                    } else {
+                        0.0
+                    };
+                    *capacity_i as usize
+                })
+                .sum();
+            if room >= wanted {
+                break;
+            }
+        }
+        room
+    }
+
+    /// How many of the species' own leaves one node may carry before they are drawn larger
+    /// (see `allocate_leaves`): as many as hold the generic leaf's area. 1 for the generic
+    /// leaf itself, and for leaves as large as it or larger.
+    pub(super) fn crowding(&self, area: f32) -> f32 {
+        match self.leaf_vertex_cap {
+            Some((_, generic_area)) if area > 0.0 => (generic_area / area).max(1.0),
+            _ => 1.0,
         }
     }
 
