@@ -272,7 +272,8 @@ pub struct Grower {
     leaf_size: (f32, f32),
     leaf_shape: LeafShape,
     /// Most leaf vertices per m² of leaf as drawn (see [`leaf_vertex_allowance`]), and the
-    /// generic leaf's area as it would be drawn, m²; none for the generic leaf.
+    /// generic leaf's area as it would be drawn, m², which also bounds how many of a small
+    /// leaf one node may carry (`Grower::crowding`); none for the generic leaf.
     leaf_vertex_cap: Option<(f32, f32)>,
     /// Least distance between leaves along a shoot, m.
     leaf_spacing: f32,
