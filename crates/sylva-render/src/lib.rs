@@ -575,4 +575,45 @@ mod tests {
         assert_eq!(r.backend(), Backend::Gpu);
         assert_eq!(before.rgba, after.rgba, "the same picture from the parts");
     }
+
+    /// One renderer drawing from several threads at once (as `sylva sweep --picture` does,
+    /// one species a thread) draws each picture as it draws it alone: its camera, lights and
+    /// shadow map are the picture's own, never another thread's.
+    #[test]
+    fn pictures_drawn_at_once_from_several_threads_are_each_their_own() {
+        let Ok(r) = Renderer::headless(Choice::Auto, |_| {}) else {
+            return;
+        };
+        let (_, params) = small_tree();
+        let skeleton = sylva::generate(&params, &Default::default()).unwrap();
+        let tree = r.upload(&sylva::mesh::mesh_tree(&skeleton, &Default::default()));
+        let scene = Scene::new(&tree, params.bark_color, params.leaf_color);
+        // Four views as unlike as can be: each thread's camera frames the tree differently.
+        let views: Vec<View> = (0..4)
+            .map(|k| View::orbit(k as f32 * 90.0, k as f32 * 20.0))
+            .collect();
+        let alone: Vec<Vec<u8>> = views
+            .iter()
+            .map(|v| r.render(&scene, v, 128, 128).unwrap().rgba)
+            .collect();
+        assert!(
+            alone.windows(2).all(|w| w[0] != w[1]),
+            "four unlike pictures"
+        );
+        for round in 0..6 {
+            let together: Vec<Vec<u8>> = std::thread::scope(|s| {
+                let drawing: Vec<_> = views
+                    .iter()
+                    .map(|v| s.spawn(|| r.render(&scene, v, 128, 128).unwrap().rgba))
+                    .collect();
+                drawing.into_iter().map(|d| d.join().unwrap()).collect()
+            });
+            for (k, (a, b)) in alone.iter().zip(&together).enumerate() {
+                assert!(
+                    a == b,
+                    "round {round}: view {k} drawn at once differs from alone"
+                );
+            }
+        }
+    }
 }

@@ -31,6 +31,11 @@ pub(crate) struct GpuRenderer {
     max_buffer: u64,
     /// The last impostor atlas uploaded, under its id.
     atlas: Mutex<Option<(u64, wgpu::BindGroup)>>,
+    /// Held from writing a frame's globals to submitting its passes. The globals buffer and
+    /// the shadow map are the pipelines' own, one each: a `write_buffer` lands at the next
+    /// submit, whoever makes it, so two threads drawing at once would each draw with the
+    /// other's camera and lights (`sylva sweep --picture` draws a species a thread).
+    drawing: Mutex<()>,
 }
 
 /// Which wgpu backends to try.
@@ -128,6 +133,7 @@ impl GpuRenderer {
             failure,
             max_buffer,
             atlas: Mutex::new(None),
+            drawing: Mutex::new(()),
         })
     }
 
@@ -357,6 +363,7 @@ impl GpuRenderer {
         scoped(&self.device, &self.failure, "drawing a frame", || {
             let (colour, depth) = self.targets(width, height);
             let mut encoder = self.device.create_command_encoder(&Default::default());
+            let _drawing = self.drawing.lock().unwrap_or_else(|e| e.into_inner());
             self.encode(&mut encoder, frame, &colour, resolve, &depth)?;
             self.queue.submit([encoder.finish()]);
             Ok(())
@@ -390,6 +397,7 @@ impl GpuRenderer {
                 mapped_at_creation: false,
             });
             let mut encoder = self.device.create_command_encoder(&Default::default());
+            let _drawing = self.drawing.lock().unwrap_or_else(|e| e.into_inner());
             self.encode(&mut encoder, frame, &colour, &resolve, &depth)?;
             encoder.copy_texture_to_buffer(
                 texture.as_image_copy(),
