@@ -1,9 +1,8 @@
 //! What each street tree wears: its leaves (kind, size, outline, arrangement, colours through
 //! the year), its flowers where they are showy, and its bark, one row per species of the
 //! Urban Tree Database in `foliage.csv`, each row naming its sources. Palms need no row: they
-//! carry their fronds (`model/palm.rs`). A species without a row wears a generic leaf; one
-//! whose row is held (`foliage-held.csv`, [`held`]) grows in the generic leaf and wears its
-//! row's colours, flowers and bark.
+//! carry their fronds (`model/palm.rs`). A species without a row wears a generic leaf
+//! (docs/foliage-pending.md names them, and what the sources lacked).
 //!
 //! The table keeps the sources' words and ranges: sizes in centimetres as published (ranges
 //! drawn at their middle), colours as named (a colour word becomes a colour in
@@ -184,13 +183,6 @@ pub fn of(code: &str) -> Option<&'static Foliage> {
     table().ok()?.iter().find(|f| f.code == code)
 }
 
-/// What a species is drawn in: its row of the table, or else its row of the held table, whose
-/// colours, flowers and bark are worn while its leaves' size and outline are not (the tree
-/// grows with the generic leaf: see [`held`]).
-pub fn appearance(code: &str) -> Option<&'static Foliage> {
-    of(code).or_else(|| held().ok()?.iter().find(|f| f.code == code))
-}
-
 /// The whole table, or what is wrong with it.
 pub fn table() -> Result<&'static [Foliage], &'static str> {
     static TABLE: OnceLock<Result<Vec<Foliage>, String>> = OnceLock::new();
@@ -207,16 +199,6 @@ fn parsed(
         Ok(rows) => Ok(rows),
         Err(e) => Err(e),
     }
-}
-
-/// Rows sourced as the table's are, whose leaves are held back: grown in their own leaves,
-/// these species' saplings missed a bound of the growth sweep that they met in the generic
-/// leaf (docs/foliage-pending.md says which, and what to fix). Leaf colour, flowers and bark
-/// do not change how a tree grows, so those are worn ([`appearance`]); the leaves' kind,
-/// size, outline and arrangement wait in `foliage-held.csv` until the growth carries them.
-pub fn held() -> Result<&'static [Foliage], &'static str> {
-    static HELD: OnceLock<Result<Vec<Foliage>, String>> = OnceLock::new();
-    parsed(&HELD, include_str!("foliage-held.csv"), "foliage-held.csv")
 }
 
 /// Sylva's rendering of a colour word of the table, or `None` for a word it does not know.
@@ -435,23 +417,16 @@ mod tests {
     }
 
     #[test]
-    fn held_rows_are_sourced_database_species_without_a_worn_row() {
-        let held = held().unwrap();
-        // 28 before saplings could carry more small leaves a node; 20 are worn since.
-        assert_eq!(held.len(), 8);
-        let db = Database::builtin();
-        for f in held {
-            assert!(of(&f.code).is_none(), "{} is in both tables", f.code);
-            assert!(
-                db.species().iter().any(|s| s.code == f.code),
-                "{} is not a database species",
-                f.code
-            );
-            assert!(f.source.len() > 40, "{}: a source", f.code);
-            assert_eq!(appearance(&f.code), Some(f));
-        }
+    fn the_white_birch_wears_its_own_leaves_and_white_bark() {
         // The European white birch grows in its own leaves and wears its white bark.
         let birch = of("BEPE").unwrap();
+        // ...as do the eight species whose leaves were held back until their saplings could
+        // grow within bounds in them (issue R).
+        for code in [
+            "ACSA3", "CEDE", "JUNI", "LASP", "OLEU", "PIEL2", "PYKA", "PITH",
+        ] {
+            assert!(of(code).is_some(), "{code} has its row");
+        }
         assert_eq!(birch.shape(), LeafShape::Triangle);
         assert!(
             birch.bark.srgb.iter().all(|&c| c > 0.75),

@@ -279,10 +279,10 @@ pub const CHARTED: [Quantity; 5] = [
 
 impl Measured {
     /// Colours of this species' pictures and models (sRGB): bark, and leaves in summer, as
-    /// the foliage table (or its held rows) names them; for species in neither, one bark and a green (evergreens
-    /// darker).
+    /// the foliage table names them; for species without a row, one bark and a green
+    /// (evergreens darker).
     pub fn colours(&self) -> ([f32; 3], [f32; 3]) {
-        if let Some(f) = super::foliage::appearance(&self.species.code) {
+        if let Some(f) = super::foliage::of(&self.species.code) {
             return (f.bark.srgb, f.summer.srgb);
         }
         let evergreen = self.species.tree_type.get(1..2) == Some("E");

@@ -198,7 +198,7 @@ impl Measured {
     /// colours and smooth bark; their autumn colour is not known, so it stays green).
     pub fn dress(&self, month: Option<Month>) -> Dress {
         let (bark, summer) = self.colours();
-        let row = foliage::appearance(&self.species.code);
+        let row = foliage::of(&self.species.code);
         let persistence = match row {
             Some(f) => f.persistence,
             None if self.species.tree_type.get(1..2) == Some("E") => Persistence::Evergreen,

@@ -178,7 +178,7 @@ impl Grower {
             };
             // The trunk and stems are never shed, nor are shoots from them cut at the floor
             // here (`prune_buds` has already dropped their buds below it).
-            branch.order == 0 || anchor >= floor
+            branch.order == 0 || (anchor >= floor && !self.sheds_below(b, floor))
         });
         // Shoots low in the crown sag as far as the crown must reach down.
         let sag = self.fit_sag(&plans, &next);
@@ -450,7 +450,7 @@ impl Grower {
     /// drawn large, and they count in its measured crown).
     pub(super) fn space(&self, t: &Targets, scale: f32) -> Space {
         let radius = t.crown_diameter as f32 * 0.5 * scale;
-        let overhang = LEAF_REACH * self.drawn_leaf_size().0;
+        let overhang = self.leaf_reach * self.drawn_leaf_size().0;
         Space {
             top: t.height as f32,
             base: t.crown_base() as f32,

@@ -26,40 +26,58 @@ impl Grower {
     pub(super) fn shed(&mut self) {
         let base = self.targets_now().crown_base() as f32;
         for b in 1..self.branches.len() {
-            // The stems of a multi-stem tree stay, like the trunk.
-            if !self.branches[b].alive || self.branches[b].order == 0 {
-                continue;
-            }
-            // Scaffolds go when the crown base passes where they leave the trunk; smaller
-            // branches as soon as any of them hangs below it.
-            let branch = &self.branches[b];
-            let lowest = if branch.order == 1 {
-                self.segments[branch.segments[0] as usize].start.z
-            } else {
-                branch
-                    .segments
-                    .iter()
-                    .map(|&s| {
-                        let s = &self.segments[s as usize];
-                        s.start.z.min(s.end().z)
-                    })
-                    .fold(f32::INFINITY, f32::min)
-            };
-            if lowest < base - 0.02 {
+            if self.branches[b].alive && self.sheds_below(b, base) {
                 self.kill(b);
             }
         }
     }
 
+    /// Whether a crown base at `base` sheds branch `b`. The stems of a multi-stem tree stay,
+    /// like the trunk. Scaffolds go when the crown base passes where they leave the trunk;
+    /// smaller branches as soon as any of them hangs below it. The year's shoots are planned
+    /// (and the crown's reach predicted) without the branches next year's base sheds: a
+    /// sagging twig of an evergreen pear's sapling that carried its crown's width was shed
+    /// in mid-season, and its crown came out a fifth too narrow (issue R).
+    pub(super) fn sheds_below(&self, b: usize, base: f32) -> bool {
+        let branch = &self.branches[b];
+        if branch.order == 0 {
+            return false;
+        }
+        // A scaffold's shedding takes everything on it.
+        if branch.anchor < base - 0.02 {
+            return true;
+        }
+        let lowest = if branch.order == 1 {
+            self.segments[branch.segments[0] as usize].start.z
+        } else {
+            branch
+                .segments
+                .iter()
+                .map(|&s| {
+                    let s = &self.segments[s as usize];
+                    s.start.z.min(s.end().z)
+                })
+                .fold(f32::INFINITY, f32::min)
+        };
+        lowest < base - 0.02
+    }
+
     /// The crown's diameter and height now, measured as `measure` measures the skeleton: the
     /// mean of the x and y extents of the branches and their leaves, and the top of the tree
     /// less the lowest point of either.
+    #[cfg(test)]
     pub(crate) fn crown_now(&self) -> (f64, f64) {
         self.crown_above(f32::NEG_INFINITY)
     }
 
     /// `crown_now` of the branches whose scaffolds leave the trunk at or above `base`.
     pub(super) fn crown_above(&self, base: f32) -> (f64, f64) {
+        let (diameter, height, _) = self.crown_and_wood_above(base);
+        (diameter, height)
+    }
+
+    /// `crown_above`, and the diameter of its wood alone.
+    fn crown_and_wood_above(&self, base: f32) -> (f64, f64, f64) {
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
         let mut top = f32::NEG_INFINITY;
         let counted = |b: &Branch| b.alive && b.order > 0 && b.anchor >= base;
@@ -74,7 +92,7 @@ impl Grower {
             }
         }
         if lo.x > hi.x {
-            return (0.0, 0.0);
+            return (0.0, 0.0, 0.0);
         }
         // Leaves widen the crown only where a shoot comes within a leaf's length of its
         // bounds: those branches' leaves are placed exactly as the skeleton places them.
@@ -109,6 +127,7 @@ impl Grower {
         (
             (((hi.x - lo.x) + (hi.y - lo.y)) / 2.0) as f64,
             (top - lo.z).max(0.0) as f64,
+            (((wood_hi.x - wood_lo.x) + (wood_hi.y - wood_lo.y)) / 2.0) as f64,
         )
     }
 
@@ -124,13 +143,17 @@ impl Grower {
         let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
         for s in &self.segments {
             let b = &self.branches[s.branch as usize];
-            if b.alive && b.order > 0 && b.anchor >= base && s.goal > 1e-4 {
+            if b.alive && b.order > 0 && s.goal > 1e-4 && !self.sheds_below(s.branch as usize, base)
+            {
                 let end = (s.start + s.direction * s.goal.max(s.length)).truncate();
                 lo = lo.min(s.start.truncate().min(end));
                 hi = hi.max(s.start.truncate().max(end));
             }
         }
-        let leaves = 2.0 * LEAF_REACH * self.drawn_leaf_size().0;
+        // Leaves drawn larger for want of shoots will be drawn smaller on this year's new
+        // shoots: the crown is fitted with them at their own size (a hackberry's sapling
+        // fitted with this year's enlarged leaves came out a tenth too narrow).
+        let leaves = 2.0 * self.leaf_reach * self.leaf_size_boosted(1.0).0;
         let want = next.crown_diameter as f32;
         let predicted = |scale: f32, stretch: f32| {
             let space = self.space(next, scale);
@@ -160,9 +183,10 @@ impl Grower {
         if predicted(MAX_SCALE, 1.0) >= want {
             (solve(&|s| predicted(s, 1.0), (0.5, MAX_SCALE)), 1.0)
         } else if predicted(REACH_SCALE, MAX_STRETCH) < want {
-            // The shoots are too short to reach the crown whatever the envelope: the year's
-            // vigour is raised until they do (up to threefold).
-            (REACH_SCALE, MAX_STRETCH)
+            // The shoots are too short to reach the crown at the stretched envelope: they are
+            // stretched all they may be, and the envelope widened as far as the crown needs.
+            let s = solve(&|s| predicted(s, MAX_STRETCH), (REACH_SCALE, MAX_SCALE));
+            (s, MAX_STRETCH)
         } else {
             let k = solve(&|k| predicted(REACH_SCALE, k), (1.0, MAX_STRETCH));
             (REACH_SCALE, k)
@@ -221,8 +245,19 @@ impl Grower {
         // base is about to pass are shed soon whatever their length. Both crowns are
         // measured at once.
         let coming_base = self.targets(self.age + 1.0).crown_base() as f32;
-        let ((diameter, _), (mut coming, _)) =
-            rayon::join(|| self.crown_now(), || self.crown_above(coming_base));
+        let ((diameter, _, wood), (mut coming, _)) = rayon::join(
+            || self.crown_and_wood_above(f32::NEG_INFINITY),
+            || self.crown_above(coming_base),
+        );
+        // The leaves' reach as they came out, so next year's crown is fitted with it: a
+        // walnut's 45 cm leaves at its shoots' tips reach out 0.8 of their length, and with
+        // the half assumed its sapling's crown came out 14% too wide (issue R).
+        let leaf = self.drawn_leaf_size().0 as f64;
+        if leaf > 1e-3 && wood > 1e-3 {
+            let (lo, hi) = LEAF_REACH_BOUNDS;
+            let measured = (((diameter - wood) / (2.0 * leaf)) as f32).clamp(lo, hi);
+            self.leaf_reach += LEAF_REACH_RATE * (measured - self.leaf_reach);
+        }
         if coming <= 1e-3 {
             coming = diameter;
         }

@@ -194,9 +194,15 @@ impl Grower {
 
     /// Length and width of a leaf as drawn, m.
     pub(super) fn drawn_leaf_size(&self) -> (f32, f32) {
+        self.leaf_size_boosted(self.leaf_boost)
+    }
+
+    /// Length and width of a leaf as drawn were it drawn `boost` times its area for want of
+    /// shoots to carry the leaf area, m.
+    pub(super) fn leaf_size_boosted(&self, boost: f32) -> (f32, f32) {
         let (l, w) = self.leaf_size_now();
         let natural = l * w * crate::mesh::leaf_template(self.leaf_shape).area();
-        let k = (self.leaf_area_each() * self.leaf_boost / natural).sqrt();
+        let k = (self.leaf_area_each() * boost / natural).sqrt();
         (l * k, w * k)
     }
 
