@@ -18,6 +18,11 @@ use sylva::mesh::TreeMesh;
 /// rays through its near and far sides part by under 4 degrees.
 const LENS: f32 = 4.0;
 
+/// Linear colour below which what is left of a pixel once the clear colour is taken out is
+/// the stored byte's rounding (a step of an 8-bit sRGB channel is up to 0.004 in linear light
+/// at the clear colours used), not the tree's.
+const ROUNDING: f32 = 0.004;
+
 /// What a picture of a tree covers.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Coverage {
@@ -98,7 +103,10 @@ pub fn of_picture(picture: &Picture, clear: [f32; 2], rows: Range<usize>) -> Cov
         let (r, g) = (lin(0, clear[0]), lin(1, clear[1]));
         (
             a,
-            if r + g > 0.0 {
+            // A colour within the 8-bit rounding of the clear colour it was blended with has no
+            // hue left to read: a half-covered, unlit twig pixel came out as a green residue of
+            // 0.0002 and, counted as leaf, made a bare plane's twigs 99% "past the leaves".
+            if r + g > ROUNDING {
                 (g / (r + g)) as f64
             } else {
                 0.0
@@ -223,6 +231,11 @@ mod tests {
         // No leaves at all: nothing to pass.
         let bare = of_picture(&picture(&[W, W, O, W], 2), [0.0, 0.0], 0..2);
         assert_eq!(bare.bare_tips, 0.0);
+        // Nor where an unlit twig covers half a pixel over a green clear colour (linear 0.5,
+        // sRGB 137 at half cover): its byte's rounding leaves no green to call leaf.
+        const D: [u8; 4] = [0, 137, 0, 128];
+        let dark = of_picture(&picture(&[W, D, O, W], 2), [0.0, 0.5], 0..2);
+        assert_eq!((dark.bare_tips, dark.leaf_share), (0.0, 0.0), "{dark:?}");
     }
 
     /// A picture with nothing on it has no outline.
