@@ -141,13 +141,17 @@ impl Grower {
     pub(super) fn fit_reach(&self, plans: &[Plan], next: &Targets) -> (f32, f32) {
         let base = next.crown_base() as f32;
         let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
-        for s in &self.segments {
-            let b = &self.branches[s.branch as usize];
-            if b.alive && b.order > 0 && s.goal > 1e-4 && !self.sheds_below(s.branch as usize, base)
-            {
-                let end = (s.start + s.direction * s.goal.max(s.length)).truncate();
-                lo = lo.min(s.start.truncate().min(end));
-                hi = hi.max(s.start.truncate().max(end));
+        // Branch by branch, so whether each is shed is asked once, not once per segment.
+        for (i, b) in self.branches.iter().enumerate() {
+            if !b.alive || b.order == 0 || self.sheds_below(i, base) {
+                continue;
+            }
+            for s in b.segments.iter().map(|&s| &self.segments[s as usize]) {
+                if s.goal > 1e-4 {
+                    let end = (s.start + s.direction * s.goal.max(s.length)).truncate();
+                    lo = lo.min(s.start.truncate().min(end));
+                    hi = hi.max(s.start.truncate().max(end));
+                }
             }
         }
         // Leaves drawn larger for want of shoots will be drawn smaller on this year's new
