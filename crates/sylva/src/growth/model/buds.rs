@@ -456,6 +456,8 @@ impl Grower {
             base: t.crown_base() as f32,
             radius: (radius - overhang).max(radius * 0.5),
             envelope: self.habit.envelope,
+            // Next year's crown, as the targets are.
+            grown: self.habit.envelope.grown(self.age + 1.0),
             lobes: self.lobes,
             // A young crown of a few shoots has no limbs to lobe it.
             lobe_depth: LOBE_DEPTH * ((t.crown_diameter as f32 - 3.0) / 3.0).clamp(0.0, 1.0),

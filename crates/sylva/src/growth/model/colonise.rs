@@ -27,6 +27,8 @@ pub(super) struct Space {
     pub radius: f32,
     /// Its profile.
     pub envelope: Envelope,
+    /// How far the profile has come to its mature form (`Envelope::grown`).
+    pub grown: f32,
     /// Phases of the crown's lobes, radians (see `lobe`).
     pub lobes: [f32; 3],
     /// How deep they are, a share of the radius.
@@ -38,7 +40,7 @@ impl Space {
     /// and top are rounded, not pointed).
     pub fn reach_at(&self, z: f32) -> f32 {
         let p = (z - self.base) / (self.top - self.base).max(0.1);
-        self.radius * self.envelope.relative_radius(p).max(0.15)
+        self.radius * self.envelope.relative_radius(p, self.grown).max(0.15)
     }
 
     /// Whether `p` lies inside (a little under the top, which the leader holds).
