@@ -25,6 +25,7 @@ const MESH: MeshOptions = MeshOptions {
     quality: 0.6,
     sides: None,
     bark: sylva::mesh::BarkPattern::Smooth,
+    young_bark: 1.0,
 };
 
 /// A grown tree, meshed and written.
@@ -148,10 +149,7 @@ fn prototype(
     let crown = Crown::with_leaves(skeleton, &leaves_of(skeleton));
     let dress = m.dress(None);
     let tree = dressed_skeleton(skeleton, dress.state);
-    let options = MeshOptions {
-        bark: dress.bark_pattern,
-        ..MESH
-    };
+    let options = dress.mesh_options(&MESH);
     let lod = LodTree::build(&tree, &options);
     let whole = lod.full_mesh();
     let meshes: Vec<TreeMesh> = LOD_TRIANGLES

@@ -118,6 +118,12 @@ pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool)
         .map(|s| Assessor::new(m, Some(s.site.clone()), None, None))
         .collect();
     let mut cohort = Cohort::new(vec![m.clone()], seed);
+    // The page draws no bark pattern (its rings are too coarse to carry one), but a species
+    // whose twigs are darker than its bark (the white birch's) shows them so.
+    let web_mesh = MeshOptions {
+        young_bark: m.dress(None).young_bark,
+        ..WEB_MESH
+    };
     for age in ages_of(m) {
         let age = f64::from(age);
         let skeleton = cohort
@@ -131,7 +137,7 @@ pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool)
             .iter_mut()
             .map(|a| a.year(age, &record.model, &skeleton))
             .collect();
-        let lod = LodTree::build(&kites(&skeleton), &WEB_MESH);
+        let lod = LodTree::build(&kites(&skeleton), &web_mesh);
         let mut entry = AgeEntry {
             record,
             accounts,
@@ -176,6 +182,7 @@ pub const WEB_MESH: MeshOptions = MeshOptions {
     quality: MESH.quality * 0.6,
     sides: None,
     bark: sylva::mesh::BarkPattern::Smooth,
+    young_bark: 1.0,
 };
 
 /// How much wider a kite is than the oval it stands for (see [`WEB_MESH`]).

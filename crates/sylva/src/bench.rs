@@ -325,10 +325,7 @@ pub fn growth_steps(runs: u32) -> Result<Vec<GrowthStepTimes>, GrowthError> {
         let skeleton_ms = fastest_of(runs, || grower.skeleton_into(&mut skeleton));
         let plain_mesh_ms = fastest_of(runs, || mesh_tree_into(&skeleton, &MESH, &mut mesh));
         let mesh_ms = skeleton_ms + plain_mesh_ms;
-        let patterned = MeshOptions {
-            bark: grower.measured().dress(None).bark_pattern,
-            ..MESH
-        };
+        let patterned = grower.measured().dress(None).mesh_options(&MESH);
         let patterned_mesh_ms =
             fastest_of(runs, || mesh_tree_into(&skeleton, &patterned, &mut mesh));
         let mut copy = Skeleton::default();

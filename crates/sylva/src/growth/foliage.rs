@@ -1,8 +1,9 @@
 //! What each street tree wears: its leaves (kind, size, outline, arrangement, colours through
-//! the year), its flowers where they are showy, and its bark, one row per species of the
-//! Urban Tree Database in `foliage.csv`, each row naming its sources. Palms need no row: they
-//! carry their fronds (`model/palm.rs`). A species without a row wears a generic leaf
-//! (docs/foliage-pending.md names them, and what the sources lacked).
+//! the year), its flowers where they are showy, and its bark (and its twigs' colour, where the
+//! sources name it apart), one row per species of the Urban Tree Database in `foliage.csv`,
+//! each row naming its sources. Palms need no row: they carry their fronds (`model/palm.rs`). A
+//! species without a row wears a generic leaf (docs/foliage-pending.md names them, and what the
+//! sources lacked).
 //!
 //! The table keeps the sources' words and ranges: sizes in centimetres as published (ranges
 //! drawn at their middle), colours as named (a colour word becomes a colour in
@@ -100,11 +101,30 @@ pub struct Foliage {
     pub bark: Colour,
     /// The bark's pattern.
     pub bark_pattern: BarkPattern,
+    /// The colour of the young shoots' bark, where the sources name one apart from the bark
+    /// (a white birch's purplish-brown twigs): thin stems wear it, see
+    /// [`Foliage::young_bark_shade`].
+    pub twig: Option<Colour>,
     /// Where every fact of the row comes from.
     pub source: String,
 }
 
 impl Foliage {
+    /// How much darker the twigs are than the bark, as a luminance factor (0..1) for the
+    /// bark's vertex shades: the twig colour's relative luminance over the bark colour's, both
+    /// in linear light. 1 where the sources name no twig colour, or one no darker (the shade
+    /// can darken a vertex but not brighten it, so a colour's hue is left to the material).
+    pub fn young_bark_shade(&self) -> f32 {
+        let luminance = |c: &Colour| {
+            let [r, g, b] = c.srgb.map(crate::colour::srgb_to_linear);
+            0.2126 * r + 0.7152 * g + 0.0722 * b
+        };
+        match &self.twig {
+            Some(twig) => (luminance(twig) / luminance(&self.bark).max(1e-4)).min(1.0),
+            None => 1.0,
+        }
+    }
+
     /// The leaf as Sylva draws it: compound leaves and bundles by their count, simple blades
     /// by their outline (entire ones as an oval of their own proportions).
     pub fn shape(&self) -> LeafShape {
@@ -251,6 +271,7 @@ pub fn colour(name: &str) -> Option<Colour> {
         ("red-brown", [0.44, 0.26, 0.18]),
         ("whitish", [0.8, 0.79, 0.75]),
         ("orange-brown", [0.6, 0.4, 0.25]),
+        ("purplish brown", [0.36, 0.22, 0.24]),
     ];
     PALETTE
         .iter()
@@ -374,7 +395,8 @@ fn parse(text: &str, file: &str) -> Result<Vec<Foliage>, String> {
             flowers,
             bark: named(15)?.ok_or_else(|| bad(15, "a bark colour"))?,
             bark_pattern,
-            source: field(17).to_string(),
+            twig: named(17)?,
+            source: field(18).to_string(),
         });
     }
     Ok(rows)
@@ -470,11 +492,15 @@ mod tests {
     #[test]
     fn bad_rows_name_their_line_and_column() {
         let head = include_str!("foliage.csv").lines().next().unwrap();
-        let row = "X,Y,simple,,3-1,,,ovate,alternate,green,,,deciduous,,,gray,smooth,src";
+        let row = "X,Y,simple,,3-1,,,ovate,alternate,green,,,deciduous,,,gray,smooth,,src";
         let e = parse(&format!("{head}\n{row}\n"), "foliage.csv").unwrap_err();
         assert!(e.contains("line 2, column 5"), "{e}");
-        let row = "X,Y,simple,,3,,,ovate,alternate,teal,,,deciduous,,,gray,smooth,src";
+        let row = "X,Y,simple,,3,,,ovate,alternate,teal,,,deciduous,,,gray,smooth,,src";
         let e = parse(&format!("{head}\n{row}\n"), "foliage.csv").unwrap_err();
         assert!(e.contains("column 10") && e.contains("palette"), "{e}");
+        // A twig colour is a palette word too.
+        let row = "X,Y,simple,,3,,,ovate,alternate,green,,,deciduous,,,gray,smooth,mauve,src";
+        let e = parse(&format!("{head}\n{row}\n"), "foliage.csv").unwrap_err();
+        assert!(e.contains("column 18") && e.contains("palette"), "{e}");
     }
 }

@@ -32,6 +32,7 @@ pub const MESH: MeshOptions = MeshOptions {
     quality: 0.6,
     sides: None,
     bark: crate::mesh::BarkPattern::Smooth,
+    young_bark: 1.0,
 };
 
 /// The ages of a run: `from` to `to` every `step` years, by default the ages the species'

@@ -168,6 +168,8 @@ pub struct Dress {
     pub bark: [f32; 3],
     /// The bark's pattern.
     pub bark_pattern: BarkPattern,
+    /// The young shoots' bark's luminance as a share of the bark's (`Foliage::young_bark_shade`).
+    pub young_bark: f32,
     /// Leaf colour this month.
     pub leaves: [f32; 3],
     /// The leaves this month.
@@ -177,6 +179,15 @@ pub struct Dress {
 }
 
 impl Dress {
+    /// `base` with the bark this tree wears: its pattern and its young shoots' shade.
+    pub fn mesh_options(&self, base: &MeshOptions) -> MeshOptions {
+        MeshOptions {
+            bark: self.bark_pattern,
+            young_bark: self.young_bark,
+            ..*base
+        }
+    }
+
     /// The GLB materials of a tree so dressed.
     pub fn materials(&self) -> Materials {
         let m = Materials::from_srgb(self.bark, self.leaves);
@@ -221,6 +232,7 @@ impl Measured {
         Dress {
             bark,
             bark_pattern: row.map_or(BarkPattern::Smooth, |f| f.bark_pattern),
+            young_bark: row.map_or(1.0, |f| f.young_bark_shade()),
             leaves,
             state,
             flowers,
@@ -237,10 +249,7 @@ pub fn dressed_mesh(
     options: &MeshOptions,
 ) -> (TreeMesh, Dress) {
     let dress = m.dress(month);
-    let options = MeshOptions {
-        bark: dress.bark_pattern,
-        ..*options
-    };
+    let options = dress.mesh_options(options);
     let tree = dressed_skeleton(skeleton, dress.state);
     let mut mesh = mesh_tree(&tree, &options);
     if dress.flowers.is_some() {
@@ -373,6 +382,44 @@ mod tests {
         // The plane's bark is drawn in patches.
         let plane = db.find("InlVal", "PLAC").unwrap();
         assert_eq!(plane.dress(None).bark_pattern, BarkPattern::Patches);
+    }
+
+    #[test]
+    fn a_white_birch_in_winter_is_white_on_its_trunk_and_limbs_and_dark_in_its_twigs() {
+        // The sources: bark white once it has formed, twigs purplish-brown. Drawn white to
+        // the tips, the birch's bare crown was a white ghost beside the pistache's.
+        let birch = Database::builtin().find("InlVal", "BEPE").unwrap();
+        let dress = birch.dress(Some(Month::WINTER));
+        assert!(dress.young_bark < 0.15, "{}", dress.young_bark);
+        // Species whose sources name no twig colour are drawn as before.
+        let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+        assert_eq!(plane.dress(None).young_bark, 1.0);
+        let mut grower = Grower::new(birch.clone(), GrowthOptions::default());
+        grower.advance_to(12.0);
+        let skeleton = grower.skeleton();
+        let options = super::super::report::MESH;
+        let (mesh, _) = dressed_mesh(&skeleton, &birch, Some(Month::WINTER), &options);
+        let bark = &mesh.bark;
+        assert_eq!(bark.shades.len(), bark.vertex_count());
+        // Most of its bark is twigs, dark; the trunk's base ring is white but for the
+        // lenticels' dashes (0.45).
+        let dark = bark.shades.iter().filter(|&&s| s < 0.2).count();
+        assert!(
+            dark > bark.vertex_count() / 4,
+            "{dark} of {}",
+            bark.vertex_count()
+        );
+        assert!(
+            bark.shades[..8].iter().all(|&s| s >= 0.45),
+            "{:?}",
+            &bark.shades[..8]
+        );
+        // So does the range-rendering tree that the page and the tiles draw.
+        let lod = crate::lod::LodTree::build(&skeleton, &dress.mesh_options(&options));
+        let far = lod.engine_mesh([16.0, 16.0, 16.0, 4.0]);
+        assert_eq!(far.bark.shades.len(), far.bark.vertex_count());
+        assert!(far.bark.shades.iter().any(|&s| s < 0.2));
+        assert!(far.bark.shades.iter().any(|&s| s > 0.99));
     }
 
     #[test]

@@ -37,6 +37,7 @@ pub(super) fn build(skeleton: &Skeleton, options: &MeshOptions) -> LodTree {
     );
     let mut tree = LodTree {
         quantiser: q,
+        young_bark_darkening: 1.0 - options.young_bark,
         ..Default::default()
     };
     // Runs in the order their first item was made, items in creation order within a run.

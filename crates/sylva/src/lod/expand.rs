@@ -206,6 +206,14 @@ impl LodTree {
                 }
             }
         }
+        // A species whose twigs are darker than its bark shades each vertex by its ring's
+        // radius, as `mesh_tree` does (the bark's pattern is left to the full mesh).
+        if self.young_bark_darkening > 0.0 {
+            let young = 1.0 - self.young_bark_darkening;
+            out.bark.shades = (out.bark.radii.iter())
+                .map(|&r| crate::mesh::young_bark_shade(r, young))
+                .collect();
+        }
         let list = &self.lists[3];
         let kept: Vec<(&Run, usize)> = list
             .runs

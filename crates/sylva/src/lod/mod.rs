@@ -105,6 +105,9 @@ pub struct LodTree {
     pub leaves: Vec<Leaf>,
     /// Trunk, branches, twigs, leaves.
     pub lists: [LodList; 4],
+    /// How much darker the young shoots' bark is than the bark (1 less
+    /// `MeshOptions::young_bark`; 0: no difference): drawn as the bark's vertex shades.
+    pub young_bark_darkening: f32,
 }
 
 /// What to draw of one run: ranges of its records.

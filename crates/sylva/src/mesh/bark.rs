@@ -31,6 +31,21 @@ pub enum BarkPattern {
     Lenticels,
 }
 
+/// Stems up to this radius (m) wear the young shoots' bark, and stems from
+/// [`MATURE_BARK_RADIUS`] the bark's own colour, blended between: the white birch's bark is
+/// "golden-brown at first", white later (Vakkari 2009) and its twigs purplish-brown; the
+/// sources give no size, so the change from 1 to 3 cm across is Sylva's reading.
+const YOUNG_TWIG_RADIUS: f32 = 0.005;
+const MATURE_BARK_RADIUS: f32 = 0.015;
+
+/// The luminance factor of young bark on a stem of `radius` m, for a species whose young
+/// shoots' bark is `young` times as bright as its bark (1: no difference).
+pub fn young_bark_shade(radius: f32, young: f32) -> f32 {
+    let mature =
+        ((radius - YOUNG_TWIG_RADIUS) / (MATURE_BARK_RADIUS - YOUNG_TWIG_RADIUS)).clamp(0.0, 1.0);
+    young + (1.0 - young) * mature
+}
+
 /// Stems thinner than this (radius, m) keep a young stem's smooth bark: furrows, plates and
 /// scales form as the stem thickens, and on twigs they would be finer than the ring's vertices.
 const YOUNG_BARK_RADIUS: f32 = 0.03;
@@ -110,6 +125,18 @@ fn value_noise(x: f32, y: f32, seed: u64) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn young_bark_is_on_the_twigs_and_gone_by_three_centimetres() {
+        assert_eq!(young_bark_shade(0.0, 0.1), 0.1);
+        assert_eq!(young_bark_shade(YOUNG_TWIG_RADIUS, 0.1), 0.1);
+        let mid = young_bark_shade((YOUNG_TWIG_RADIUS + MATURE_BARK_RADIUS) / 2.0, 0.1);
+        assert!((mid - 0.55).abs() < 1e-5, "{mid}");
+        assert_eq!(young_bark_shade(MATURE_BARK_RADIUS, 0.1), 1.0);
+        assert_eq!(young_bark_shade(0.5, 0.1), 1.0);
+        // No young bark of its own: no shade.
+        assert_eq!(young_bark_shade(0.0, 1.0), 1.0);
+    }
 
     /// Shades over a trunk's metre of bark, 2 cm apart.
     fn samples(p: BarkPattern, radius: f32) -> Vec<f32> {

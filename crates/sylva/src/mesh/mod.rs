@@ -9,7 +9,7 @@ mod leaves;
 mod leaves_apart;
 mod stems;
 
-pub use bark::BarkPattern;
+pub use bark::{BarkPattern, young_bark_shade};
 pub use compound::{NEEDLE_SPRAY_LENGTH, natural_aspect};
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
 pub(crate) use stems::ring_frame;
@@ -111,6 +111,10 @@ pub struct MeshOptions {
     pub sides: Option<u32>,
     /// The bark's pattern, drawn as vertex shades; [`BarkPattern::Smooth`] gives none.
     pub bark: BarkPattern,
+    /// Luminance of the young shoots' bark as a share of the bark's (1: the same), drawn as
+    /// vertex shades on thin stems (see [`bark::young_bark_shade`]): a white birch's dark
+    /// twigs.
+    pub young_bark: f32,
 }
 
 impl Default for MeshOptions {
@@ -119,11 +123,17 @@ impl Default for MeshOptions {
             quality: 1.0,
             sides: None,
             bark: BarkPattern::Smooth,
+            young_bark: 1.0,
         }
     }
 }
 
 impl MeshOptions {
+    /// Whether the bark carries vertex shades: a pattern, or young bark of its own shade.
+    pub fn shaded_bark(&self) -> bool {
+        self.bark != BarkPattern::Smooth || self.young_bark < 1.0
+    }
+
     /// The options a Weber-Penn species asks for at a quality (1: the default): Arbaro's Smooth
     /// (0..1, default 0.5) scales the ring resolution around it.
     pub fn for_species(params: &crate::TreeParams, quality: f64) -> Self {

@@ -1,6 +1,7 @@
 //! Stem tubes: one ring per cross-section, rings joined by quads, a point or a cap at the tip.
 
 use super::apart::{Sink, mesh_apart};
+use super::bark::young_bark_shade;
 use super::{BarkPattern, Mesh, MeshOptions};
 use crate::skeleton::{CrossSection, Skeleton, Stem};
 use glam::{Quat, Vec3};
@@ -161,7 +162,7 @@ fn mesh_stems_apart(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh)
     if total < APART_FROM {
         return false;
     }
-    let shaded = options.bark != BarkPattern::Smooth;
+    let shaded = options.shaded_bark();
     mesh_apart(mesh, runs, shaded, |run, out| {
         mesh_run(skeleton, run, options, out)
     })
@@ -192,7 +193,7 @@ fn mesh_run(skeleton: &Skeleton, stems: &[Stem], options: &MeshOptions, out: &mu
         if circles[n].is_empty() {
             circle(n, &mut circles[n]);
         }
-        mesh_stem(stem, sections, &circles[n], options.bark, &mut rim, out);
+        mesh_stem(stem, sections, &circles[n], options, &mut rim, out);
     }
 }
 
@@ -213,18 +214,19 @@ fn mesh_stem(
     stem: &Stem,
     sections: &[CrossSection],
     unit: &[(f32, f32)],
-    bark: BarkPattern,
+    options: &MeshOptions,
     rim: &mut Vec<Vec3>,
     mesh: &mut impl Sink,
 ) {
     let n = unit.len() - 1;
-    let patterned = bark != BarkPattern::Smooth;
+    let (bark, young) = (options.bark, options.young_bark);
+    let patterned = options.shaded_bark();
     let stem_key = stem.sections.start;
     // The bark's shade at ring vertex `i` of a ring of `radius` `along` metres up the stem;
     // the seam's repeated vertex takes the first's, so the pattern has no seam.
     let shade_at = |i: usize, radius: f32, along: f32| {
         let around = (i % n) as f32 / n as f32 * TAU * radius;
-        bark.shade(around, along, radius, stem_key)
+        bark.shade(around, along, radius, stem_key) * young_bark_shade(radius, young)
     };
     let m = sections.len();
     let base_radius = max_radius(sections);
@@ -299,7 +301,8 @@ fn mesh_stem(
                 [(i as f32 + 0.5) / n as f32, distance * v_scale],
             );
             if patterned {
-                mesh.shade(1.0);
+                // A twig's tip is the youngest bark of all.
+                mesh.shade(young_bark_shade(0.0, young));
             }
         }
         for i in 0..n as u32 {
