@@ -15,7 +15,8 @@
 //!   and wind, which does not depend on the tree's position, calibrated against i-Tree.
 //! - [`prices`] and [`costs`]: what each unit is worth and what a tree costs, built in or
 //!   from TOML.
-//! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it.
+//! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it;
+//!   [`pruning`]: how often the street cuts it back, and why.
 //! - [`itree`] and [`typical`]: i-Tree Streets' per-tree tables, and the typical-position
 //!   account they give a species at the grown DBH; [`calibrate`]: the site model's shade
 //!   around a standard house beside them.
@@ -42,6 +43,7 @@ pub mod money;
 pub mod opacity;
 pub mod picture;
 pub mod prices;
+pub mod pruning;
 pub mod rank;
 pub mod shade;
 pub mod site;

@@ -28,6 +28,7 @@
 //! height = 8.5
 //! offset = -0.6              # y of the line
 //! clearance = 3.0            # radial clearance the utility requires
+//! cycle = 4                  # years between line clearances (optional: see [pruning])
 //!
 //! [[light]]
 //! x = 6.0
@@ -39,6 +40,9 @@
 //! corners = [[-12.0, -1.0], [-4.0, -1.0], [-12.0, 6.0]]
 //! low = 0.9
 //! high = 2.4
+//!
+//! [pruning]                  # optional: the default standard's cycles (`street::pruning`)
+//! standard = "us-street"
 //! ```
 
 use super::StreetError;
@@ -97,8 +101,11 @@ pub struct Wire {
     pub height: f64,
     /// y of the line, m.
     pub offset: f64,
-    /// Radial clearance the utility requires, m.
+    /// Radial clearance the utility requires, m: what line clearance cuts to.
     pub clearance: f64,
+    /// Years between its line clearances (`[pruning]`'s `line_cycle` where not given).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<i64>,
 }
 
 /// A street light's lamp.
@@ -127,6 +134,48 @@ pub struct SightTriangle {
     pub high: f64,
 }
 
+/// A named set of cycles.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum Standard {
+    /// US street practice, each cycle from a published source (docs/benefits.md; the figures
+    /// are `street::pruning`'s):
+    /// - lines every 4 years: utilities clear distribution lines every 3 to 5 years, to a
+    ///   clearance that keeps regrowth out of the line until the next cycle (Shenandoah Valley
+    ///   Electric Cooperative, clearance specifications; United Electric Cooperative, primary
+    ///   distribution lines);
+    /// - crown raising and building clearance every 5 years: Miller and Sylvester (1981,
+    ///   Journal of Arboriculture 7:109-112) found a five-year rotation optimal for
+    ///   Milwaukee's 40,000 street trees, the goal many cities since adopted (Arboriculture &
+    ///   Urban Forestry 28(3):137, on Rochester, NY);
+    /// - structural pruning every 3 years while the DBH is under 15.24 cm (6 in): the
+    ///   young-tree training cycle a municipal inventory recommends (Davey Resource Group, tree
+    ///   inventory analysis for Orono, MN).
+    #[default]
+    UsStreet,
+    /// No pruning at all (`sylva rank --no-pruning`).
+    None,
+}
+
+/// A site's `[pruning]` table as written.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PruningSpec {
+    /// The standard whose cycles the keys below override.
+    #[serde(default)]
+    pub standard: Standard,
+    /// Years between line clearances.
+    pub line_cycle: Option<i64>,
+    /// Years between crown raisings over the roadway and sidewalk.
+    pub raise_cycle: Option<i64>,
+    /// Years between clearances from the façade, awnings, signs and lamps.
+    pub building_cycle: Option<i64>,
+    /// Years between structural prunings of a young tree.
+    pub structural_cycle: Option<i64>,
+    /// DBH under which a tree gets structural pruning, cm.
+    pub structural_until: Option<f64>,
+}
+
 /// A whole site.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -149,7 +198,70 @@ pub struct Site {
     pub light: Vec<Light>,
     /// A sight triangle.
     pub sight_triangle: Option<SightTriangle>,
+    /// How the street prunes the tree (`street::pruning`); the default standard where absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pruning: Option<PruningSpec>,
 }
+
+/// Checks a site's `[pruning]` keys, its wires' cycles and the clearances pruning cuts to;
+/// errors name `file`, the key and what is allowed.
+fn check_pruning(site: &Site, file: &str) -> Result<(), StreetError> {
+    let bad = |key: &str, value: f64, allowed: &str| Err(bad_value(file, key, value, allowed));
+    let cycle = |key: &str, years: Option<i64>| match years {
+        Some(y) if !(1..=MOST_YEARS).contains(&y) => bad(
+            key,
+            y as f64,
+            &format!("a cycle of whole years, 1 to {MOST_YEARS}"),
+        ),
+        _ => Ok(()),
+    };
+    if let Some(p) = &site.pruning {
+        cycle("pruning.line_cycle", p.line_cycle)?;
+        cycle("pruning.raise_cycle", p.raise_cycle)?;
+        cycle("pruning.building_cycle", p.building_cycle)?;
+        cycle("pruning.structural_cycle", p.structural_cycle)?;
+        if let Some(d) = p.structural_until
+            && !(d > 0.0 && d <= 100.0)
+        {
+            return bad(
+                "pruning.structural_until",
+                d,
+                "a DBH above 0 and at most 100 cm",
+            );
+        }
+    }
+    for w in &site.wire {
+        cycle("wire.cycle", w.cycle)?;
+    }
+    // Cleared to its clearance, a wire or lamp whose clearance reaches the ground takes the
+    // trunk.
+    let fixtures = (site.wire.iter().map(|w| ("wire", w.clearance, w.height)))
+        .chain(site.light.iter().map(|l| ("light", l.clearance, l.height)));
+    for (kind, clearance, height) in fixtures {
+        if clearance >= height {
+            return bad(
+                &format!("{kind}.clearance"),
+                clearance,
+                &format!("less than its height ({height} m): pruning clears the tree to it"),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The error for `key` of `file` holding `value` where `allowed` is what it may hold.
+fn bad_value(file: &str, key: &str, value: f64, allowed: &str) -> StreetError {
+    StreetError::Value {
+        file: file.to_string(),
+        key: key.to_string(),
+        value,
+        allowed: allowed.to_string(),
+    }
+}
+
+/// The longest pruning cycle a site may give, years: a street tree left longer is not on a
+/// cycle.
+pub const MOST_YEARS: i64 = 20;
 
 /// Lamps closer than this are one lamp written twice, m.
 const LIGHTS_APART: f64 = 0.5;
@@ -181,14 +293,7 @@ impl Site {
     }
 
     fn check(&self, file: &str) -> Result<(), StreetError> {
-        let bad = |key: &str, value: f64, allowed: &str| {
-            Err(StreetError::Value {
-                file: file.to_string(),
-                key: key.to_string(),
-                value,
-                allowed: allowed.to_string(),
-            })
-        };
+        let bad = |key: &str, value: f64, allowed: &str| Err(bad_value(file, key, value, allowed));
         let all_finite = |key: &str, values: &[f64]| -> Result<(), StreetError> {
             for &v in values {
                 if !v.is_finite() || v.abs() > FAR {
@@ -342,7 +447,7 @@ impl Site {
                 );
             }
         }
-        Ok(())
+        check_pruning(self, file)
     }
 }
 
