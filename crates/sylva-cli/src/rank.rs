@@ -5,7 +5,7 @@ use crate::args::{RankArgs, RankBy};
 use crate::shared::{database, load_street, with_progress};
 use anyhow::{Result, bail};
 use sylva::growth::Measured;
-use sylva::street::rank::{first_conflicts, rank};
+use sylva::street::rank::{Pruning, first_conflicts, rank};
 use sylva::street::{Basis, Kind};
 
 pub fn run(args: &RankArgs) -> Result<()> {
@@ -67,6 +67,11 @@ pub fn run(args: &RankArgs) -> Result<()> {
             site.as_ref(),
             prices.as_ref(),
             costs.as_ref(),
+            if args.no_pruning {
+                Pruning::Off
+            } else {
+                Pruning::Regime
+            },
             basis,
             &|_| tick(),
         )
@@ -102,6 +107,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
                         "by_category_usd": by_category(r, Basis::Site),
                     },
                     "first_conflicts": first,
+                    "pruning": pruning_json(r),
                     "not_computed": r.missing,
                 })
             );
@@ -345,4 +351,45 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
     }
     println!("in bounds: cooling {cool} of {n}, heating {heat} of {n}");
     Ok(())
+}
+
+/// A run's pruning as JSON: its totals and each year a cycle fell due (`null` where the run
+/// was not pruned: no site, `--no-pruning`, or a regime that cuts nothing).
+fn pruning_json(r: &sylva::street::rank::Ranked) -> serde_json::Value {
+    let Some(total) = r.pruning() else {
+        return serde_json::Value::Null;
+    };
+    let kinds = |k: &[Kind]| k.iter().map(|k| k.name()).collect::<Vec<_>>();
+    let round = |v: f64, places: i32| (v * 10f64.powi(places)).round() / 10f64.powi(places);
+    let years: Vec<serde_json::Value> = r
+        .accounts
+        .iter()
+        .filter_map(|a| a.pruning.as_ref().map(|p| (a, p)))
+        .map(|(a, p)| {
+            serde_json::json!({
+                "age": a.age,
+                "reasons": p.reasons.iter().map(|r| r.name()).collect::<Vec<_>>(),
+                "removal_cuts": p.count(sylva::growth::CutKind::Removal),
+                "reduction_cuts": p.count(sylva::growth::CutKind::Reduction),
+                "largest_cut_cm": round(100.0 * p.cuts.largest_diameter() as f64, 1),
+                "wood_removed_m3": round(p.wood_m3(), 4),
+                "leaf_removed_m2": round(p.leaf_m2(), 1),
+                "leaf_area_m2": round(a.surfaces.0, 1),
+                "visits": p.visits,
+                "cost_usd": round(p.cost, 2),
+                "resolved": kinds(&p.resolved()),
+                "unresolved": kinds(&p.unresolved),
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "cycles_with_cuts": total.cycles,
+        "visits": total.visits,
+        "wood_removed_m3": round(total.wood_m3, 4),
+        "leaf_removed_m2": round(total.leaf_m2, 1),
+        "cost_usd": round(total.cost, 2),
+        "resolved": kinds(&total.resolved),
+        "unresolved": kinds(&total.unresolved),
+        "years": years,
+    })
 }

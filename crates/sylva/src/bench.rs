@@ -402,3 +402,29 @@ pub fn street_times(
         account_s,
     })
 }
+
+/// `sylva rank`'s run of one species on [`BENCH_SITE`], with the site's pruning regime (the
+/// default us-street standard) and without it, s: the best of `runs` each, run alternately
+/// so both see the same machine.
+pub fn pruning_times(
+    region: &str,
+    code: &str,
+    years: f64,
+    runs: usize,
+) -> Result<(f64, f64), crate::street::StreetError> {
+    use crate::street::Site;
+    use crate::street::rank::{Pruning, run};
+    let measured = Database::builtin().find(region, code)?;
+    let site = Site::parse(BENCH_SITE, "the benchmark's site")?;
+    let time = |pruning: Pruning| {
+        let t = Instant::now();
+        std::hint::black_box(run(&measured, years, 0, Some(&site), None, None, pruning));
+        t.elapsed().as_secs_f64()
+    };
+    let (mut pruned, mut grown) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..runs.max(1) {
+        grown = grown.min(time(Pruning::Off));
+        pruned = pruned.min(time(Pruning::Regime));
+    }
+    Ok((pruned, grown))
+}

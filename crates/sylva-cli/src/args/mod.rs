@@ -590,6 +590,11 @@ pub struct RankArgs {
     /// Print one JSON object per species instead of the table.
     #[arg(long)]
     pub json: bool,
+
+    /// Never cut the trees: they grow on through the site's zones (default: the site's
+    /// [pruning] regime, or the us-street standard's, cuts them as its cycles fall due).
+    #[arg(long)]
+    pub no_pruning: bool,
 }
 
 /// What `sylva rank` ranks by.

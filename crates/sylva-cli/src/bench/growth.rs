@@ -73,5 +73,13 @@ pub fn bench_street() -> Result<()> {
         t.account_s,
         t.account_s / t.growth_s * 100.0
     );
+    // Issue U: cutting and regrowing must not make ranking much slower than growing.
+    let (pruned, grown) = sylva::bench::pruning_times("InlVal", "PLAC", 40.0, 2)?;
+    println!(
+        "pruning, the same plane ranked over 40 years: {pruned:.2} s with the site's regime \
+         (us-street: lines every 4 years, raising and building clearance every 5), {grown:.2} s \
+         never cut: {:.2} times (target: at most 1.20)",
+        pruned / grown
+    );
     Ok(())
 }

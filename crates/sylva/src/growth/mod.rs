@@ -23,7 +23,7 @@ pub use form::{FormMeasures, measure_form};
 pub use habit::{Envelope, Habit, TreeForm, habit_of};
 pub use measure::{Dimensions, measure};
 pub use measured::Measured;
-pub use model::{Grower, GrowthOptions, Targets};
+pub use model::{CutKind, CutMark, Cuts, Grower, GrowthOptions, Targets};
 pub use season::{Dress, LeafState, Month, dressed_mesh};
 
 /// What can go wrong finding or reading growth data.

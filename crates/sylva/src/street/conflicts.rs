@@ -244,6 +244,12 @@ impl Zones {
         Zones { zones }
     }
 
+    /// Only the zones of the kinds `keep` accepts (a pruning cycle clears some, not all).
+    pub fn only(mut self, keep: impl Fn(Kind) -> bool) -> Zones {
+        self.zones.retain(|(k, _)| keep(*k));
+        self
+    }
+
     /// The first kind of conflict a point of the tree is in, if any (`level`: its stem's
     /// order, `None` for a leaf). The trunk may stand in the sidewalk band: only what hangs
     /// over it counts.

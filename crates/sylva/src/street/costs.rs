@@ -89,12 +89,21 @@ pub struct YearCosts {
     pub cleanup: f64,
     /// A programme's average, where no items are known.
     pub average: f64,
+    /// The pruning cycles the site's regime cut this year, where the tree was grown with it
+    /// (`street::pruner`); with itemised costs they replace `pruning`.
+    pub cycles: f64,
 }
 
 impl YearCosts {
     /// All of them.
     pub fn total(&self) -> f64 {
-        self.planting + self.pruning + self.removal + self.sidewalk + self.cleanup + self.average
+        self.planting
+            + self.pruning
+            + self.removal
+            + self.sidewalk
+            + self.cleanup
+            + self.average
+            + self.cycles
     }
 }
 
@@ -214,6 +223,7 @@ impl Costs {
             sidewalk: c.sidewalk_repair_per_year,
             cleanup: c.cleanup_per_year,
             average: 0.0,
+            cycles: 0.0,
         }
     }
 }

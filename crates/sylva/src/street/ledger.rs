@@ -61,8 +61,11 @@ pub struct YearAccount {
     pub typical: Option<Typical>,
     /// The costs in dollars, where a cost table was given.
     pub costs: Option<YearCosts>,
-    /// Conflicts with the site this year.
+    /// Conflicts with the site this year (after this year's pruning, where there was one).
     pub conflicts: Vec<Conflict>,
+    /// This year's pruning, where a cycle fell due and the tree was grown with the site's
+    /// regime ([`super::pruner`]).
+    pub pruning: Option<super::pruner::PruningYear>,
 }
 
 impl YearAccount {
@@ -346,6 +349,7 @@ impl Assessor {
             money,
             typical,
             costs: self.costs.as_ref().map(|c| c.year(age, dbh)),
+            pruning: None,
             conflicts,
         }
     }

@@ -16,7 +16,8 @@
 //! - [`prices`] and [`costs`]: what each unit is worth and what a tree costs, built in or
 //!   from TOML.
 //! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it;
-//!   [`pruning`]: how often the street cuts it back, and why.
+//!   [`pruning`]: how often the street cuts it back, and why; [`pruner`]: those cycles cut on
+//!   the grown tree, their cost and the conflicts they resolve.
 //! - [`itree`] and [`typical`]: i-Tree Streets' per-tree tables, and the typical-position
 //!   account they give a species at the grown DBH; [`calibrate`]: the site model's shade
 //!   around a standard house beside them.
@@ -43,6 +44,7 @@ pub mod money;
 pub mod opacity;
 pub mod picture;
 pub mod prices;
+pub mod pruner;
 pub mod pruning;
 pub mod rank;
 pub mod shade;

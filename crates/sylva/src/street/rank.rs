@@ -1,11 +1,12 @@
 //! A region's species side by side: each grown year by year on the same site, its benefits
 //! and costs summed over the years, and the first year it runs into the street.
 
-use super::conflicts::{Conflict, Kind};
+use super::conflicts::{Conflict, Kind, conflicts};
 use super::costs::Costs;
 use super::ledger::{Assessor, YearAccount};
 use super::money::Basis;
 use super::prices::Prices;
+use super::pruner::{Pruner, PruningYear};
 use super::site::Site;
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
@@ -45,6 +46,48 @@ impl Ranked {
     pub fn last_age(&self) -> f64 {
         self.accounts.last().map_or(0.0, |a| a.age)
     }
+
+    /// Its pruning over the years, where it was grown with a regime.
+    pub fn pruning(&self) -> Option<PruningSummary> {
+        let years: Vec<&PruningYear> = (self.accounts.iter())
+            .filter_map(|a| a.pruning.as_ref())
+            .collect();
+
+        let mut unresolved: Vec<Kind> = years.iter().flat_map(|y| y.unresolved.clone()).collect();
+        unresolved.sort();
+        unresolved.dedup();
+        let mut resolved: Vec<Kind> = years.iter().flat_map(|y| y.resolved()).collect();
+        resolved.sort();
+        resolved.dedup();
+        (!years.is_empty()).then(|| PruningSummary {
+            cycles: years.iter().filter(|y| !y.cuts.marks.is_empty()).count(),
+            visits: years.iter().map(|y| y.visits).sum(),
+            wood_m3: years.iter().map(|y| y.wood_m3()).sum(),
+            leaf_m2: years.iter().map(|y| y.leaf_m2()).sum(),
+            cost: years.iter().map(|y| y.cost).sum(),
+            resolved,
+            unresolved,
+        })
+    }
+}
+
+/// A run's pruning, summed over its years.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PruningSummary {
+    /// Years in which something was cut.
+    pub cycles: usize,
+    /// Crews' visits that cut something.
+    pub visits: u32,
+    /// Wood removed, m³.
+    pub wood_m3: f64,
+    /// Leaf area removed, m².
+    pub leaf_m2: f64,
+    /// What the visits cost, $.
+    pub cost: f64,
+    /// Kinds of conflict some cycle cleared.
+    pub resolved: Vec<Kind>,
+    /// Kinds of conflict left after some cycle due for them, or that no pruning clears.
+    pub unresolved: Vec<Kind>,
 }
 
 /// The first year of each kind of conflict in a run of accounts, with the conflict as it was
@@ -84,6 +127,15 @@ pub fn ages(m: &Measured, years: f64) -> Vec<f64> {
     out
 }
 
+/// How a run treats the site's pruning regime.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pruning {
+    /// The site's regime cuts the tree as its cycles fall due (the default).
+    Regime,
+    /// Nothing is ever cut: the tree grows on through the street's zones.
+    Off,
+}
+
 /// Grows every species yearly to `years` on the same site, in parallel, and returns them by
 /// net benefit on `basis`, best first. `done` is called as each species finishes.
 #[allow(clippy::too_many_arguments)]
@@ -94,13 +146,14 @@ pub fn rank(
     site: Option<&Site>,
     prices: Option<&Prices>,
     costs: Option<&Costs>,
+    pruning: Pruning,
     basis: Basis,
     done: &(dyn Fn(&Measured) + Sync),
 ) -> Vec<Ranked> {
     let mut out: Vec<Ranked> = species
         .into_par_iter()
         .map(|m| {
-            let r = run(&m, years, seed, site, prices, costs);
+            let r = run(&m, years, seed, site, prices, costs, pruning);
             done(&m);
             r
         })
@@ -109,7 +162,7 @@ pub fn rank(
     out
 }
 
-/// One species grown and accounted yearly.
+/// One species grown and accounted yearly, pruned as `pruning` says where there is a site.
 pub fn run(
     m: &Measured,
     years: f64,
@@ -117,21 +170,51 @@ pub fn run(
     site: Option<&Site>,
     prices: Option<&Prices>,
     costs: Option<&Costs>,
+    pruning: Pruning,
 ) -> Ranked {
     let mut assessor = Assessor::new(m, site.cloned(), prices.cloned(), costs.cloned());
     let mut cohort = Cohort::new(vec![m.clone()], seed);
+    let pruner = match (site, pruning) {
+        (Some(site), Pruning::Regime) => Pruner::new(site, costs),
+        _ => None,
+    };
     let mut accounts = Vec::new();
     for age in ages(m, years) {
+        let cycle = pruner.as_ref().and_then(|p| {
+            let site = site.expect("a pruner has a site");
+            let g = &mut cohort.growers[0];
+            g.advance_to(age);
+            p.year(g, age, |g| conflicts(&g.skeleton(), site))
+        });
         let skeleton = cohort.advance_to(age).remove(0);
         let dims = cohort.history[0]
             .last()
             .map(|r| r.model)
             .unwrap_or_default();
-        accounts.push(assessor.year(age, &dims, &skeleton));
+        let mut account = assessor.year(age, &dims, &skeleton);
+        if let Some(p) = &pruner {
+            charge(p, &mut account, cycle);
+        }
+        accounts.push(account);
     }
     Ranked {
         species: m.clone(),
         accounts,
         missing: assessor.missing().to_vec(),
     }
+}
+
+/// Puts a year's pruning into its account: the conflicts it resolved, and its cost where the
+/// account has costs (with itemised costs, the cycles replace the yearly pruning line).
+fn charge(pruner: &Pruner, account: &mut YearAccount, cycle: Option<PruningYear>) {
+    if let Some(costs) = &mut account.costs {
+        if pruner.replaces_itemised_pruning() {
+            costs.pruning = 0.0;
+        }
+        costs.cycles = cycle.as_ref().map_or(0.0, |c| c.cost);
+    }
+    account.pruning = cycle.map(|mut c| {
+        c.settle(&account.conflicts);
+        c
+    });
 }

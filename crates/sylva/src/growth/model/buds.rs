@@ -67,8 +67,9 @@ impl Grower {
         }
         let space = self.space(&next, self.spread as f32 * MARKER_MARGIN);
         self.prune_buds(next.crown_base() as f32);
+        // A branch cut back to a lateral has no apex left: the lateral grows on for it.
         let terminals: Vec<u32> = (0..self.branches.len() as u32)
-            .filter(|&b| self.branches[b as usize].alive)
+            .filter(|&b| self.branches[b as usize].alive && !self.branches[b as usize].headed)
             .collect();
         let mut sites: Vec<(Vec3, Vec3)> = terminals
             .iter()
@@ -236,7 +237,8 @@ impl Grower {
         if self.habit.stems > 1 {
             self.hold_stems(plans, next);
         }
-        if leader_holds || self.habit.form == TreeForm::Palm {
+        // A trunk cut back to a lateral hands the top to its highest limb, as a forked one does.
+        if (leader_holds && !self.branches[0].headed) || self.habit.form == TreeForm::Palm {
             let apex = self.apex_segment(0);
             let rise = top - apex.end().z;
             if rise > 0.02 {
@@ -257,14 +259,17 @@ impl Grower {
             .iter()
             .map(|p| p.start.z + p.direction.z * p.length)
             .fold(self.apex_segment(0).end().z, f32::max);
-        if highest >= top - 0.02 {
+        // A tree whose leader the street has cut back is no longer held to the measured
+        // height: its top grows as its shoots do, wherever the cuts left them room (lifting
+        // the highest shoot near the axis would send it into the wire's zone every year).
+        if highest >= top - 0.02 || (self.regrowth.is_some() && self.branches[0].headed) {
             return;
         }
         // The apex that is high and near the axis: the one a forester would call the leader.
         // Not the trunk's: it has handed the top to its codominant limbs.
         let score = |p: Vec3| p.z - 0.5 * p.truncate().length();
         let best = (1..self.branches.len())
-            .filter(|&b| self.branches[b].alive)
+            .filter(|&b| self.branches[b].alive && !self.branches[b].headed)
             .max_by(|&a, &b| {
                 let (sa, sb) = (
                     score(self.apex_segment(a).end()),
@@ -292,6 +297,13 @@ impl Grower {
         let p = &mut plans[i];
         let rise = 0.9f32;
         p.length = (top - start.z) / rise;
+        // On a tree the street has cut, the leader climbs back no faster than the most
+        // vigorous shoot grows in a year: it is held to the measured height again only when
+        // it gets there (a tree cut below a wire would otherwise be back at full height in a
+        // season).
+        if self.regrowth.is_some() {
+            p.length = p.length.min(MAX_METAMERS * self.metamer_now());
+        }
         let heading = p.direction.truncate().normalize_or(glam::Vec2::X);
         p.direction = (heading * (1.0 - rise * rise).sqrt()).extend(rise);
     }
@@ -304,7 +316,7 @@ impl Grower {
         let fork = (next.crown_base() as f32 + FORK_ZONE).min(next.height as f32);
         for b in 1..self.branches.len() {
             let branch = &self.branches[b];
-            if !branch.alive || branch.order != 0 {
+            if !branch.alive || branch.order != 0 || branch.headed {
                 continue;
             }
             let apex = self.apex_segment(b);
@@ -547,6 +559,7 @@ impl Grower {
             offset,
             anchor,
             shaded_years: 0,
+            headed: false,
         });
         self.segments.push(Segment {
             branch: id,

@@ -30,7 +30,9 @@ impl Grower {
         // `for_each_leaf`).
         let floor = t.crown_base() as f32 + 0.5 * self.drawn_leaf_size().0;
         let area = self.leaf_area_each();
-        let wanted = (t.leaf_area / area as f64).round() as usize;
+        // A tree the street has cut carries what it kept and has grown back since.
+        let leaf_area = (t.leaf_area - self.leaf_deficit()).max(0.0);
+        let wanted = (leaf_area / area as f64).round() as usize;
         // A branch's outermost shoot stays leafy however old it is: its bud renews it.
         let mut tip_shoot = vec![false; self.segments.len()];
         for b in self.branches.iter().filter(|b| b.alive && b.order > 0) {

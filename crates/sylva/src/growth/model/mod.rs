@@ -14,8 +14,9 @@
 //! This file holds the tree's state and the order of a step; the steps live beside it:
 //! `buds.rs` (buds and shoots at the end of a year), `colonise.rs` (the buds' environment),
 //! `allocate.rs` (Borchert-Honda), `wood.rs` (elongation and thickening), `fit.rs` (shedding
-//! and fitting the crown to the measured targets), `leaves.rs` (leaf area and light) and
-//! `skeleton.rs` (the tree as a Skeleton).
+//! and fitting the crown to the measured targets), `leaves.rs` (leaf area and light),
+//! `cuts.rs` (the street's pruning cuts and the regrowth after them) and `skeleton.rs` (the
+//! tree as a Skeleton).
 
 use super::habit::{Envelope, Habit, TreeForm, habit_of};
 use super::light::{LightGrid, Ray, daylight};
@@ -29,6 +30,7 @@ use std::f32::consts::PI;
 mod allocate;
 mod buds;
 mod colonise;
+mod cuts;
 mod fit;
 mod leaves;
 mod palm;
@@ -36,6 +38,8 @@ mod skeleton;
 #[cfg(test)]
 mod tests;
 mod wood;
+
+pub use cuts::{CutKind, CutMark, Cuts};
 
 /// Exponent of the pipe model: parent^n = sum of children^n. 2 is da Vinci's rule, the
 /// cross-section kept across a fork, which measured trees follow: Eloy (2011, Phys. Rev. Lett.
@@ -185,6 +189,9 @@ struct Branch {
     anchor: f32,
     /// Consecutive years its apex has been deep in shade.
     shaded_years: u8,
+    /// Cut back to a lateral (`cuts.rs`): it has no apex left to grow on, and the lateral
+    /// carries it on.
+    headed: bool,
 }
 
 /// One annual segment.
@@ -296,6 +303,9 @@ pub struct Grower {
     /// How far the leaves reach out beyond the wood at the crown's edge, in leaf lengths, as
     /// last measured on the crown (`Grower::fit_crown`); `LEAF_REACH` until there is a crown.
     leaf_reach: f32,
+    /// The leaf area the last cuts took and the tree has not yet grown back (`cuts.rs`);
+    /// none on a tree never cut.
+    regrowth: Option<cuts::Regrowth>,
     /// Time spent in the last step.
     pub times: StepTimes,
 }
@@ -374,6 +384,7 @@ impl Grower {
             tip_radius: 0.001,
             leaf_boost: 1.0,
             leaf_reach: LEAF_REACH,
+            regrowth: None,
             times: StepTimes::default(),
             options,
             measured,
@@ -402,6 +413,7 @@ impl Grower {
             offset: 0.0,
             anchor: 0.0,
             shaded_years: 0,
+            headed: false,
         });
         g.segments.push(Segment {
             branch: 0,
@@ -449,6 +461,7 @@ impl Grower {
                 offset: STEM_COLLAR,
                 anchor: 0.0,
                 shaded_years: 0,
+                headed: false,
             });
             self.segments.push(Segment {
                 branch: id,

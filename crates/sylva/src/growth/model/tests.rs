@@ -346,3 +346,68 @@ fn a_callery_pear_is_pyramidal_young_and_oval_at_thirty() {
         "30 years: the outline fills {fill:.2} of its box: {old:?}"
     );
 }
+
+#[test]
+fn a_cut_clears_its_zone_at_unions_and_the_tree_grows_back() {
+    use crate::growth::measure;
+    let mut g = grown("InlVal", "PLAC", 14.0);
+    let height = g.targets_now().height as f32;
+    // A wire's clearance: a tube along x over the tree, through the crown's middle.
+    let (y, z, r) = (-0.3f32, 0.6 * height, 1.5f32);
+    let zone = move |p: Vec3, _order: u8| (p.y - y).powi(2) + (p.z - z).powi(2) < r * r;
+    let before = measure(&g.skeleton());
+    let cuts = g.cut(&zone);
+    let after = g.skeleton();
+    let cut = measure(&after);
+    assert!(
+        cuts.count(CutKind::Reduction) > 0 && cuts.count(CutKind::Removal) > 0,
+        "{cuts:?}"
+    );
+    // No wood is left in the zone but a trunk that had nothing to be cut back to.
+    for stem in &after.stems {
+        if stem.level == 0 && cuts.left_in_zone {
+            continue;
+        }
+        for c in &after.sections[stem.sections.start as usize..stem.sections.end as usize] {
+            assert!(
+                !zone(c.position, 0),
+                "wood of order {} at {}",
+                stem.level,
+                c.position
+            );
+        }
+    }
+    // The leaf area taken is what the tree lost, and it is the leaves in and near the zone.
+    let lost = before.leaf_area - cut.leaf_area;
+    assert!(
+        cuts.leaf_area > 0.05 * before.leaf_area,
+        "{cuts:?} of {before:?}"
+    );
+    assert!(
+        (lost - cuts.leaf_area).abs() < 0.1 * cuts.leaf_area,
+        "lost {lost:.1} m², cuts say {:.1}",
+        cuts.leaf_area
+    );
+    assert!(cuts.wood_volume > 0.0 && cut.dbh > 0.97 * before.dbh);
+    // The tree grows back: three years on it carries more leaf than just after the cut,
+    // and more of what the cut took has come back each year.
+    let mut owed = g.leaf_deficit();
+    let age = g.age();
+    for year in 1..=3 {
+        g.advance_to(age + year as f64);
+        let now = g.leaf_deficit();
+        assert!(now <= owed, "year {year}: owed {now:.1} m² after {owed:.1}");
+        owed = now;
+    }
+    let regrown = measure(&g.skeleton());
+    assert!(
+        regrown.leaf_area > cut.leaf_area + 0.5 * cuts.leaf_area,
+        "{:.1} m² three years after the cut, {:.1} just after, {:.1} taken",
+        regrown.leaf_area,
+        cut.leaf_area,
+        cuts.leaf_area
+    );
+    // It follows its DBH equation still.
+    let t = g.targets_now();
+    assert!((regrown.dbh / t.dbh - 1.0).abs() < 0.1, "{regrown:?} {t:?}");
+}

@@ -1,0 +1,309 @@
+//! A site's pruning regime carried out on the grown tree, year by year (issue U): in each year
+//! a cycle falls due, the zones it keeps clear are cut free at branch unions
+//! ([`Grower::cut`]), a young tree is trained ([`Grower::train`]), and the year's record says
+//! what was cut, what it cost, and which conflicts it resolved.
+//!
+//! Cost of a crew's visit: the price of the tree's DBH class where itemised costs
+//! (`--costs`) give one; otherwise a programme's average price per tree pruned, labelled as
+//! such ([`PROGRAMME_PRICE`]). A year's line clearance (the utility's crew) and the city's
+//! raising, building clearance and training (its own crew) are a visit each, charged when
+//! the crew finds something to cut.
+
+use super::conflicts::{Conflict, Kind, Zones};
+use super::costs::Costs;
+use super::pruning::{Regime, due};
+use super::site::Site;
+use crate::growth::{CutKind, CutMark, Cuts, Grower};
+
+/// A programme's average price of pruning one street tree, $ (2022): Piedmont, California's
+/// street tree pruning contract of fiscal year 2021-22, $145,370 for 811 trees pruned and 3
+/// removed (City of Piedmont, "Street Tree Pruning on Your Street?", 2 May 2022). Not sized by
+/// the tree: used where no itemised costs give a price by DBH class.
+pub const PROGRAMME_PRICE: f64 = 145_370.0 / 814.0;
+/// Where [`PROGRAMME_PRICE`] comes from.
+pub const PROGRAMME_SOURCE: &str = "a programme's average per tree pruned, not sized by the \
+    tree: Piedmont, California's street tree pruning contract, 2022 ($145,370 for 814 trees)";
+
+/// Why the street cut a tree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Reason {
+    /// Line clearance, by the utility.
+    Line,
+    /// Crown raising over the roadway, the sidewalk and a sight triangle.
+    Raise,
+    /// Clearance from the façade, awnings, signs and street lights.
+    Building,
+    /// Structural pruning of a young tree.
+    Structural,
+}
+
+impl Reason {
+    /// Name in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Reason::Line => "line clearance",
+            Reason::Raise => "crown raising",
+            Reason::Building => "building clearance",
+            Reason::Structural => "structural",
+        }
+    }
+
+    /// The reason that clears a kind of conflict; none for the trunk at the curb, which no
+    /// pruning moves.
+    pub fn of(kind: Kind) -> Option<Reason> {
+        match kind {
+            Kind::Wire => Some(Reason::Line),
+            Kind::Roadway | Kind::Sidewalk | Kind::SightTriangle => Some(Reason::Raise),
+            Kind::Facade | Kind::Awning | Kind::Sign | Kind::Light => Some(Reason::Building),
+            Kind::TrunkFlare => None,
+        }
+    }
+}
+
+/// One year's pruning of a tree.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PruningYear {
+    /// The cycles due this year.
+    pub reasons: Vec<Reason>,
+    /// What the cuts took.
+    pub cuts: Cuts,
+    /// Crews' visits that cut something (the utility's, the city's).
+    pub visits: u32,
+    /// Their cost, $.
+    pub cost: f64,
+    /// Conflicts of the kinds cleared this year that were there before the cuts.
+    pub before: Vec<Kind>,
+    /// Of those and any other, the kinds the tree still has after the cuts though a cycle
+    /// was due for them, or that no pruning clears (the trunk at the curb).
+    pub unresolved: Vec<Kind>,
+}
+
+impl PruningYear {
+    /// The kinds the cuts cleared.
+    pub fn resolved(&self) -> Vec<Kind> {
+        (self.before.iter())
+            .filter(|k| !self.unresolved.contains(k))
+            .copied()
+            .collect()
+    }
+
+    /// Wood removed, m³.
+    pub fn wood_m3(&self) -> f64 {
+        self.cuts.wood_volume
+    }
+
+    /// Leaf area removed, m².
+    pub fn leaf_m2(&self) -> f64 {
+        self.cuts.leaf_area
+    }
+
+    /// Every cut's place, for pictures.
+    pub fn marks(&self) -> &[CutMark] {
+        &self.cuts.marks
+    }
+
+    /// The cuts of a kind.
+    pub fn count(&self, kind: CutKind) -> usize {
+        self.cuts.count(kind)
+    }
+
+    /// Notes what the tree's conflicts are after the cuts.
+    pub fn settle(&mut self, after: &[Conflict]) {
+        self.unresolved = after
+            .iter()
+            .map(|c| c.kind)
+            .filter(|&k| Reason::of(k).is_none_or(|r| self.reasons.contains(&r)))
+            .collect();
+    }
+}
+
+/// A site's regime, ready to cut trees by.
+pub struct Pruner {
+    site: Site,
+    regime: Regime,
+    /// Price of a visit by DBH, and where it comes from.
+    costs: Option<Costs>,
+}
+
+impl Pruner {
+    /// The pruner of a site, none where its regime cuts nothing. `costs` price the visits
+    /// where they are itemised.
+    pub fn new(site: &Site, costs: Option<&Costs>) -> Option<Pruner> {
+        let regime = Regime::of(site);
+        regime.prunes().then(|| Pruner {
+            site: site.clone(),
+            regime,
+            costs: costs.cloned(),
+        })
+    }
+
+    /// The regime it follows.
+    pub fn regime(&self) -> &Regime {
+        &self.regime
+    }
+
+    /// Price of one crew's visit to a tree of `dbh_cm`, $, and its source.
+    pub fn visit_price(&self, dbh_cm: f64) -> (f64, &str) {
+        match &self.costs {
+            Some(Costs::Itemised(c)) => {
+                let class = (c.pruning.iter())
+                    .find(|p| dbh_cm <= p.up_to_dbh_cm)
+                    .or(c.pruning.last());
+                match class {
+                    Some(p) => (p.price, c.source.as_str()),
+                    None => (PROGRAMME_PRICE, PROGRAMME_SOURCE),
+                }
+            }
+            _ => (PROGRAMME_PRICE, PROGRAMME_SOURCE),
+        }
+    }
+
+    /// Whether this regime replaces itemised costs' yearly pruning line: the cycles it cuts
+    /// are that pruning, charged when they fall.
+    pub fn replaces_itemised_pruning(&self) -> bool {
+        matches!(self.costs, Some(Costs::Itemised(_)))
+    }
+
+    /// The cycles due at `age` (a whole number of years since planting), carried out on the
+    /// tree `grower` holds at that age; none where no cycle is due. `conflicts` finds the
+    /// tree's conflicts with the site (the crews look before they cut).
+    pub fn year(
+        &self,
+        grower: &mut Grower,
+        age: f64,
+        conflicts: impl Fn(&Grower) -> Vec<Conflict>,
+    ) -> Option<PruningYear> {
+        let year = age.round();
+        if (age - year).abs() > 1e-6 || year < 1.0 {
+            return None;
+        }
+        let year = year as u32;
+        let cycle_due = |c: Option<u32>| c.is_some_and(|c| due(c, year));
+        let wires: Vec<bool> = self.regime.lines.iter().map(|&c| cycle_due(c)).collect();
+        let dbh = grower.targets(age).dbh;
+        let mut reasons = Vec::new();
+        if wires.iter().any(|&w| w) {
+            reasons.push(Reason::Line);
+        }
+        if cycle_due(self.regime.raise) {
+            reasons.push(Reason::Raise);
+        }
+        if cycle_due(self.regime.building) {
+            reasons.push(Reason::Building);
+        }
+        if let Some((cycle, until)) = self.regime.structural
+            && due(cycle, year)
+            && dbh < until
+        {
+            reasons.push(Reason::Structural);
+        }
+        if reasons.is_empty() {
+            return None;
+        }
+        let before: Vec<Kind> = conflicts(grower)
+            .iter()
+            .map(|c| c.kind)
+            .filter(|&k| Reason::of(k).is_some_and(|r| reasons.contains(&r)))
+            .collect();
+        // The zones this year's cycles clear: only the wires whose cycle is due.
+        let mut site = self.site.clone();
+        let mut wire = wires.iter();
+        site.wire.retain(|_| *wire.next().unwrap_or(&false));
+        let zones = Zones::new(&site).only(|k| Reason::of(k).is_some_and(|r| reasons.contains(&r)));
+        let mut cuts = grower.cut(&|p, order| zones.kind_of(p, Some(order)).is_some());
+        let cleared = !cuts.marks.is_empty();
+        let mut visits = 0;
+        if before.iter().any(|&k| Reason::of(k) == Some(Reason::Line)) && cleared {
+            visits += 1;
+        }
+        let city = before.iter().any(|&k| Reason::of(k) != Some(Reason::Line)) && cleared;
+        let mut trained = false;
+        if reasons.contains(&Reason::Structural) {
+            let t = grower.train();
+            trained = !t.marks.is_empty();
+            cuts.merge(t);
+        }
+        if city || trained {
+            visits += 1;
+        }
+        let cost = visits as f64 * self.visit_price(dbh).0;
+        Some(PruningYear {
+            reasons,
+            cuts,
+            visits,
+            cost,
+            before,
+            unresolved: Vec::new(),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::growth::Database;
+    use crate::street::conflicts::conflicts;
+    use crate::street::rank::{Pruning, run};
+
+    fn narrow() -> Site {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../sites/narrow-under-wires.toml"
+        ))
+        .expect("the narrow site");
+        Site::parse(&text, "narrow-under-wires.toml").expect("a good site")
+    }
+
+    #[test]
+    fn a_line_clearance_cycle_clears_the_wire_and_is_charged() {
+        let site = narrow();
+        let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+        let mut grower = Grower::new(plane, crate::growth::GrowthOptions::default());
+        grower.advance_to(12.0);
+        let pruner = Pruner::new(&site, None).expect("the default standard prunes");
+        // Year 12 falls on the 4-year line cycle; 11 on none.
+        assert!(pruner.year(&mut grower, 11.0, |_| Vec::new()).is_none());
+        let mut year = pruner
+            .year(&mut grower, 12.0, |g| conflicts(&g.skeleton(), &site))
+            .expect("a cycle is due");
+        assert_eq!(year.reasons, vec![Reason::Line]);
+        assert!(year.before.contains(&Kind::Wire), "{:?}", year.before);
+        let after = conflicts(&grower.skeleton(), &site);
+        year.settle(&after);
+        assert!(!after.iter().any(|c| c.kind == Kind::Wire), "{after:?}");
+        assert_eq!(year.resolved(), vec![Kind::Wire]);
+        assert!(year.count(CutKind::Removal) + year.count(CutKind::Reduction) > 0);
+        assert!(year.leaf_m2() > 0.0 && year.wood_m3() > 0.0);
+        assert_eq!(year.visits, 1);
+        assert!((year.cost - PROGRAMME_PRICE).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_run_prunes_by_the_regime_unless_told_not_to() {
+        let site = narrow();
+        let m = Database::builtin().find("InlVal", "PLAC").unwrap();
+        let costs = Costs::builtin("InlVal");
+        let pruned = run(
+            &m,
+            9.0,
+            0,
+            Some(&site),
+            None,
+            costs.as_ref(),
+            Pruning::Regime,
+        );
+        let grown = run(&m, 9.0, 0, Some(&site), None, costs.as_ref(), Pruning::Off);
+        assert!(grown.accounts.iter().all(|a| a.pruning.is_none()));
+        let total = pruned.pruning().expect("pruned");
+        assert!(total.cycles >= 2 && total.cost > 0.0, "{total:?}");
+        // The cycles' cost is in the accounts; the leaf area taken shows in the crown.
+        assert!((pruned.costs() - grown.costs() - total.cost).abs() < 1e-6);
+        let leaf = |r: &crate::street::rank::Ranked| r.accounts.last().unwrap().surfaces.0;
+        assert!(
+            leaf(&pruned) < leaf(&grown),
+            "{} {}",
+            leaf(&pruned),
+            leaf(&grown)
+        );
+    }
+}
