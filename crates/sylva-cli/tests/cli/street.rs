@@ -306,6 +306,29 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         rows.iter()
             .any(|r| !r["first_conflicts"].as_array().unwrap().is_empty())
     );
+    // The site's regime (here the default standard) prunes every tree; its record is there
+    // even where no cycle has cut yet, and `--no-pruning` leaves it out.
+    assert!(
+        rows.iter().all(|r| r["pruning"]["years"].is_array()),
+        "{}",
+        rows[0]
+    );
+    let uncut = sylva(&[
+        "rank",
+        "--region",
+        "InlVal",
+        "--years",
+        "4",
+        "--species",
+        "PLAC",
+        "--site",
+        site.to_str().unwrap(),
+        "--json",
+        "--no-pruning",
+    ]);
+    assert!(uncut.status.success(), "{}", text(&uncut.stderr));
+    let uncut: serde_json::Value = serde_json::from_str(text(&uncut.stdout).trim()).unwrap();
+    assert!(uncut["pruning"].is_null(), "{uncut}");
     // With a site the site's own figures rank; the typical position stands beside them.
     assert!(rows.iter().all(|r| r["ranked_by"] == "this site"));
     assert!(

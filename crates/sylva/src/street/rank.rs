@@ -21,6 +21,8 @@ pub struct Ranked {
     pub accounts: Vec<YearAccount>,
     /// What was not computed, with reasons.
     pub missing: Vec<String>,
+    /// Whether it was grown under a pruning regime (a site's, and not `Pruning::Off`).
+    pub pruned: bool,
 }
 
 impl Ranked {
@@ -47,7 +49,8 @@ impl Ranked {
         self.accounts.last().map_or(0.0, |a| a.age)
     }
 
-    /// Its pruning over the years, where it was grown with a regime.
+    /// Its pruning over the years, where it was grown with a regime (no cycle may have
+    /// fallen due yet: then it is all zeros).
     pub fn pruning(&self) -> Option<PruningSummary> {
         let years: Vec<&PruningYear> = (self.accounts.iter())
             .filter_map(|a| a.pruning.as_ref())
@@ -59,7 +62,7 @@ impl Ranked {
         let mut resolved: Vec<Kind> = years.iter().flat_map(|y| y.resolved()).collect();
         resolved.sort();
         resolved.dedup();
-        (!years.is_empty()).then(|| PruningSummary {
+        self.pruned.then(|| PruningSummary {
             cycles: years.iter().filter(|y| !y.cuts.marks.is_empty()).count(),
             visits: years.iter().map(|y| y.visits).sum(),
             wood_m3: years.iter().map(|y| y.wood_m3()).sum(),
@@ -201,6 +204,7 @@ pub fn run(
         species: m.clone(),
         accounts,
         missing: assessor.missing().to_vec(),
+        pruned: pruner.is_some(),
     }
 }
 
