@@ -7,9 +7,12 @@ use crate::shared::{database, headless, load_street, save_picture};
 use anyhow::{Context, Result, bail};
 use sylva::export::{to_glb, write_atomically};
 use sylva::growth::report::{self, Cohort, age_label, run_ages};
+use sylva::growth::{CutKind, Grower};
 use sylva::growth::{Measured, dressed_mesh};
+use sylva::street::picture::{pruning_picture, site_picture};
+use sylva::street::pruner::{Pruner, PruningYear};
 use sylva::street::rank::first_conflicts;
-use sylva::street::{Assessor, Basis, Kind, YearAccount, picture::site_picture, table};
+use sylva::street::{Assessor, Basis, Kind, Site, YearAccount, table};
 use sylva_render::Picture;
 use sylva_render::caption::with_caption;
 use sylva_render::street::{comparison_picture, tree_picture};
@@ -84,13 +87,42 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     let extent = cohort.extent(&ages);
     let mut accounts: Vec<Vec<YearAccount>> = cohort.species.iter().map(|_| Vec::new()).collect();
     let mut seen: Vec<Vec<Kind>> = cohort.species.iter().map(|_| Vec::new()).collect();
+    // The site's pruning regime cuts every tree as its cycles fall due, year by year.
+    let pruner = (site.as_ref())
+        .filter(|_| !args.street.no_pruning)
+        .and_then(|s| Pruner::new(s, costs.as_ref()));
     for &age in &ages {
+        let mut cycles: Vec<Option<PruningYear>> = cohort.species.iter().map(|_| None).collect();
+        if let (Some(pruner), Some(site)) = (&pruner, &site) {
+            for (i, grower) in cohort.growers.iter_mut().enumerate() {
+                let m = &cohort.species[i];
+                let mut failed = None;
+                pruner.advance(grower, age, |year, cycle, before, after| {
+                    if !args.no_pictures && failed.is_none() && !cycle.cuts.marks.is_empty() {
+                        let size = (width * 2, height);
+                        let picture = cycle_picture(m, year, &cycle, &before, after, site, size);
+                        let name = format!("{}-pruned-age-{}.png", m.species.code, age_label(year));
+                        failed = save_picture(&output.join(name), &picture).err();
+                    }
+                    cycles[i] = Some(match cycles[i].take() {
+                        Some(earlier) => PruningYear::merged(earlier, cycle),
+                        None => cycle,
+                    });
+                });
+                if let Some(e) = failed {
+                    return Err(e);
+                }
+            }
+        }
         let skeletons = cohort.advance_to(age);
         let (mut meshes, mut dresses) = (Vec::new(), Vec::new());
         for (i, skeleton) in skeletons.iter().enumerate() {
             let m = &cohort.species[i];
             let grown = cohort.history[i].last().context("an age was recorded")?;
-            let account = assessors[i].year(age, &grown.model, skeleton);
+            let mut account = assessors[i].year(age, &grown.model, skeleton);
+            if let Some(p) = &pruner {
+                p.charge(&mut account, cycles[i].take());
+            }
             let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &report::MESH);
             let stem = format!("{}-age-{}{season}", m.species.code, age_label(age));
             // The site at the year each kind of conflict first happens, marked.
@@ -155,8 +187,21 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                     let said: Vec<String> = new.iter().map(|c| c.describe()).collect();
                     format!("  new conflicts: {}", said.join(", "))
                 };
+                let pruned = account.pruning.as_ref().map_or(String::new(), |p| {
+                    format!(
+                        "  pruned ({}): {} cuts, {:.0} m2 of leaf, ${:.0}",
+                        p.reasons
+                            .iter()
+                            .map(|r| r.name())
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                        p.cuts.marks.len(),
+                        p.leaf_m2(),
+                        p.cost
+                    )
+                });
                 println!(
-                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments  {}{conflicts}",
+                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments  {}{conflicts}{pruned}",
                     m.label(),
                     age_label(age),
                     model.height,
@@ -278,4 +323,62 @@ fn nets(a: &YearAccount, has_site: bool) -> String {
         (None, Some(s)) => format!("net {s}"),
         (None, None) => format!("net ${:.0}/yr (own crown, no site)", a.net(Basis::Site)),
     }
+}
+
+/// A pruning cycle's picture, captioned: the tree across the street before and after the
+/// year's cuts.
+fn cycle_picture(
+    m: &Measured,
+    year: f64,
+    cycle: &PruningYear,
+    before: &sylva::Skeleton,
+    after: &Grower,
+    site: &Site,
+    size: (u32, u32),
+) -> Picture {
+    let (w, h, rgba) = pruning_picture(before, &after.skeleton(), site, cycle.marks(), size);
+    let picture = Picture {
+        width: w,
+        height: h,
+        rgba,
+        stats: Default::default(),
+    };
+    let kinds = |k: &[Kind]| {
+        let names: Vec<&str> = k.iter().map(|k| k.name()).collect();
+        if names.is_empty() {
+            "none".to_string()
+        } else {
+            names.join(", ")
+        }
+    };
+    let reasons: Vec<&str> = cycle.reasons.iter().map(|r| r.name()).collect();
+    let lines = [
+        format!(
+            "{}, age {}: {}: {} removal and {} reduction cuts (largest {:.0} cm across), \
+             {:.1} m2 of leaf and {:.3} m3 of wood taken, {} visit(s), ${:.2}",
+            m.label(),
+            age_label(year),
+            reasons.join(", "),
+            cycle.count(CutKind::Removal),
+            cycle.count(CutKind::Reduction),
+            100.0 * cycle.cuts.largest_diameter(),
+            cycle.leaf_m2(),
+            cycle.wood_m3(),
+            cycle.visits,
+            cycle.cost
+        ),
+        format!(
+            "in the way before: {}; left by the cuts: {}",
+            kinds(&cycle.before),
+            if cycle.cuts.left_in_zone {
+                "a trunk with no lateral to cut back to"
+            } else {
+                "nothing"
+            }
+        ),
+        "left: before the cuts; right: after, at one scale; blue rings: the cuts; red: in the \
+         way; circles: wire and lamp clearances; a 1.8 m person"
+            .to_string(),
+    ];
+    with_caption(&picture, &lines, 18.0)
 }

@@ -67,7 +67,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
             site.as_ref(),
             prices.as_ref(),
             costs.as_ref(),
-            if args.no_pruning {
+            if args.street.no_pruning {
                 Pruning::Off
             } else {
                 Pruning::Regime
@@ -364,22 +364,11 @@ fn pruning_json(r: &sylva::street::rank::Ranked) -> serde_json::Value {
     let years: Vec<serde_json::Value> = r
         .accounts
         .iter()
-        .filter_map(|a| a.pruning.as_ref().map(|p| (a, p)))
-        .map(|(a, p)| {
-            serde_json::json!({
-                "age": a.age,
-                "reasons": p.reasons.iter().map(|r| r.name()).collect::<Vec<_>>(),
-                "removal_cuts": p.count(sylva::growth::CutKind::Removal),
-                "reduction_cuts": p.count(sylva::growth::CutKind::Reduction),
-                "largest_cut_cm": round(100.0 * p.cuts.largest_diameter() as f64, 1),
-                "wood_removed_m3": round(p.wood_m3(), 4),
-                "leaf_removed_m2": round(p.leaf_m2(), 1),
-                "leaf_area_m2": round(a.surfaces.0, 1),
-                "visits": p.visits,
-                "cost_usd": round(p.cost, 2),
-                "resolved": kinds(&p.resolved()),
-                "unresolved": kinds(&p.unresolved),
-            })
+        .filter_map(|a| {
+            let mut year = sylva::street::table::pruning_json(a.pruning.as_ref()?);
+            year["age"] = a.age.into();
+            year["leaf_area_m2"] = round(a.surfaces.0, 1).into();
+            Some(year)
         })
         .collect();
     serde_json::json!({

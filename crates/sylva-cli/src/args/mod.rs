@@ -542,6 +542,11 @@ pub struct StreetArgs {
     /// and cycle, removal, sidewalk repair, clean-up); none are built in.
     #[arg(long, value_name = "COSTS.toml")]
     pub costs: Option<PathBuf>,
+
+    /// Never cut the trees: they grow on through the site's zones (default: with --site, the
+    /// site's [pruning] regime, or the us-street standard's, cuts them as its cycles fall due).
+    #[arg(long)]
+    pub no_pruning: bool,
 }
 
 #[derive(Args, Debug)]
@@ -590,11 +595,6 @@ pub struct RankArgs {
     /// Print one JSON object per species instead of the table.
     #[arg(long)]
     pub json: bool,
-
-    /// Never cut the trees: they grow on through the site's zones (default: the site's
-    /// [pruning] regime, or the us-street standard's, cuts them as its cycles fall due).
-    #[arg(long)]
-    pub no_pruning: bool,
 }
 
 /// What `sylva rank` ranks by.

@@ -80,7 +80,7 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         // penalty, never a gain.
         assert!(number(row, "heating_penalty_kbtu") >= 0.0, "{row:?}");
         let costs: f64 = [
-            "planting", "pruning", "removal", "sidewalk", "cleanup", "average",
+            "planting", "pruning", "removal", "sidewalk", "cleanup", "average", "cycles",
         ]
         .iter()
         .map(|c| number(row, &format!("cost_{c}_usd")))
@@ -122,12 +122,62 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
     assert_eq!(number(&rows[7], "cost_planting_usd"), 0.0);
     // Cooling grows with the crown.
     assert!(number(&rows[7], "cooling_kwh") > number(&rows[1], "cooling_kwh"));
-    // By age 8 the leader is inside the wires' clearance.
-    assert!(
-        column(&header, &rows[7], "conflicts").contains("wire:"),
-        "{:?}",
-        rows[7]
+    // By age 8 the crown has grown into the wires' clearance, and the utility's 4-year cycle
+    // has cleared it, charged at the itemised class price (the cycles replace the yearly
+    // pruning line).
+    for age in [4, 8] {
+        let row = &rows[age - 1];
+        assert!(
+            column(&header, row, "pruning").contains("line clearance"),
+            "{row:?}"
+        );
+        assert!(
+            column(&header, row, "pruning_resolved").contains("wire"),
+            "{row:?}"
+        );
+        assert!(
+            !column(&header, row, "conflicts").contains("wire:"),
+            "{row:?}"
+        );
+        assert!(number(row, "pruning_removal_cuts") + number(row, "pruning_reduction_cuts") > 0.0);
+        assert_eq!(
+            number(row, "pruning_cost_usd"),
+            number(row, "cost_cycles_usd")
+        );
+        let class = if number(row, "dbh_measured_cm") <= 15.0 {
+            30.0
+        } else {
+            300.0
+        };
+        assert_eq!(number(row, "pruning_visits"), 1.0, "{row:?}");
+        assert_eq!(
+            number(row, "pruning_cost_usd"),
+            class,
+            "the class price: {row:?}"
+        );
+    }
+    assert!(rows.iter().all(|r| number(r, "cost_pruning_usd") == 0.0));
+    assert_eq!(
+        column(&header, &rows[1], "pruning"),
+        "",
+        "no cycle falls at 2"
     );
+    assert_eq!(
+        column(&header, &rows[2], "pruning"),
+        "structural",
+        "training at 3"
+    );
+    // Each cycle that cut is drawn before and after, its cuts ringed in blue.
+    for age in ["04", "08"] {
+        let p = image::open(out.join(format!("PLAC-pruned-age-{age}.png")))
+            .unwrap()
+            .to_rgb8();
+        let blue = p
+            .pixels()
+            .filter(|c| c[2] > 180 && c[0] < 90 && c[1] < 120)
+            .count();
+        assert!(blue > 20, "{age}: {blue} blue pixels");
+    }
     // The site is drawn at each year a kind of conflict first happens, with red in it.
     let pictures: Vec<_> = std::fs::read_dir(&out)
         .unwrap()
@@ -166,6 +216,7 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         "8",
         "--site",
         site.to_str().unwrap(),
+        "--no-pruning",
         "--no-pictures",
         "--json",
         "-o",
@@ -175,6 +226,8 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
     let record: serde_json::Value = serde_json::from_str(text(&run.stdout).trim()).unwrap();
     let street = &record["street"];
     assert!(street["co2_stored_kg"].as_f64().unwrap() > 0.0);
+    // Never cut: no pruning, and the leader grows on into the wires' clearance.
+    assert!(street["pruning"].is_null(), "{street}");
     // No --costs: Modesto's published programme average per tree, nothing itemised.
     assert_eq!(street["cost_usd"]["average"], 28.77);
     assert_eq!(street["cost_usd"]["pruning"], 0.0);

@@ -9,10 +9,12 @@
 //! raising, building clearance and training (its own crew) are a visit each, charged when
 //! the crew finds something to cut.
 
-use super::conflicts::{Conflict, Kind, Zones};
+use super::conflicts::{Conflict, Kind, Zones, conflicts};
 use super::costs::Costs;
+use super::ledger::YearAccount;
 use super::pruning::{Regime, due};
 use super::site::Site;
+use crate::Skeleton;
 use crate::growth::{CutKind, CutMark, Cuts, Grower};
 
 /// A programme's average price of pruning one street tree, $ (2022): Piedmont, California's
@@ -107,6 +109,28 @@ impl PruningYear {
         self.cuts.count(kind)
     }
 
+    /// Two years' pruning as one: a run that records every few years reports the cycles
+    /// since its last record together.
+    pub fn merged(mut earlier: PruningYear, later: PruningYear) -> PruningYear {
+        for r in later.reasons {
+            if !earlier.reasons.contains(&r) {
+                earlier.reasons.push(r);
+            }
+        }
+        earlier.reasons.sort();
+        for k in later.before {
+            if !earlier.before.contains(&k) {
+                earlier.before.push(k);
+            }
+        }
+        earlier.before.sort();
+        earlier.cuts.merge(later.cuts);
+        earlier.visits += later.visits;
+        earlier.cost += later.cost;
+        earlier.unresolved = later.unresolved;
+        earlier
+    }
+
     /// Notes what the tree's conflicts are after the cuts.
     pub fn settle(&mut self, after: &[Conflict]) {
         self.unresolved = after
@@ -164,15 +188,45 @@ impl Pruner {
         matches!(self.costs, Some(Costs::Itemised(_)))
     }
 
-    /// The cycles due at `age` (a whole number of years since planting), carried out on the
-    /// tree `grower` holds at that age; none where no cycle is due. `conflicts` finds the
-    /// tree's conflicts with the site (the crews look before they cut).
-    pub fn year(
+    /// Puts a year's pruning into its account: the conflicts it resolved, and its cost where
+    /// the account has costs (with itemised costs, the cycles replace the yearly pruning line).
+    pub fn charge(&self, account: &mut YearAccount, cycle: Option<PruningYear>) {
+        if let Some(costs) = &mut account.costs {
+            if self.replaces_itemised_pruning() {
+                costs.pruning = 0.0;
+            }
+            costs.cycles = cycle.as_ref().map_or(0.0, |c| c.cost);
+        }
+        account.pruning = cycle.map(|mut c| {
+            c.settle(&account.conflicts);
+            c
+        });
+    }
+
+    /// Grows `grower` on to `age` a year at a time, carrying out every cycle that falls due
+    /// on the way; `each` is given each year's pruning, the tree as it stood before the cuts,
+    /// and the grower after them.
+    pub fn advance(
         &self,
         grower: &mut Grower,
         age: f64,
-        conflicts: impl Fn(&Grower) -> Vec<Conflict>,
-    ) -> Option<PruningYear> {
+        mut each: impl FnMut(f64, PruningYear, Skeleton, &Grower),
+    ) {
+        let mut year = (grower.age() + 1e-6).floor() + 1.0;
+        while year <= age + 1e-9 {
+            grower.advance_to(year);
+            if let Some((cycle, before)) = self.year(grower, year) {
+                each(year, cycle, before, grower);
+            }
+            year += 1.0;
+        }
+        grower.advance_to(age);
+    }
+
+    /// The cycles due at `age` (a whole number of years since planting), carried out on the
+    /// tree `grower` holds at that age, with the tree as it stood before the cuts; none where
+    /// no cycle is due. The crews look at the tree's conflicts before they cut.
+    pub fn year(&self, grower: &mut Grower, age: f64) -> Option<(PruningYear, Skeleton)> {
         let year = age.round();
         if (age - year).abs() > 1e-6 || year < 1.0 {
             return None;
@@ -200,7 +254,8 @@ impl Pruner {
         if reasons.is_empty() {
             return None;
         }
-        let before: Vec<Kind> = conflicts(grower)
+        let standing = grower.skeleton();
+        let before: Vec<Kind> = conflicts(&standing, &self.site)
             .iter()
             .map(|c| c.kind)
             .filter(|&k| Reason::of(k).is_some_and(|r| reasons.contains(&r)))
@@ -227,14 +282,15 @@ impl Pruner {
             visits += 1;
         }
         let cost = visits as f64 * self.visit_price(dbh).0;
-        Some(PruningYear {
+        let year = PruningYear {
             reasons,
             cuts,
             visits,
             cost,
             before,
             unresolved: Vec::new(),
-        })
+        };
+        Some((year, standing))
     }
 }
 
@@ -242,7 +298,6 @@ impl Pruner {
 mod tests {
     use super::*;
     use crate::growth::Database;
-    use crate::street::conflicts::conflicts;
     use crate::street::rank::{Pruning, run};
 
     fn narrow() -> Site {
@@ -262,10 +317,13 @@ mod tests {
         grower.advance_to(12.0);
         let pruner = Pruner::new(&site, None).expect("the default standard prunes");
         // Year 12 falls on the 4-year line cycle; 11 on none.
-        assert!(pruner.year(&mut grower, 11.0, |_| Vec::new()).is_none());
-        let mut year = pruner
-            .year(&mut grower, 12.0, |g| conflicts(&g.skeleton(), &site))
-            .expect("a cycle is due");
+        assert!(pruner.year(&mut grower, 11.0).is_none());
+        let (mut year, standing) = pruner.year(&mut grower, 12.0).expect("a cycle is due");
+        assert!(
+            conflicts(&standing, &site)
+                .iter()
+                .any(|c| c.kind == Kind::Wire)
+        );
         assert_eq!(year.reasons, vec![Reason::Line]);
         assert!(year.before.contains(&Kind::Wire), "{:?}", year.before);
         let after = conflicts(&grower.skeleton(), &site);

@@ -1,7 +1,7 @@
 //! A region's species side by side: each grown year by year on the same site, its benefits
 //! and costs summed over the years, and the first year it runs into the street.
 
-use super::conflicts::{Conflict, Kind, conflicts};
+use super::conflicts::{Conflict, Kind};
 use super::costs::Costs;
 use super::ledger::{Assessor, YearAccount};
 use super::money::Basis;
@@ -183,12 +183,15 @@ pub fn run(
     };
     let mut accounts = Vec::new();
     for age in ages(m, years) {
-        let cycle = pruner.as_ref().and_then(|p| {
-            let site = site.expect("a pruner has a site");
-            let g = &mut cohort.growers[0];
-            g.advance_to(age);
-            p.year(g, age, |g| conflicts(&g.skeleton(), site))
-        });
+        let mut cycle = None;
+        if let Some(p) = &pruner {
+            p.advance(&mut cohort.growers[0], age, |_, year, _, _| {
+                cycle = Some(match cycle.take() {
+                    Some(earlier) => PruningYear::merged(earlier, year),
+                    None => year,
+                })
+            });
+        }
         let skeleton = cohort.advance_to(age).remove(0);
         let dims = cohort.history[0]
             .last()
@@ -196,7 +199,7 @@ pub fn run(
             .unwrap_or_default();
         let mut account = assessor.year(age, &dims, &skeleton);
         if let Some(p) = &pruner {
-            charge(p, &mut account, cycle);
+            p.charge(&mut account, cycle);
         }
         accounts.push(account);
     }
@@ -206,19 +209,4 @@ pub fn run(
         missing: assessor.missing().to_vec(),
         pruned: pruner.is_some(),
     }
-}
-
-/// Puts a year's pruning into its account: the conflicts it resolved, and its cost where the
-/// account has costs (with itemised costs, the cycles replace the yearly pruning line).
-fn charge(pruner: &Pruner, account: &mut YearAccount, cycle: Option<PruningYear>) {
-    if let Some(costs) = &mut account.costs {
-        if pruner.replaces_itemised_pruning() {
-            costs.pruning = 0.0;
-        }
-        costs.cycles = cycle.as_ref().map_or(0.0, |c| c.cost);
-    }
-    account.pruning = cycle.map(|mut c| {
-        c.settle(&account.conflicts);
-        c
-    });
 }

@@ -1,10 +1,12 @@
 //! Yearly accounts as CSV columns and JSON, for `sylva grow`, `sylva rank` and anything that
 //! serves them (an empty cell or `null` where a model or a price is missing, never a zero).
 
-use super::conflicts::Conflict;
+use super::conflicts::{Conflict, Kind};
 use super::ledger::YearAccount;
 use super::money::{Basis, Money};
+use super::pruner::PruningYear;
 use super::typical::Typical;
+use crate::growth::CutKind;
 use std::fmt::Write as _;
 
 /// A column: its name and how a cell is written from an account.
@@ -126,6 +128,7 @@ const COLUMNS: &[Column] = &[
     }),
     ("cost_cleanup_usd", |a| cell(a.costs.map(|c| c.cleanup), 2)),
     ("cost_average_usd", |a| cell(a.costs.map(|c| c.average), 2)),
+    ("cost_cycles_usd", |a| cell(a.costs.map(|c| c.cycles), 2)),
     ("net_usd", |a| format!("{:.2}", a.net(Basis::Site))),
     ("typical_net_usd", |a| {
         a.typical
@@ -133,7 +136,68 @@ const COLUMNS: &[Column] = &[
             .map_or(String::new(), |_| format!("{:.2}", a.net(Basis::Typical)))
     }),
     ("conflicts", |a| conflicts_cell(&a.conflicts)),
+    // This year's pruning, empty where no cycle fell due (or the tree was not pruned).
+    ("pruning", |a| {
+        pruning_cell(a, |p| {
+            let reasons: Vec<&str> = p.reasons.iter().map(|r| r.name()).collect();
+            reasons.join(";")
+        })
+    }),
+    ("pruning_removal_cuts", |a| {
+        pruning_cell(a, |p| p.count(CutKind::Removal).to_string())
+    }),
+    ("pruning_reduction_cuts", |a| {
+        pruning_cell(a, |p| p.count(CutKind::Reduction).to_string())
+    }),
+    ("pruning_largest_cut_cm", |a| {
+        pruning_cell(a, |p| format!("{:.1}", 100.0 * p.cuts.largest_diameter()))
+    }),
+    ("pruning_wood_m3", |a| {
+        pruning_cell(a, |p| format!("{:.4}", p.wood_m3()))
+    }),
+    ("pruning_leaf_m2", |a| {
+        pruning_cell(a, |p| format!("{:.1}", p.leaf_m2()))
+    }),
+    ("pruning_visits", |a| {
+        pruning_cell(a, |p| p.visits.to_string())
+    }),
+    ("pruning_cost_usd", |a| {
+        pruning_cell(a, |p| format!("{:.2}", p.cost))
+    }),
+    ("pruning_resolved", |a| {
+        pruning_cell(a, |p| kinds_cell(&p.resolved()))
+    }),
+    ("pruning_unresolved", |a| {
+        pruning_cell(a, |p| kinds_cell(&p.unresolved))
+    }),
 ];
+
+fn pruning_cell(a: &YearAccount, f: impl Fn(&PruningYear) -> String) -> String {
+    a.pruning.as_ref().map_or(String::new(), f)
+}
+
+fn kinds_cell(kinds: &[Kind]) -> String {
+    kinds.iter().map(|k| k.name()).collect::<Vec<_>>().join(";")
+}
+
+/// A year's pruning as JSON: its reasons, cuts, what they took, visits and cost, and the
+/// conflicts they resolved and left.
+pub fn pruning_json(p: &PruningYear) -> serde_json::Value {
+    let round = |v: f64, k: f64| (v * k).round() / k;
+    let kinds = |k: &[Kind]| k.iter().map(|k| k.name()).collect::<Vec<_>>();
+    serde_json::json!({
+        "reasons": p.reasons.iter().map(|r| r.name()).collect::<Vec<_>>(),
+        "removal_cuts": p.count(CutKind::Removal),
+        "reduction_cuts": p.count(CutKind::Reduction),
+        "largest_cut_cm": round(100.0 * p.cuts.largest_diameter() as f64, 10.0),
+        "wood_removed_m3": round(p.wood_m3(), 1e4),
+        "leaf_removed_m2": round(p.leaf_m2(), 10.0),
+        "visits": p.visits,
+        "cost_usd": round(p.cost, 100.0),
+        "resolved": kinds(&p.resolved()),
+        "unresolved": kinds(&p.unresolved),
+    })
+}
 
 /// The account's CSV columns, after a growth report's own: `net_usd` is the grown tree's on
 /// this site, `typical_net_usd` i-Tree's typical position's.
@@ -240,7 +304,9 @@ pub fn json(a: &YearAccount) -> serde_json::Value {
             "sidewalk": (c.sidewalk * 100.0).round() / 100.0,
             "cleanup": (c.cleanup * 100.0).round() / 100.0,
             "average": (c.average * 100.0).round() / 100.0,
+            "cycles": (c.cycles * 100.0).round() / 100.0,
         })),
+        "pruning": a.pruning.as_ref().map(pruning_json),
         "net_usd": (a.net(Basis::Site) * 100.0).round() / 100.0,
         "typical": typical,
         "conflicts": a.conflicts.iter().map(|c| serde_json::json!({

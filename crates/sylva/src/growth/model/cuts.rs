@@ -407,9 +407,20 @@ impl Grower {
             before,
             after: self.young_shoot(),
         });
+        self.cut_top = self.top_after_cuts();
         self.refresh_radii();
         self.allocate_leaves();
         self.update_light();
+    }
+
+    /// The top of the live wood of a tree the street has cut; none on a tree never cut.
+    pub(super) fn top_after_cuts(&self) -> Option<f32> {
+        self.regrowth.is_some().then(|| {
+            (self.segments.iter())
+                .filter(|s| self.branches[s.branch as usize].alive)
+                .map(|s| s.end().z)
+                .fold(0.0, f32::max)
+        })
     }
 
     /// Leaf area the tree carries now, m².

@@ -43,6 +43,16 @@ impl Grower {
         if branch.order == 0 {
             return false;
         }
+        // On a tree the street has cut, a limb goes only when all of it is below the crown
+        // base: the limbs the cuts left carry the crown around the cleared zone, and shedding
+        // one by where it leaves the trunk, or where it dips, would take the crown above with
+        // it (a plane cut under a wire lost its whole crown at 33 years that way).
+        if self.regrowth.is_some() {
+            return branch.segments.iter().all(|&s| {
+                let s = &self.segments[s as usize];
+                s.start.z.max(s.end().z) < base - 0.02
+            });
+        }
         // A scaffold's shedding takes everything on it.
         if branch.anchor < base - 0.02 {
             return true;

@@ -306,6 +306,9 @@ pub struct Grower {
     /// The leaf area the last cuts took and the tree has not yet grown back (`cuts.rs`);
     /// none on a tree never cut.
     regrowth: Option<cuts::Regrowth>,
+    /// The top of a tree whose leader the street cut back, m: its crown base is held to the
+    /// measured share of it (`Grower::targets`).
+    cut_top: Option<f32>,
     /// Time spent in the last step.
     pub times: StepTimes,
 }
@@ -385,6 +388,7 @@ impl Grower {
             leaf_boost: 1.0,
             leaf_reach: LEAF_REACH,
             regrowth: None,
+            cut_top: None,
             times: StepTimes::default(),
             options,
             measured,
@@ -529,7 +533,13 @@ impl Grower {
         let m = Targets::of(&self.measured, t.max(first));
         // The crown base comes down faster than the height, so the sapling's crown starts on
         // its trunk and not above its top.
-        let base = m.crown_base() * ramp * ramp;
+        let mut base = m.crown_base() * ramp * ramp;
+        // A tree cut back below its measured top keeps the measured crown ratio on the top it
+        // has: the rising crown base would otherwise shed the scaffolds that now carry its
+        // whole crown.
+        if let Some(top) = self.cut_top {
+            base = base.min(top as f64 * base / (m.height * ramp).max(1e-6));
+        }
         Targets {
             height: m.height * ramp,
             crown_diameter: m.crown_diameter * ramp,
@@ -569,6 +579,7 @@ impl Grower {
             self.flush(true);
         }
         self.elongate();
+        self.cut_top = self.top_after_cuts();
         self.shed();
         self.fit_crown();
         self.refresh_radii();

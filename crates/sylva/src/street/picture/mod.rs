@@ -2,7 +2,8 @@
 //! sidewalk, the building's wall with its awnings and signs, lines and lamps with their
 //! clearances, the clear heights, a 1.8 m person), and from above (the same fixtures in plan,
 //! the sight triangle, the crown's spread). Whatever is in the way is red; the zones entered
-//! this year are outlined in red.
+//! this year are outlined in red. A pruning cycle is drawn across the street, before and
+//! after its cuts, each cut ringed in blue.
 
 mod canvas;
 mod plan;
@@ -11,6 +12,7 @@ use super::conflicts::{Kind, Zones, flare_radius};
 use super::crown::leaf_centre;
 use super::site::Site;
 use crate::Skeleton;
+use crate::growth::CutMark;
 use canvas::{Canvas, paint};
 use tiny_skia::{Color, Pixmap};
 
@@ -48,10 +50,10 @@ pub fn site_picture(skeleton: &Skeleton, site: &Site, marked: &[Kind], size: (u3
     section(
         &mut pixmap,
         (0.0, 0.0, half, h as f64),
-        skeleton,
+        (skeleton, skeleton),
         site,
         &zones,
-        marked,
+        (marked, &[]),
     );
     plan::plan(
         &mut pixmap,
@@ -72,17 +74,54 @@ pub fn site_picture(skeleton: &Skeleton, site: &Site, marked: &[Kind], size: (u3
     (w, h, pixmap.take())
 }
 
-/// The section across the street, looking along it: y to the right, z up.
+/// A pruning cycle across the street, `size` pixels (each side 64 to 8192): the tree before
+/// the cuts on the left, after them on the right, at one scale (the tree before sets it).
+/// Every cut is ringed in blue, on both.
+pub fn pruning_picture(
+    before: &Skeleton,
+    after: &Skeleton,
+    site: &Site,
+    cuts: &[CutMark],
+    size: (u32, u32),
+) -> Rgba {
+    let (w, h) = (size.0.clamp(64, 8192), size.1.clamp(64, 8192));
+    let mut pixmap = Pixmap::new(w, h).expect("64 to 8192 pixels a side is a valid size");
+    pixmap.fill(Color::from_rgba8(246, 246, 242, 255));
+    let zones = Zones::new(site);
+    let half = w as f64 / 2.0;
+    for (x, tree) in [(0.0, before), (half, after)] {
+        section(
+            &mut pixmap,
+            (x, 0.0, half, h as f64),
+            (tree, before),
+            site,
+            &zones,
+            (&[], cuts),
+        );
+    }
+    let mut c = Canvas::fit(
+        &mut pixmap,
+        (0.0, 0.0, w as f64, h as f64),
+        (0.0, 1.0),
+        (0.0, 1.0),
+    );
+    c.segment((0.5, -0.1), (0.5, 1.1), 1.0, &paint(160, 160, 160, 255));
+    (w, h, pixmap.take())
+}
+
+/// The section across the street, looking along it: y to the right, z up. It draws `tree`,
+/// framed to hold `frame` (the same tree, or a larger one drawn beside it), with `marked`
+/// kinds' zones outlined in red and `cuts` ringed in blue.
 fn section(
     pixmap: &mut Pixmap,
     panel: (f64, f64, f64, f64),
-    skeleton: &Skeleton,
+    (skeleton, frame): (&Skeleton, &Skeleton),
     site: &Site,
     zones: &Zones,
-    marked: &[Kind],
+    (marked, cuts): (&[Kind], &[CutMark]),
 ) {
     let s = &site.street;
-    let (y0, y1) = across(skeleton, site);
+    let (y0, y1) = across(frame, site);
     let mut top = s.roadway_clearance.max(s.sidewalk_clearance) + 1.0;
     if let Some(f) = &site.facade {
         top = top.max(f.height + 1.0);
@@ -93,8 +132,8 @@ fn section(
     for l in &site.light {
         top = top.max(l.height + l.clearance + 0.5);
     }
-    let points = skeleton.sections.iter().map(|c| c.position);
-    for p in points.chain(skeleton.leaves.iter().map(|l| l.position)) {
+    let points = frame.sections.iter().map(|c| c.position);
+    for p in points.chain(frame.leaves.iter().map(|l| l.position)) {
         top = top.max(p.z as f64 + 0.5);
     }
     let mut c = Canvas::fit(pixmap, panel, (y0, y1), (0.0, top));
@@ -212,6 +251,11 @@ fn section(
         let r = flare_radius(skeleton);
         c.outline((-r, 0.0), (r, 0.5), &red);
     }
+    let ring = paint(40, 80, 230, 255);
+    for cut in cuts {
+        let r = c.pixels(cut.radius as f64 * 4.0).max(4.0);
+        c.circle((cut.at.y as f64, cut.at.z as f64), r, &ring, false);
+    }
 }
 
 /// Every leaf as a dot its size (0.7 to 6 pixels), green, or red where it is in the way; the
@@ -270,5 +314,40 @@ mod tests {
         let (w, _, rgba) = site_picture(&tree, &wired, &[Kind::Wire], (400, 300));
         assert!(red_pixels(&rgba, w, 0..w / 2) > 100);
         assert!(red_pixels(&rgba, w, w / 2..w) > 100);
+    }
+
+    #[test]
+    fn a_pruning_picture_shows_the_wire_cleared_and_rings_the_cuts() {
+        use crate::growth::{Grower, GrowthOptions};
+        use crate::street::pruner::Pruner;
+        let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
+        let mut grower = Grower::new(plane, GrowthOptions::default());
+        let street = "[street]\ncurb = -3.5\nsidewalk = [3.0, 5.0]\nroadway_clearance = 0.5\nsidewalk_clearance = 0.5\n";
+        let site = Site::parse(
+            &format!("{street}[[wire]]\nheight = 6.0\noffset = 0.0\nclearance = 1.5\n"),
+            "wired",
+        )
+        .unwrap();
+        let pruner = Pruner::new(&site, None).unwrap();
+        grower.advance_to(8.0);
+        let (year, before) = pruner
+            .year(&mut grower, 8.0)
+            .expect("the line cycle falls at 8");
+        let after = grower.skeleton();
+        let (w, h, rgba) = pruning_picture(&before, &after, &site, year.marks(), (600, 300));
+        assert_eq!((w, h), (600, 300));
+        // Before: the crown in the wire's clearance is red; after: none is.
+        assert!(red_pixels(&rgba, w, 0..w / 2) > 100);
+        assert_eq!(red_pixels(&rgba, w, w / 2..w), 0);
+        // The cuts are ringed in blue on both sides.
+        let blue = |half: std::ops::Range<u32>| {
+            rgba.chunks(4)
+                .enumerate()
+                .filter(|(i, p)| {
+                    half.contains(&(*i as u32 % w)) && p[2] > 180 && p[0] < 90 && p[1] < 120
+                })
+                .count()
+        };
+        assert!(blue(0..w / 2) > 20 && blue(w / 2..w) > 20);
     }
 }
