@@ -121,7 +121,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             let grown = cohort.history[i].last().context("an age was recorded")?;
             let mut account = assessors[i].year(age, &grown.model, skeleton);
             if let Some(p) = &pruner {
-                p.charge(&mut account, cycles[i].take());
+                account.record_pruning(cycles[i].take(), p.replaces_itemised_pruning());
             }
             let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &report::MESH);
             let stem = format!("{}-age-{}{season}", m.species.code, age_label(age));

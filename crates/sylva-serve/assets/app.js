@@ -42,8 +42,17 @@ const state = {
   // 'typical': i-Tree Streets' figures at the grown DBH, at its usual positions around
   // buildings (the site menu's first choice); 'site': the grown tree's own on `site`.
   basis: 'typical',
+  // Whether the site's pruning regime cuts the trees (on a site only: the typical position
+  // has no street to prune for).
+  pruning: true,
   growth: new Map(),   // code -> growth JSON (all ages)
 };
+
+// The tree the page asks for: cut by the site's pruning cycles, or never cut.
+function treeQuery(extra) {
+  const cut = state.basis === 'site' && state.pruning;
+  return query({ site: state.site, pruning: cut ? 'on' : 'off', ...extra });
+}
 
 // The account the table and bars show: the typical position's, with the year's costs, or the
 // grown tree's own on the site.
@@ -181,7 +190,7 @@ let drawnKey = null;  // the trees and street on the screen
 async function drawTrees(stoppedAt) {
   const ticket = ++drawing;
   const age = state.age;
-  const urls = state.chosen.map((code) => `/api/tree.glb?${query({ species: code, age, detail })}`);
+  const urls = state.chosen.map((code) => `/api/tree.glb?${treeQuery({ species: code, age, detail })}`);
   const scenes = await Promise.all(urls.map(loadGlb)).catch((e) => { status(e.message); return null; });
   if (!scenes || ticket !== drawing) return;
   timing.treesLoadedMs ??= performance.now();
@@ -291,7 +300,13 @@ function drawNumbers() {
     if (!r) return `<tr><td style="color:${COLOURS[i]}">${s.common}</td><td colspan="11">growing…</td></tr>`;
     const st = account(r.street);
     const t = r.street.typical;
-    const conflicts = typical ? 'no site' : st.conflicts.map((c) => c.kind.replace('_', ' ')).join(', ') || 'nothing';
+    let conflicts = typical ? 'no site' : st.conflicts.map((c) => c.kind.replace('_', ' ')).join(', ') || 'nothing';
+    // A year a pruning cycle fell due: what the crews cut, and what it cost.
+    const p = !typical && st.pruning;
+    if (p && p.removal_cuts + p.reduction_cuts > 0) {
+      conflicts += `<br><small title="${p.reasons.join(', ')}">pruned: ${p.removal_cuts + p.reduction_cuts} cuts, ` +
+        `${f(p.leaf_removed_m2, 0)} m² leaf, $${f(p.cost_usd, 0)}</small>`;
+    }
     // At typical position the flows are i-Tree's at this DBH; on a site, the grown tree's own.
     const flows = typical && t
       ? [t.co2_sequestered_kg, t.stormwater_m3, t.electricity_kwh]
@@ -363,7 +378,7 @@ function drawSitePictures() {
     for (const code of state.chosen) {
       const img = document.createElement('img');
       img.alt = `${code} on the site at ${state.age} years`;
-      img.src = `/api/site.png?${query({ species: code, age: state.age, site: state.site })}`;
+      img.src = `/api/site.png?${treeQuery({ species: code, age: state.age })}`;
       box.append(img);
     }
   }, 300);
@@ -373,12 +388,12 @@ function drawDownloads() {
   const a = (href, text) => `<a href="${href}" download>${text}</a>`;
   const all = state.chosen.join(',');
   const links = [
-    a(`/api/compare.png?${query({ species: all, age: state.age })}`, 'Comparison picture (PNG)'),
-    a(`/api/table.csv?${query({ species: all, site: state.site })}`, 'Table (CSV)'),
+    a(`/api/compare.png?${treeQuery({ species: all, age: state.age })}`, 'Comparison picture (PNG)'),
+    a(`/api/table.csv?${treeQuery({ species: all })}`, 'Table (CSV)'),
   ];
   for (const code of state.chosen) {
-    links.push(a(`/api/tree.glb?${query({ species: code, age: state.age })}`, `${code} at ${state.age} (GLB)`));
-    links.push(a(`/api/plan.svg?${query({ species: code, age: state.age })}`, `${code} plan symbol (SVG)`));
+    links.push(a(`/api/tree.glb?${treeQuery({ species: code, age: state.age })}`, `${code} at ${state.age} (GLB)`));
+    links.push(a(`/api/plan.svg?${treeQuery({ species: code, age: state.age })}`, `${code} plan symbol (SVG)`));
   }
   $('downloads').innerHTML = links.join(' ');
 }
@@ -418,15 +433,15 @@ async function refresh() {
   const trees = drawTrees(null);
   drawAll();
   await Promise.all(chosen.map(async (code) => {
-    const key = `${code}/${state.site}`;
+    const key = treeQuery({ species: code });
     if (state.growth.get(code)?.key !== key) {
-      const g = await json(`/api/growth?${query({ species: code, site: state.site })}`);
+      const g = await json(`/api/growth?${key}`);
       g.key = key;
       state.growth.set(code, g);
       drawAll();
     }
   })).catch((e) => status(e.message));
-  timing.tables = state.chosen.filter((c) => state.growth.get(c)?.key === `${c}/${state.site}`).length;
+  timing.tables = state.chosen.filter((c) => state.growth.get(c)?.key === treeQuery({ species: c })).length;
   await trees;
   layoutStreet();
   drawTrees(null);
@@ -453,9 +468,9 @@ async function start() {
   const wanted = (url.get('species') || 'PLAC,PICH').split(',').filter(Boolean);
   if (url.get('age')) state.age = Number(url.get('age'));
   state.region = url.get('region') || 'InlVal';
-  for (const code of wanted) loadGlb(`/api/tree.glb?${query({ species: code, age: state.age, detail })}`).catch(() => {});
+  for (const code of wanted) loadGlb(`/api/tree.glb?${treeQuery({ species: code, age: state.age, detail })}`).catch(() => {});
   askEarly(`/api/species?${query({})}`);
-  for (const code of wanted) askEarly(`/api/growth?${query({ species: code, site: state.site })}`);
+  for (const code of wanted) askEarly(`/api/growth?${treeQuery({ species: code })}`);
   const [regions, sites] = await Promise.all([getJson('/api/regions'), getJson('/api/sites')]);
   state.regions = regions;
   state.sites = sites;
@@ -474,7 +489,13 @@ async function start() {
     // and draws that street as a backdrop.
     state.basis = e.target.value === 'typical' ? 'typical' : 'site';
     if (state.basis === 'site') state.site = e.target.value;
+    $('pruning').disabled = state.basis === 'typical';
     street.streetKey = null;
+    refresh();
+  };
+  $('pruning').disabled = state.basis === 'typical';
+  $('pruning').onchange = (e) => {
+    state.pruning = e.target.checked;
     refresh();
   };
   $('search').oninput = showMatches;

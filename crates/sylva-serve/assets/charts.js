@@ -97,6 +97,7 @@ export const COSTS = [
   ['sidewalk', 'Sidewalk', '#b09a70'],
   ['cleanup', 'Clean-up', '#6f8f8f'],
   ['average', 'Programme average', '#9c5b5b'],
+  ['cycles', 'Pruning cycles', '#d08a2e'],
 ];
 
 // `items`: [{ label, colour, street }].

@@ -143,11 +143,18 @@ fn measured_dims(r: &AgeRecord) -> serde_json::Value {
 
 impl State {
     /// The growth of a species, started if need be.
-    fn growth(&self, region: &str, m: &Measured, seed: u64) -> Result<Arc<Growth>, ApiError> {
+    fn growth(
+        &self,
+        region: &str,
+        m: &Measured,
+        seed: u64,
+        pruned: Option<usize>,
+    ) -> Result<Arc<Growth>, ApiError> {
         let key = Key {
             region: region.to_string(),
             code: m.species.code.clone(),
             seed,
+            pruned,
         };
         self.cache.get(key, m).map_err(|Refused::Busy(n)| ApiError {
             status: StatusCode::SERVICE_UNAVAILABLE,
@@ -166,10 +173,11 @@ impl State {
         species: &[Measured],
         age: u32,
         seed: u64,
+        pruned: Option<usize>,
     ) -> Result<Vec<Arc<AgeEntry>>, ApiError> {
         let mut entries = Vec::new();
         for m in species {
-            let growth = self.growth(region, m, seed)?;
+            let growth = self.growth(region, m, seed, pruned)?;
             let entry = growth.at(age).await.ok_or_else(|| {
                 ApiError::internal(format!(
                     "{}: the growth stopped before age {age}",
@@ -191,11 +199,16 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
     let m = &query.one_species(state.db, &region, "the growth table is one species'")?;
     let seed = query.seed()?;
     let site = query.site()?;
-    let kept = format!("growth/{region}/{}/{seed}/{site}", m.species.code);
+    let pruned = query.pruned()?;
+    let kept = format!(
+        "growth/{region}/{}/{seed}/{site}/{}",
+        m.species.code,
+        pruned.is_some()
+    );
     if let Some(json) = state.recent.get(&kept) {
         return Ok(([(header::CONTENT_TYPE, "application/json")], json).into_response());
     }
-    let growth = state.growth(&region, m, seed)?;
+    let growth = state.growth(&region, m, seed, pruned)?;
     let entries = growth.all().await;
     let rows: Vec<_> = entries
         .iter()
@@ -226,6 +239,7 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
         "region": {"code": m.region.code, "name": m.region.name, "city": m.region.city},
         "seed": seed,
         "site": sites()[site].key,
+        "pruning": pruned.is_some(),
         "rows": rows,
         "first_conflicts": first,
         "missing": grown::missing(m, site),
@@ -245,6 +259,8 @@ struct OneTree {
     m: Measured,
     age: u32,
     seed: u64,
+    /// The site whose pruning cuts the tree (`pruning=on`), if any.
+    pruned: Option<usize>,
 }
 
 impl OneTree {
@@ -254,11 +270,13 @@ impl OneTree {
         let m = query.one_species(state.db, &region, what)?;
         let age = query.age(std::slice::from_ref(&m))?;
         let seed = query.seed()?;
+        let pruned = query.pruned()?;
         Ok(OneTree {
             region,
             m,
             age,
             seed,
+            pruned,
         })
     }
 
@@ -266,7 +284,7 @@ impl OneTree {
     async fn entry(&self, state: &State) -> Result<Arc<AgeEntry>, ApiError> {
         let species = std::slice::from_ref(&self.m);
         Ok(state
-            .at(&self.region, species, self.age, self.seed)
+            .at(&self.region, species, self.age, self.seed, self.pruned)
             .await?
             .remove(0))
     }
@@ -280,7 +298,10 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
     let detail = query.detail()?;
     let (code, age, seed) = (&tree.m.species.code, tree.age, tree.seed);
     let name = format!("{code}-age-{age:02}.glb");
-    let kept = format!("{}/{code}/{seed}/{age}/{detail}", tree.region);
+    let kept = format!(
+        "{}/{code}/{seed}/{age}/{detail}/{:?}",
+        tree.region, tree.pruned
+    );
     if let Some(glb) = state.recent.get(&kept) {
         return Ok(file(glb, "model/gltf-binary", &name));
     }
@@ -323,9 +344,10 @@ pub async fn table_csv(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Pa
     let species = query.species(state.db, &region)?;
     let seed = query.seed()?;
     let site = query.site()?;
+    let pruned = query.pruned()?;
     let mut out = String::new();
     for (i, m) in species.iter().enumerate() {
-        let entries = state.growth(&region, m, seed)?.all().await;
+        let entries = state.growth(&region, m, seed, pruned)?.all().await;
         let history: Vec<AgeRecord> = entries.iter().map(|e| e.record).collect();
         let accounts: Vec<_> = entries.iter().map(|e| e.accounts[site].clone()).collect();
         let csv = table::join_csv(&report::csv(&history), &accounts);
@@ -361,7 +383,8 @@ pub async fn compare_png(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): 
     let age = query.age(&species)?;
     let seed = query.seed()?;
     let size = query.size()?;
-    let entries = state.at(&region, &species, age, seed).await?;
+    let pruned = query.pruned()?;
+    let entries = state.at(&region, &species, age, seed, pruned).await?;
     let pictures = state.clone();
     let names: Vec<&str> = species.iter().map(|m| m.species.code.as_str()).collect();
     let name = format!("compare-{}-age-{age:02}.png", names.join("-"));

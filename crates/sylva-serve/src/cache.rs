@@ -1,5 +1,5 @@
-//! Grown species kept for every age at once, keyed by (region, species, seed), within a memory
-//! bound.
+//! Grown species kept for every age at once, keyed by (region, species, seed, the site whose
+//! pruning cuts them), within a memory bound.
 //!
 //! - **Grown once.** The first request for a key starts its growth on a blocking thread and
 //!   leaves a [`Growth`] in the map; every request for the same key, however many arrive
@@ -31,6 +31,9 @@ pub struct Key {
     pub code: String,
     /// Seed.
     pub seed: u64,
+    /// The built-in site whose pruning regime cuts the tree (its index in
+    /// [`crate::grown::sites`]); none: never cut.
+    pub pruned: Option<usize>,
 }
 
 /// One species growing, or grown, through all its ages.
@@ -190,7 +193,7 @@ impl Cache {
             .spawn(move || {
                 lower_priority();
                 growth_pool().install(|| {
-                    grow_all(&grower.measured, key.seed, |entry| {
+                    grow_all(&grower.measured, key.seed, key.pruned, |entry| {
                         grower.bytes.fetch_add(entry.bytes(), Ordering::Relaxed);
                         let n = {
                             let mut entries = grower.entries();
@@ -261,6 +264,7 @@ mod tests {
             region: "InlVal".into(),
             code: code.into(),
             seed,
+            pruned: None,
         }
     }
 

@@ -12,6 +12,7 @@ use sylva::growth::{Dress, Measured, dressed_mesh};
 use sylva::lod::{LodTree, leaf_shell};
 use sylva::mesh::{MeshOptions, TreeMesh, leaf_template};
 use sylva::skeleton::LeafShape;
+use sylva::street::pruner::{Pruner, PruningYear};
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
 /// A planting site the page offers: its key in the API, what the page calls it, and the site.
@@ -111,8 +112,16 @@ pub fn ages_of(m: &Measured) -> Vec<u32> {
 
 /// Grows `m` from seed `seed` through [`ages_of`], handing each age to `done` as it is
 /// reached, so that the first ages can be shown while the rest grow. Stops early when `done`
-/// returns false (nobody wants the rest).
-pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool) {
+/// returns false (nobody wants the rest). With `pruned`, the pruning regime of that site
+/// ([`sites`]) cuts the tree as its cycles fall due, and that site's accounts carry the cycles
+/// (the other sites' accounts are of the same cut tree, and the page never shows them).
+pub fn grow_all(
+    m: &Measured,
+    seed: u64,
+    pruned: Option<usize>,
+    mut done: impl FnMut(AgeEntry) -> bool,
+) {
+    let pruner = pruned.and_then(|s| Some((s, Pruner::new(&sites().get(s)?.site, None)?)));
     let mut assessors: Vec<Assessor> = sites()
         .iter()
         .map(|s| Assessor::new(m, Some(s.site.clone()), None, None))
@@ -126,6 +135,15 @@ pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool)
     };
     for age in ages_of(m) {
         let age = f64::from(age);
+        let mut cycle = None;
+        if let Some((_, p)) = &pruner {
+            p.advance(&mut cohort.growers[0], age, |_, year, _, _| {
+                cycle = Some(match cycle.take() {
+                    Some(earlier) => PruningYear::merged(earlier, year),
+                    None => year,
+                })
+            });
+        }
         let skeleton = cohort
             .advance_to(age)
             .pop()
@@ -133,10 +151,13 @@ pub fn grow_all(m: &Measured, seed: u64, mut done: impl FnMut(AgeEntry) -> bool)
         let record = *cohort.history[0]
             .last()
             .expect("advance_to records the age");
-        let accounts = assessors
+        let mut accounts: Vec<YearAccount> = assessors
             .iter_mut()
             .map(|a| a.year(age, &record.model, &skeleton))
             .collect();
+        if let Some((s, p)) = &pruner {
+            accounts[*s].record_pruning(cycle, p.replaces_itemised_pruning());
+        }
         let lod = LodTree::build(&kites(&skeleton), &web_mesh);
         let mut entry = AgeEntry {
             record,
@@ -285,7 +306,7 @@ mod tests {
     fn the_web_kite_keeps_the_leaf_area_and_cuts_the_vertices() {
         let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
         let mut got = Vec::new();
-        grow_all(&plane, 0, |e| {
+        grow_all(&plane, 0, None, |e| {
             got.push(e);
             got.len() < 6
         });
@@ -370,7 +391,7 @@ mod tests {
     fn a_leaf_shell_is_as_wide_and_tall_as_its_crown() {
         let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
         let mut got = Vec::new();
-        grow_all(&plane, 0, |e| {
+        grow_all(&plane, 0, None, |e| {
             if (e.record.age as u32).is_multiple_of(5) {
                 got.push(e);
             }

@@ -170,6 +170,8 @@ pub fn run(options: &Options, ready: impl FnOnce(&str)) -> Result<(), ServeError
                     region: m.region.code.clone(),
                     code: m.species.code.clone(),
                     seed: 0,
+                    // The page opens at the typical position: a tree no street has cut.
+                    pruned: None,
                 };
                 // A refusal (more warm species than growths allowed) only means it grows
                 // when first asked for.

@@ -180,6 +180,20 @@ impl Query<'_> {
         })
     }
 
+    /// The site whose pruning regime cuts the tree: `pruning=on` with a site (its index in
+    /// [`crate::grown::sites`]); none with `pruning=off`, the default: the tree is never cut.
+    pub fn pruned(&self) -> Result<Option<usize>, ApiError> {
+        match self.0.get("pruning").map(String::as_str) {
+            None | Some("off") => Ok(None),
+            Some("on") => Ok(Some(self.site()?)),
+            Some(other) => Err(ApiError::bad(
+                "pruning",
+                format!("`{other}` is not a choice"),
+                "on (the site's pruning regime cuts the tree), off (never cut)",
+            )),
+        }
+    }
+
     /// The detail level of a tree for the page (default 0, the whole tree; the last, the leaf shell).
     pub fn detail(&self) -> Result<u32, ApiError> {
         let top = crate::grown::DETAIL_LEVELS - 1;

@@ -196,6 +196,11 @@ async fn bad_parameters_get_400_naming_them() {
         ("/api/compare.png?species=LAIN&age=5&size=9x9", "size"),
         ("/api/tree.glb?species=LAIN,PRCE&age=5", "species"),
         ("/api/tree.glb?species=LAIN&age=5&detail=5", "detail"),
+        ("/api/growth?species=LAIN&pruning=sometimes", "pruning"),
+        (
+            "/api/tree.glb?species=LAIN&age=5&pruning=on&site=roof",
+            "site",
+        ),
     ];
     for (uri, parameter) in cases {
         let (status, kind, body) = get(&s, uri).await;
@@ -313,4 +318,66 @@ async fn hostile_values_are_refused_never_a_panic() {
             }
         }
     }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn pruning_on_cuts_the_tree_for_its_site_and_charges_the_cycles() {
+    let s = state();
+    let uri = "/api/growth?species=PLAC&site=narrow";
+    let cut = json(&s, &format!("{uri}&pruning=on")).await;
+    let grown = json(&s, uri).await;
+    assert_eq!(
+        (cut["pruning"].as_bool(), grown["pruning"].as_bool()),
+        (Some(true), Some(false))
+    );
+    let rows = |g: &serde_json::Value| g["rows"].as_array().unwrap().clone();
+    let (cut, grown) = (rows(&cut), rows(&grown));
+    assert_eq!(cut.len(), grown.len());
+    // The utility clears the wire at 8: the cut tree has the cycle, its cost and no wire
+    // conflict left; the tree never cut has none of these and runs into the wire.
+    let at = |rows: &[serde_json::Value], age: f64| {
+        rows.iter().find(|r| r["age"] == age).unwrap()["street"].clone()
+    };
+    let (c8, g8) = (at(&cut, 8.0), at(&grown, 8.0));
+    let pruning = &c8["pruning"];
+    assert!(
+        pruning["reasons"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|r| r == "line clearance"),
+        "{c8}"
+    );
+    assert!(
+        pruning["resolved"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|k| k == "wire"),
+        "{c8}"
+    );
+    assert!(c8["cost_usd"]["cycles"].as_f64().unwrap() > 0.0, "{c8}");
+    assert!(
+        g8["pruning"].is_null() && g8["cost_usd"]["cycles"] == 0.0,
+        "{g8}"
+    );
+    let wire = |st: &serde_json::Value| {
+        st["conflicts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|c| c["kind"] == "wire")
+    };
+    assert!(!wire(&c8) && wire(&g8));
+    // Both growths are held, one apart from the other.
+    assert_eq!(s.cache.len(), 2);
+    // The cut tree's GLB is its own.
+    let (status, _, cut_glb) = get(
+        &s,
+        "/api/tree.glb?species=PLAC&age=8&site=narrow&pruning=on",
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK);
+    let (_, _, grown_glb) = get(&s, "/api/tree.glb?species=PLAC&age=8").await;
+    assert_ne!(cut_glb, grown_glb);
 }

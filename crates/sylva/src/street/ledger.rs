@@ -82,6 +82,27 @@ impl YearAccount {
     pub fn net(&self, basis: Basis) -> f64 {
         self.money(basis).total() - self.costs.map_or(0.0, |c| c.total())
     }
+
+    /// Puts a year's pruning into the account of a tree grown under a pruning regime: the
+    /// conflicts it resolved, and its cost where the account has costs (`replaces_itemised`:
+    /// the cycles replace itemised costs' yearly pruning line,
+    /// [`super::pruner::Pruner::replaces_itemised_pruning`]).
+    pub fn record_pruning(
+        &mut self,
+        cycle: Option<super::pruner::PruningYear>,
+        replaces_itemised: bool,
+    ) {
+        if let Some(costs) = &mut self.costs {
+            if replaces_itemised {
+                costs.pruning = 0.0;
+            }
+            costs.cycles = cycle.as_ref().map_or(0.0, |c| c.cost);
+        }
+        self.pruning = cycle.map(|mut c| {
+            c.settle(&self.conflicts);
+            c
+        });
+    }
 }
 
 /// Keeps a tree's account from year to year.

@@ -11,7 +11,6 @@
 
 use super::conflicts::{Conflict, Kind, Zones, conflicts};
 use super::costs::Costs;
-use super::ledger::YearAccount;
 use super::pruning::{Regime, due};
 use super::site::Site;
 use crate::Skeleton;
@@ -186,21 +185,6 @@ impl Pruner {
     /// are that pruning, charged when they fall.
     pub fn replaces_itemised_pruning(&self) -> bool {
         matches!(self.costs, Some(Costs::Itemised(_)))
-    }
-
-    /// Puts a year's pruning into its account: the conflicts it resolved, and its cost where
-    /// the account has costs (with itemised costs, the cycles replace the yearly pruning line).
-    pub fn charge(&self, account: &mut YearAccount, cycle: Option<PruningYear>) {
-        if let Some(costs) = &mut account.costs {
-            if self.replaces_itemised_pruning() {
-                costs.pruning = 0.0;
-            }
-            costs.cycles = cycle.as_ref().map_or(0.0, |c| c.cost);
-        }
-        account.pruning = cycle.map(|mut c| {
-            c.settle(&account.conflicts);
-            c
-        });
     }
 
     /// Grows `grower` on to `age` a year at a time, carrying out every cycle that falls due

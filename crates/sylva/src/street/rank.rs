@@ -199,7 +199,7 @@ pub fn run(
             .unwrap_or_default();
         let mut account = assessor.year(age, &dims, &skeleton);
         if let Some(p) = &pruner {
-            p.charge(&mut account, cycle);
+            account.record_pruning(cycle, p.replaces_itemised_pruning());
         }
         accounts.push(account);
     }
