@@ -9,6 +9,7 @@ use sylva::export::{to_glb, write_atomically};
 use sylva::growth::report::{self, Cohort, age_label, run_ages};
 use sylva::growth::{CutKind, Grower};
 use sylva::growth::{Measured, dressed_mesh};
+use sylva::street::conflicts::conflicts;
 use sylva::street::picture::{pruning_picture, site_picture};
 use sylva::street::pruner::{Pruner, PruningYear};
 use sylva::street::rank::first_conflicts;
@@ -336,7 +337,9 @@ fn cycle_picture(
     site: &Site,
     size: (u32, u32),
 ) -> Picture {
-    let (w, h, rgba) = pruning_picture(before, &after.skeleton(), site, cycle.marks(), size);
+    let after = after.skeleton();
+    let (w, h, rgba) = pruning_picture(before, &after, site, cycle.marks(), size);
+    let left: Vec<Kind> = conflicts(&after, site).iter().map(|c| c.kind).collect();
     let picture = Picture {
         width: w,
         height: h,
@@ -368,12 +371,13 @@ fn cycle_picture(
             cycle.cost
         ),
         format!(
-            "in the way before: {}; left by the cuts: {}",
+            "in the way before the cuts: {}; after: {}{}",
             kinds(&cycle.before),
+            kinds(&left),
             if cycle.cuts.left_in_zone {
-                "a trunk with no lateral to cut back to"
+                " (a trunk with no lateral to cut back to is left)"
             } else {
-                "nothing"
+                ""
             }
         ),
         "left: before the cuts; right: after, at one scale; blue rings: the cuts; red: in the \

@@ -67,10 +67,10 @@ pub fn run(args: &RankArgs) -> Result<()> {
             site.as_ref(),
             prices.as_ref(),
             costs.as_ref(),
-            if args.street.no_pruning {
-                Pruning::Off
-            } else {
-                Pruning::Regime
+            match (args.street.no_pruning, args.pruning_losses) {
+                (true, _) => Pruning::Off,
+                (false, true) => Pruning::Compare,
+                (false, false) => Pruning::Regime,
             },
             basis,
             &|_| tick(),
@@ -361,13 +361,16 @@ fn pruning_json(r: &sylva::street::rank::Ranked) -> serde_json::Value {
     };
     let kinds = |k: &[Kind]| k.iter().map(|k| k.name()).collect::<Vec<_>>();
     let round = |v: f64, places: i32| (v * 10f64.powi(places)).round() / 10f64.powi(places);
+    let lost = |i: usize| r.benefits_lost.as_ref().map(|l| round(l[i], 2));
     let years: Vec<serde_json::Value> = r
         .accounts
         .iter()
-        .filter_map(|a| {
+        .enumerate()
+        .filter_map(|(i, a)| {
             let mut year = sylva::street::table::pruning_json(a.pruning.as_ref()?);
             year["age"] = a.age.into();
             year["leaf_area_m2"] = round(a.surfaces.0, 1).into();
+            year["benefits_lost_usd"] = lost(i).into();
             Some(year)
         })
         .collect();
@@ -377,6 +380,7 @@ fn pruning_json(r: &sylva::street::rank::Ranked) -> serde_json::Value {
         "wood_removed_m3": round(total.wood_m3, 4),
         "leaf_removed_m2": round(total.leaf_m2, 1),
         "cost_usd": round(total.cost, 2),
+        "benefits_lost_usd": total.benefits_lost.map(|v| round(v, 2)),
         "resolved": kinds(&total.resolved),
         "unresolved": kinds(&total.unresolved),
         "years": years,

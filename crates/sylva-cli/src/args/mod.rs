@@ -595,6 +595,11 @@ pub struct RankArgs {
     /// Print one JSON object per species instead of the table.
     #[arg(long)]
     pub json: bool,
+
+    /// Also grow every tree uncut beside its pruned self, and report the benefits pruning
+    /// cost each year (twice the growth's time).
+    #[arg(long, conflicts_with = "no_pruning")]
+    pub pruning_losses: bool,
 }
 
 /// What `sylva rank` ranks by.

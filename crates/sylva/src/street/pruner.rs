@@ -363,6 +363,24 @@ mod tests {
             leaf(&pruned),
             leaf(&grown)
         );
+        // Compared, the benefits lost are the uncut tree's less the cut one's, year by year.
+        use crate::street::Basis;
+        let compared = run(
+            &m,
+            9.0,
+            0,
+            Some(&site),
+            None,
+            costs.as_ref(),
+            Pruning::Compare,
+        );
+        let lost = compared.benefits_lost.clone().expect("compared");
+        assert_eq!(lost.len(), compared.accounts.len());
+        let sum: f64 = lost.iter().sum();
+        let gap = grown.benefits(Basis::Site) - pruned.benefits(Basis::Site);
+        assert!((sum - gap).abs() < 1e-6 && sum > 0.0, "{sum} {gap}");
+        assert_eq!(compared.pruning().unwrap().benefits_lost, Some(sum));
+        assert!(pruned.benefits_lost.is_none());
     }
 
     #[test]

@@ -23,6 +23,9 @@ pub struct Ranked {
     pub missing: Vec<String>,
     /// Whether it was grown under a pruning regime (a site's, and not `Pruning::Off`).
     pub pruned: bool,
+    /// With [`Pruning::Compare`], each year's benefits on the site that pruning cost: the same
+    /// tree never cut less the cut one, dollars, in the order of `accounts`.
+    pub benefits_lost: Option<Vec<f64>>,
 }
 
 impl Ranked {
@@ -68,6 +71,7 @@ impl Ranked {
             wood_m3: years.iter().map(|y| y.wood_m3()).sum(),
             leaf_m2: years.iter().map(|y| y.leaf_m2()).sum(),
             cost: years.iter().map(|y| y.cost).sum(),
+            benefits_lost: self.benefits_lost.as_ref().map(|l| l.iter().sum()),
             resolved,
             unresolved,
         })
@@ -87,6 +91,8 @@ pub struct PruningSummary {
     pub leaf_m2: f64,
     /// What the visits cost, $.
     pub cost: f64,
+    /// Benefits on the site lost to pruning over the years, $ (with [`Pruning::Compare`]).
+    pub benefits_lost: Option<f64>,
     /// Kinds of conflict some cycle cleared.
     pub resolved: Vec<Kind>,
     /// Kinds of conflict left after some cycle due for them, or that no pruning clears.
@@ -135,6 +141,9 @@ pub fn ages(m: &Measured, years: f64) -> Vec<f64> {
 pub enum Pruning {
     /// The site's regime cuts the tree as its cycles fall due (the default).
     Regime,
+    /// The regime cuts the tree, and the same tree is grown uncut beside it, so that each
+    /// year's benefits lost to pruning are known (it takes both growths' time).
+    Compare,
     /// Nothing is ever cut: the tree grows on through the street's zones.
     Off,
 }
@@ -175,6 +184,19 @@ pub fn run(
     costs: Option<&Costs>,
     pruning: Pruning,
 ) -> Ranked {
+    if pruning == Pruning::Compare {
+        let (mut cut, uncut) = rayon::join(
+            || run(m, years, seed, site, prices, costs, Pruning::Regime),
+            || run(m, years, seed, site, prices, costs, Pruning::Off),
+        );
+        let total = |a: &YearAccount| a.money(Basis::Site).total();
+        cut.benefits_lost = cut.pruned.then(|| {
+            (cut.accounts.iter().zip(&uncut.accounts))
+                .map(|(c, u)| total(u) - total(c))
+                .collect()
+        });
+        return cut;
+    }
     let mut assessor = Assessor::new(m, site.cloned(), prices.cloned(), costs.cloned());
     let mut cohort = Cohort::new(vec![m.clone()], seed);
     let pruner = match (site, pruning) {
@@ -208,5 +230,6 @@ pub fn run(
         accounts,
         missing: assessor.missing().to_vec(),
         pruned: pruner.is_some(),
+        benefits_lost: None,
     }
 }
