@@ -1,6 +1,7 @@
 //! A city's street trees: an inventory in, OGC 3D Tiles out.
 
 pub mod benefits;
+pub mod cache;
 mod error;
 pub mod geo;
 pub mod inventory;

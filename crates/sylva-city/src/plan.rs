@@ -30,6 +30,9 @@ pub struct CityOptions {
     pub ground: f64,
     /// Seed of the variants and of each tree's turn.
     pub seed: u64,
+    /// Where grown trees are kept between runs, and the most it may hold, MiB
+    /// (see `cache.rs`); none: every tree is grown.
+    pub cache: Option<(std::path::PathBuf, u64)>,
 }
 
 impl Default for CityOptions {
@@ -42,6 +45,7 @@ impl Default for CityOptions {
             base_year: 2026,
             ground: 0.0,
             seed: 0,
+            cache: None,
         }
     }
 }

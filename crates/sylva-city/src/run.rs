@@ -3,6 +3,7 @@
 //! moved there only when complete, so a failed run leaves no half-written tileset.
 
 use crate::CityError;
+use crate::cache::GrowthCache;
 use crate::inventory::Layout;
 use crate::plan::CityOptions;
 use crate::prototypes::Prototype;
@@ -73,11 +74,26 @@ fn run_tasks(
     // alone at the end. The results go back into the tasks' own order.
     let mut order: Vec<usize> = (0..tasks.len()).collect();
     order.sort_by_key(|&i| std::cmp::Reverse(tasks[i].ages.last().copied().unwrap_or(0)));
+    let cache = (job.options().cache.as_ref()).map(|(dir, mib)| GrowthCache::new(dir, *mib));
+    let cached = std::sync::atomic::AtomicUsize::new(0);
     let mut results: Vec<(usize, Vec<Prototype>)> = order
         .into_iter()
         .par_bridge()
         .map(|i| {
-            let (prototypes, files) = run_growth(&tasks[i])?;
+            let task = &tasks[i];
+            let (prototypes, files) = match cache.as_ref().and_then(|c| c.get(task)) {
+                Some(kept) => {
+                    cached.fetch_add(1, Ordering::Relaxed);
+                    kept
+                }
+                None => {
+                    let grown = run_growth(task)?;
+                    if let Some(c) = &cache {
+                        c.put(task, &grown);
+                    }
+                    grown
+                }
+            };
             write_files(dir, &files)?;
             let n = grown.fetch_add(prototypes.len(), Ordering::Relaxed) + prototypes.len();
             progress.step("growing trees", n, total);
@@ -85,6 +101,9 @@ fn run_tasks(
         })
         .collect::<Result<_, CityError>>()?;
     results.sort_by_key(|(i, _)| *i);
+    if let Some(c) = &cache {
+        c.trim();
+    }
     job.add_prototypes(results.into_iter().flat_map(|(_, p)| p));
     write_files(dir, &[stump_file().1])?;
     let grown_at = t0.elapsed().as_secs_f64();
@@ -114,6 +133,8 @@ fn run_tasks(
         .filter_map(|f| f.ok()?.metadata().ok())
         .map(|m| m.len())
         .sum();
+    run.growths = tasks.len();
+    run.from_cache = cached.load(Ordering::Relaxed);
     run.seconds = [
         planned,
         grown_at - planned,
@@ -148,6 +169,7 @@ fn in_output(out: &Path, rel: &str) -> PathBuf {
 /// (moved to `out` by [`commit`] once complete).
 pub fn begin(out: &Path) -> Result<PathBuf, CityError> {
     prepare_out(out)?;
+    remove_abandoned(out);
     let staging = staging_dir(out);
     if staging.exists() {
         let _ = std::fs::remove_dir_all(&staging);
@@ -181,10 +203,68 @@ fn prepare_out(out: &Path) -> Result<(), CityError> {
 }
 
 fn staging_dir(out: &Path) -> PathBuf {
+    staging_for(out, std::process::id())
+}
+
+/// The folder a run with process id `pid` writes `out` into: `.NAME.sylva-PID` beside it.
+fn staging_for(out: &Path, pid: u32) -> PathBuf {
     let name = out
         .file_name()
         .map_or("tiles".into(), |n| n.to_string_lossy().into_owned());
-    out.with_file_name(format!(".{name}.sylva-{}", std::process::id()))
+    out.with_file_name(format!(".{name}.sylva-{pid}"))
+}
+
+/// Removes the staging folders that runs writing `out` left when they were killed part-way
+/// (`.NAME.sylva-PID` beside it, whose process is gone), and says how many. A folder whose
+/// process still runs is another run's, and is left; so is every folder where this system
+/// cannot tell (only Linux's `/proc` is asked).
+pub fn remove_abandoned(out: &Path) -> usize {
+    let Some(parent) = out.parent().map(|p| {
+        if p.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            p
+        }
+    }) else {
+        return 0;
+    };
+    let prefix = staging_for(out, 0)
+        .file_name()
+        .map(|n| n.to_string_lossy().trim_end_matches('0').to_string())
+        .unwrap_or_default();
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return 0;
+    };
+    let mut removed = 0;
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some(pid) = name
+            .strip_prefix(&prefix)
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        if pid != std::process::id()
+            && process_gone(pid)
+            && std::fs::remove_dir_all(entry.path()).is_ok()
+        {
+            removed += 1;
+        }
+    }
+    removed
+}
+
+/// Whether process `pid` is known to be gone.
+fn process_gone(pid: u32) -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        Path::new("/proc/self").exists() && !Path::new(&format!("/proc/{pid}")).exists()
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = pid;
+        false
+    }
 }
 
 /// Moves the finished `staging` folder (from [`begin`]) to `out`, replacing an earlier run
@@ -195,4 +275,32 @@ pub fn commit(staging: &Path, out: &Path) -> Result<(), CityError> {
         std::fs::remove_dir_all(out).map_err(err)?;
     }
     std::fs::rename(staging, out).map_err(err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn a_killed_runs_staging_folder_is_removed_by_the_next_and_a_live_ones_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("tiles");
+        // Process ids on Linux stay under 2^22: this one cannot be running.
+        let gone = staging_for(&out, 4_194_999);
+        // Process 1 always runs.
+        let alive = staging_for(&out, 1);
+        let other = dir.path().join(".elsewhere.sylva-4194999");
+        for d in [&gone, &alive, &other] {
+            std::fs::create_dir_all(d.join("prototypes")).unwrap();
+        }
+        let staging = begin(&out).unwrap();
+        assert!(!gone.exists(), "the killed run's folder is gone");
+        assert!(
+            alive.exists() && other.exists(),
+            "a live run's, and another output's, stay"
+        );
+        assert!(staging.exists());
+        assert_eq!(remove_abandoned(&out), 0);
+    }
 }

@@ -99,6 +99,11 @@ impl CityJob {
         })
     }
 
+    /// The options it was planned with.
+    pub fn options(&self) -> &CityOptions {
+        &self.options
+    }
+
     /// The growth tasks, in a stable order.
     pub fn growth_tasks(&self) -> Vec<GrowthTask> {
         prototypes::growth_tasks(&self.keys, self.options.seed)
@@ -231,6 +236,8 @@ impl CityJob {
             epochs,
             prototypes: self.prototypes.len(),
             prototype_bytes: 0,
+            growths: 0,
+            from_cache: 0,
             seconds: [0.0; 3],
         };
         let text = serde_json::to_vec_pretty(&summary_json(&run))
@@ -252,6 +259,10 @@ pub struct CityRun {
     pub prototypes: usize,
     /// Bytes of the shared prototype files.
     pub prototype_bytes: u64,
+    /// Growth tasks (a species, region and variant grown through its age classes).
+    pub growths: usize,
+    /// Of those, the ones whose trees came from the cache of an earlier run.
+    pub from_cache: usize,
     /// Seconds spent reading and planning, growing, and writing tiles.
     pub seconds: [f64; 3],
 }

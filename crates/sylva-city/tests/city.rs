@@ -180,9 +180,48 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
     let options = CityOptions {
         variants: 1,
         stumps: true,
+        cache: Some((dir.path().join("cache"), 512)),
         ..Default::default()
     };
     let run = tile_city(&inventory, None, &Layout::default(), &options, &out, &Quiet).unwrap();
+    assert_eq!(run.from_cache, 0, "an empty cache");
+    // A second run takes every grown tree from the cache, and writes the same bytes.
+    let again = dir.path().join("again");
+    let second = tile_city(
+        &inventory,
+        None,
+        &Layout::default(),
+        &options,
+        &again,
+        &Quiet,
+    )
+    .unwrap();
+    assert!(
+        second.growths > 0 && second.from_cache == second.growths,
+        "{} of {}",
+        second.from_cache,
+        second.growths
+    );
+    let files = |root: &std::path::Path| {
+        let mut all = Vec::new();
+        let mut stack = vec![root.to_path_buf()];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).unwrap().flatten() {
+                if e.path().is_dir() {
+                    stack.push(e.path());
+                } else if e.file_name() != "summary.json" {
+                    let rel = e.path().strip_prefix(root).unwrap().to_path_buf();
+                    all.push((rel, std::fs::read(e.path()).unwrap()));
+                }
+            }
+        }
+        all.sort();
+        all
+    };
+    assert!(
+        files(&out) == files(&again),
+        "the cached run's tiles differ"
+    );
     let checked = check_tileset(&out).unwrap_or_else(|p| panic!("{}", p.join("\n")));
     let drawn = run.summary.trees + run.summary.stumps - run.epochs[0].3;
     assert_eq!(checked.root_instances, drawn);

@@ -3,6 +3,7 @@
 
 use crate::args::{CityArgs, CityDemoArgs, DemoLayoutArg};
 use anyhow::{Result, bail};
+use sylva_city::cache::GrowthCache;
 use sylva_city::demo::{DemoLayout, demo_city};
 use sylva_city::{CityOptions, Layout, LengthUnit, Progress, tile_city};
 
@@ -65,6 +66,13 @@ pub fn run(args: &CityArgs) -> Result<()> {
         base_year: args.year,
         ground: args.ground,
         seed: args.seed,
+        cache: if args.no_cache {
+            None
+        } else {
+            (args.cache.clone())
+                .or_else(GrowthCache::default_dir)
+                .map(|dir| (dir, args.cache_mib))
+        },
     };
     let bar = Bar {
         bar: indicatif::ProgressBar::new(0),
@@ -112,6 +120,14 @@ pub fn run(args: &CityArgs) -> Result<()> {
     println!("  {} species names; trees grown as:", s.species.len());
     for (how, n) in by_fallback {
         println!("    {n} {how}");
+    }
+    if let Some((dir, _)) = &options.cache {
+        println!(
+            "  {} of {} growths from the cache of grown trees ({})",
+            run.from_cache,
+            run.growths,
+            dir.display()
+        );
     }
     let trees: usize = run.epochs.first().map_or(0, |e| e.2.trees);
     let bytes: u64 =

@@ -131,6 +131,8 @@ impl Settings {
             base_year: self.year,
             ground: self.ground,
             seed: self.seed,
+            // A cluster's workers grow their own tasks; the local run grows them all.
+            cache: None,
         }
     }
 }

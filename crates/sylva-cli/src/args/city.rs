@@ -43,6 +43,20 @@ pub struct CityArgs {
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub ground: f64,
 
+    /// Where grown trees are kept between runs, so a second run (or an inventory with a few
+    /// rows changed) grows only what is new (default: $XDG_CACHE_HOME/sylva/city-trees, else
+    /// ~/.cache/sylva/city-trees).
+    #[arg(long, value_name = "DIR")]
+    pub cache: Option<PathBuf>,
+
+    /// Most the cache of grown trees may hold, MiB (the least recently used go first).
+    #[arg(long, default_value_t = 2048)]
+    pub cache_mib: u64,
+
+    /// Grow every tree, and keep none.
+    #[arg(long, conflicts_with = "cache")]
+    pub no_cache: bool,
+
     /// The GeoPackage layer (default: its first features layer).
     #[arg(long, help_heading = "Columns")]
     pub layer: Option<String>,
