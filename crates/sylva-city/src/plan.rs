@@ -33,6 +33,8 @@ pub struct CityOptions {
     /// Where grown trees are kept between runs, and the most it may hold, MiB
     /// (see `cache.rs`); none: every tree is grown.
     pub cache: Option<(std::path::PathBuf, u64)>,
+    /// Also write the city's report (`report.html`, `.csv`, `.json`) beside the tiles.
+    pub report: bool,
 }
 
 impl Default for CityOptions {
@@ -46,6 +48,7 @@ impl Default for CityOptions {
             ground: 0.0,
             seed: 0,
             cache: None,
+            report: false,
         }
     }
 }

@@ -21,6 +21,7 @@ use crate::inventory::{self, Inventory, Layout};
 use crate::plan::Summary;
 use crate::plan::{self, CityOptions, Kind, Plan, ProtoKey};
 use crate::prototypes::{self, GrowthTask, Prototype};
+use crate::report;
 use crate::tiles::quadtree::{self, Node};
 use crate::tiles::{self, LEAF_TREES, Tile, TileTask, TilesetReport, content};
 use std::collections::{BTreeSet, HashMap};
@@ -243,6 +244,14 @@ impl CityJob {
         let text = serde_json::to_vec_pretty(&summary_json(&run))
             .map_err(|e| CityError::write(Path::new("summary.json"), e))?;
         files.push(("summary.json".into(), text));
+        if self.options.report {
+            let r = report::report(&self.plan, &self.prototypes);
+            let json = serde_json::to_vec_pretty(&r.json())
+                .map_err(|e| CityError::write(Path::new("report.json"), e))?;
+            files.push(("report.json".into(), json));
+            files.push(("report.csv".into(), r.csv().into_bytes()));
+            files.push(("report.html".into(), r.html().into_bytes()));
+        }
         Ok((run, files))
     }
 }

@@ -181,6 +181,7 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
         variants: 1,
         stumps: true,
         cache: Some((dir.path().join("cache"), 512)),
+        report: true,
         ..Default::default()
     };
     let run = tile_city(&inventory, None, &Layout::default(), &options, &out, &Quiet).unwrap();
@@ -226,6 +227,41 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
     let drawn = run.summary.trees + run.summary.stumps - run.epochs[0].3;
     assert_eq!(checked.root_instances, drawn);
     assert_eq!(checked.leaf_instances, drawn);
+    // The report counts every standing tree the tiles hold (the stumps aside), by species,
+    // DBH class and genus, and its shares and importance values add up.
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+    let trees = report["trees"].as_u64().unwrap() as usize;
+    assert_eq!(trees + run.summary.stumps, drawn);
+    assert_eq!(
+        report["epochs"][0]["trees"].as_u64().unwrap() as usize,
+        trees
+    );
+    let species = report["species"].as_array().unwrap();
+    let sum = |f: &dyn Fn(&serde_json::Value) -> f64| species.iter().map(f).sum::<f64>();
+    assert_eq!(sum(&|s| s["trees"].as_f64().unwrap()) as usize, trees);
+    assert!((sum(&|s| s["share"].as_f64().unwrap()) - 1.0).abs() < 1e-9);
+    assert!((sum(&|s| s["importance"].as_f64().unwrap()) - 200.0).abs() < 1e-6);
+    for s in species {
+        let classes: u64 = s["dbh_classes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_u64().unwrap())
+            .sum();
+        assert_eq!(classes, s["trees"].as_u64().unwrap(), "{s}");
+    }
+    let genera: u64 = report["genera"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g[1].as_u64().unwrap())
+        .sum();
+    assert_eq!(genera as usize, trees);
+    let csv = std::fs::read_to_string(out.join("report.csv")).unwrap();
+    assert_eq!(csv.lines().count(), species.len() + 1);
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("Not computed") && html.contains("replacement value"));
     assert!(checked.tiles > 4, "{checked:?}");
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();

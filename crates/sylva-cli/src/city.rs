@@ -73,6 +73,7 @@ pub fn run(args: &CityArgs) -> Result<()> {
                 .or_else(GrowthCache::default_dir)
                 .map(|dir| (dir, args.cache_mib))
         },
+        report: args.report,
     };
     let bar = Bar {
         bar: indicatif::ProgressBar::new(0),

@@ -133,6 +133,7 @@ impl Settings {
             seed: self.seed,
             // A cluster's workers grow their own tasks; the local run grows them all.
             cache: None,
+            report: false,
         }
     }
 }

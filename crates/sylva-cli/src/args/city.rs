@@ -57,6 +57,13 @@ pub struct CityArgs {
     #[arg(long, conflicts_with = "cache")]
     pub no_cache: bool,
 
+    /// Also write the city's report beside the tiles (report.html, report.csv, report.json):
+    /// composition by species and genus with i-Tree's diversity guidelines, DBH classes,
+    /// importance values, yearly benefits by species, and each epoch's canopy, leaf area and
+    /// benefits.
+    #[arg(long)]
+    pub report: bool,
+
     /// The GeoPackage layer (default: its first features layer).
     #[arg(long, help_heading = "Columns")]
     pub layer: Option<String>,

@@ -1,0 +1,372 @@
+//! The city's report (issue T), as i-Tree Streets reports an inventory: the resource's
+//! structure (species and genus composition with i-Tree's diversity guidelines, DBH classes,
+//! importance values), its yearly benefits by species, and each epoch beside the first. Every
+//! figure says which model gives it; what Sylva does not compute is listed as such.
+//!
+//! Read from a planned and grown city (`tasks::CityJob`): each tree's species and DBH from the
+//! inventory, its leaf area and crown from the grown tree of its class scaled to it, its
+//! benefits from `benefits::tree_year` (Sylva's own carbon and rain, and i-Tree Streets'
+//! typical position at its DBH).
+
+use crate::benefits::{NO_DATA, tree_year};
+use crate::plan::{Kind, Plan, ProtoKey};
+use crate::prototypes::Prototype;
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write as _;
+use sylva::growth::DBH_CLASS_EDGES_CM;
+
+/// i-Tree's guideline for one species: at most this share of the trees (Santamour 1990's
+/// 10-20-30 rule, as i-Tree Streets flags it).
+pub const SPECIES_GUIDELINE: f64 = 0.10;
+/// ...and for one genus.
+pub const GENUS_GUIDELINE: f64 = 0.20;
+
+/// One species of the city at the first epoch.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SpeciesRow {
+    /// Urban Tree Database code it is grown as.
+    pub code: String,
+    /// Scientific and common name.
+    pub scientific: String,
+    pub common: String,
+    /// Genus: the scientific name's first word.
+    pub genus: String,
+    /// Trees.
+    pub trees: usize,
+    /// Share of the city's trees.
+    pub share: f64,
+    /// Trees in each of the Urban Tree Database's nine DBH classes (cm: under 7.6, 7.6-15.2,
+    /// ... , 106.7 and over).
+    pub dbh_classes: [usize; 9],
+    /// One-sided leaf area, m².
+    pub leaf_area_m2: f64,
+    /// Importance value: share of the trees plus share of the leaf area (i-Tree Streets'),
+    /// in percent (0 to 200).
+    pub importance: f64,
+    /// Sylva's own benefits (CO2 taken up and rain held back, at the region's prices), $ a
+    /// year; none where no tree of it has a model.
+    pub benefits_usd: Option<f64>,
+    /// i-Tree Streets' typical position at each tree's DBH: energy, carbon, stormwater, air
+    /// quality, $ a year.
+    pub typical_usd: [Option<f64>; 4],
+    /// Every priced typical benefit, $ a year.
+    pub typical_total_usd: Option<f64>,
+}
+
+/// One epoch of the city.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct EpochRow {
+    /// Years after the inventory's year.
+    pub years: u32,
+    /// Trees standing (stumps aside).
+    pub trees: usize,
+    /// Canopy: the crowns' projections summed (overlaps counted twice), m².
+    pub canopy_m2: f64,
+    /// Leaf area, m².
+    pub leaf_area_m2: f64,
+    /// Sylva's own benefits, $ a year.
+    pub benefits_usd: f64,
+    /// i-Tree Streets' typical-position benefits, $ a year.
+    pub typical_total_usd: f64,
+}
+
+/// The report.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct CityReport {
+    /// Trees at the first epoch.
+    pub trees: usize,
+    /// Every species, most trees first.
+    pub species: Vec<SpeciesRow>,
+    /// Every genus and its trees and share, most first.
+    pub genera: Vec<(String, usize, f64)>,
+    /// What breaks i-Tree's diversity guidelines.
+    pub flags: Vec<String>,
+    /// Each epoch.
+    pub epochs: Vec<EpochRow>,
+    /// The model behind each figure.
+    pub models: Vec<String>,
+    /// What is not computed, and why.
+    pub not_computed: Vec<String>,
+}
+
+/// What one tree adds up to.
+struct Tree {
+    leaf: f64,
+    canopy: f64,
+    benefits: Option<f64>,
+    typical: [Option<f64>; 4],
+    typical_total: Option<f64>,
+}
+
+fn tree_of(
+    t: &crate::plan::Planned,
+    key: &ProtoKey,
+    plan: &Plan,
+    prototypes: &HashMap<ProtoKey, Prototype>,
+) -> Tree {
+    let p = prototypes.get(key);
+    let m = plan.measured.get(&(key.region.clone(), key.code.clone()));
+    let year = tree_year(t, m, p);
+    let s = p.map_or(0.0, |p| (t.height / p.height.max(0.01)) as f64);
+    let some = |v: f32| (v != NO_DATA).then_some(v as f64);
+    Tree {
+        leaf: p.map_or(0.0, |p| p.surfaces.0 * s * s),
+        canopy: std::f64::consts::PI * (t.crown_diameter as f64 / 2.0).powi(2),
+        benefits: some(year.benefits_usd),
+        typical: year.typical_usd.map(some),
+        typical_total: some(year.typical_benefits_usd),
+    }
+}
+
+fn add(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (None, None) => None,
+        (a, b) => Some(a.unwrap_or(0.0) + b.unwrap_or(0.0)),
+    }
+}
+
+/// The report of a planned city whose trees are grown (`prototypes`).
+pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityReport {
+    let mut species: BTreeMap<String, SpeciesRow> = BTreeMap::new();
+    let first = plan.epochs.first();
+    for t in first.map_or(&[][..], |e| &e.trees) {
+        let Kind::Tree(key) = &t.kind else { continue };
+        let tree = tree_of(t, key, plan, prototypes);
+        let m = plan.measured.get(&(key.region.clone(), key.code.clone()));
+        let row = species.entry(key.code.clone()).or_insert_with(|| {
+            let scientific = m.map_or(String::new(), |m| m.species.scientific.clone());
+            SpeciesRow {
+                code: key.code.clone(),
+                genus: scientific
+                    .split_whitespace()
+                    .next()
+                    .unwrap_or("")
+                    .to_string(),
+                common: m.map_or(String::new(), |m| m.species.common.clone()),
+                scientific,
+                trees: 0,
+                share: 0.0,
+                dbh_classes: [0; 9],
+                leaf_area_m2: 0.0,
+                importance: 0.0,
+                benefits_usd: None,
+                typical_usd: [None; 4],
+                typical_total_usd: None,
+            }
+        });
+        row.trees += 1;
+        let class = DBH_CLASS_EDGES_CM.partition_point(|&edge| edge <= t.dbh as f64);
+        row.dbh_classes[class] += 1;
+        row.leaf_area_m2 += tree.leaf;
+        row.benefits_usd = add(row.benefits_usd, tree.benefits);
+        for (sum, v) in row.typical_usd.iter_mut().zip(tree.typical) {
+            *sum = add(*sum, v);
+        }
+        row.typical_total_usd = add(row.typical_total_usd, tree.typical_total);
+    }
+    let trees: usize = species.values().map(|s| s.trees).sum();
+    let leaf: f64 = species.values().map(|s| s.leaf_area_m2).sum();
+    let mut species: Vec<SpeciesRow> = species.into_values().collect();
+    for s in &mut species {
+        s.share = s.trees as f64 / trees.max(1) as f64;
+        s.importance = 100.0 * (s.share + s.leaf_area_m2 / leaf.max(1e-9));
+    }
+    species.sort_by(|a, b| b.trees.cmp(&a.trees).then(a.code.cmp(&b.code)));
+    let mut genera: BTreeMap<String, usize> = BTreeMap::new();
+    for s in &species {
+        *genera.entry(s.genus.clone()).or_default() += s.trees;
+    }
+    let mut genera: Vec<(String, usize, f64)> = genera
+        .into_iter()
+        .map(|(g, n)| (g, n, n as f64 / trees.max(1) as f64))
+        .collect();
+    genera.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    let mut flags: Vec<String> = species
+        .iter()
+        .filter(|s| s.share > SPECIES_GUIDELINE)
+        .map(|s| {
+            format!(
+                "species {} ({}) is {:.1}% of the trees: over i-Tree's 10% guideline",
+                s.common,
+                s.code,
+                100.0 * s.share
+            )
+        })
+        .collect();
+    flags.extend(genera.iter().filter(|g| g.2 > GENUS_GUIDELINE).map(|g| {
+        format!(
+            "genus {} is {:.1}% of the trees: over i-Tree's 20% guideline",
+            g.0,
+            100.0 * g.2
+        )
+    }));
+    let epochs = plan
+        .epochs
+        .iter()
+        .map(|e| {
+            let mut row = EpochRow {
+                years: e.years,
+                trees: 0,
+                canopy_m2: 0.0,
+                leaf_area_m2: 0.0,
+                benefits_usd: 0.0,
+                typical_total_usd: 0.0,
+            };
+            for t in &e.trees {
+                let Kind::Tree(key) = &t.kind else { continue };
+                let tree = tree_of(t, key, plan, prototypes);
+                row.trees += 1;
+                row.canopy_m2 += tree.canopy;
+                row.leaf_area_m2 += tree.leaf;
+                row.benefits_usd += tree.benefits.unwrap_or(0.0);
+                row.typical_total_usd += tree.typical_total.unwrap_or(0.0);
+            }
+            row
+        })
+        .collect();
+    CityReport {
+        trees,
+        species,
+        genera,
+        flags,
+        epochs,
+        models: vec![
+            "composition, DBH classes: the inventory's rows as planned (species by their Urban \
+             Tree Database code, genus the scientific name's first word)"
+                .into(),
+            "leaf area and canopy: each tree's grown tree of its age class scaled to its \
+             height; canopy the crowns' projected discs summed"
+                .into(),
+            "importance value: share of trees plus share of leaf area (i-Tree Streets)".into(),
+            "benefits: Sylva's own CO2 taken up (Jenkins et al. 2003) and rain held back by the \
+             grown crown at the region's prices; typical: i-Tree Streets' per-tree tables at \
+             each tree's DBH (energy, carbon, stormwater, air quality)"
+                .into(),
+        ],
+        not_computed: vec![
+            "family: no sourced table of plant families is built in".into(),
+            "relative age: the Urban Tree Database gives no species' expected life span".into(),
+            "replacement value: the CTLA trunk formula needs regional prices per unit of trunk \
+             area and species, condition and location ratings, which Sylva does not have"
+                .into(),
+            "energy on the site: an inventory has no façades (the typical position's energy is \
+             i-Tree's)"
+                .into(),
+        ],
+    }
+}
+
+impl CityReport {
+    /// As JSON.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::to_value(self).unwrap_or(serde_json::Value::Null)
+    }
+
+    /// One row per species, as CSV.
+    pub fn csv(&self) -> String {
+        let mut out = String::from(
+            "code,scientific,common,genus,trees,share,importance,leaf_area_m2,\
+             dbh_lt_7_6,dbh_7_6_15_2,dbh_15_2_30_5,dbh_30_5_45_7,dbh_45_7_61,dbh_61_76_2,\
+             dbh_76_2_91_4,dbh_91_4_106_7,dbh_ge_106_7,benefits_usd,typical_energy_usd,\
+             typical_carbon_usd,typical_stormwater_usd,typical_air_quality_usd,typical_total_usd\n",
+        );
+        let cell = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.2}"));
+        for s in &self.species {
+            let classes: Vec<String> = s.dbh_classes.iter().map(|n| n.to_string()).collect();
+            let typical: Vec<String> = s.typical_usd.iter().map(|&v| cell(v)).collect();
+            let _ = writeln!(
+                out,
+                "{},\"{}\",\"{}\",{},{},{:.4},{:.2},{:.1},{},{},{},{}",
+                s.code,
+                s.scientific,
+                s.common,
+                s.genus,
+                s.trees,
+                s.share,
+                s.importance,
+                s.leaf_area_m2,
+                classes.join(","),
+                cell(s.benefits_usd),
+                typical.join(","),
+                cell(s.typical_total_usd)
+            );
+        }
+        out
+    }
+
+    /// As a page of HTML tables.
+    pub fn html(&self) -> String {
+        let esc = |s: &str| {
+            s.replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;")
+        };
+        let money = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("${v:.0}"));
+        let mut h = String::from(
+            "<!doctype html><meta charset=\"utf-8\"><title>Sylva: the city's trees</title>\
+             <style>body{font:14px system-ui,sans-serif;margin:2em}table{border-collapse:\
+             collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}\
+             td:first-child,th:first-child{text-align:left}.flag{color:#a33}</style>\n",
+        );
+        let _ = writeln!(h, "<h1>The city's trees</h1><p>{} trees.</p>", self.trees);
+        for f in &self.flags {
+            let _ = writeln!(h, "<p class=\"flag\">{}</p>", esc(f));
+        }
+        h.push_str(
+            "<h2>Composition, size and benefits by species</h2><table><tr><th>Species</th>\
+             <th>Trees</th><th>Share</th><th>Importance</th><th>Leaf area m²</th>\
+             <th>DBH classes (cm: &lt;7.6 … ≥106.7)</th><th>Sylva $/yr</th>\
+             <th>i-Tree typical $/yr</th></tr>\n",
+        );
+        for s in &self.species {
+            let classes: Vec<String> = s.dbh_classes.iter().map(|n| n.to_string()).collect();
+            let _ = writeln!(
+                h,
+                "<tr><td>{} <i>{}</i> ({})</td><td>{}</td><td>{:.1}%</td><td>{:.1}</td>\
+                 <td>{:.0}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                esc(&s.common),
+                esc(&s.scientific),
+                esc(&s.code),
+                s.trees,
+                100.0 * s.share,
+                s.importance,
+                s.leaf_area_m2,
+                classes.join(" · "),
+                money(s.benefits_usd),
+                money(s.typical_total_usd)
+            );
+        }
+        h.push_str(
+            "</table><h2>Genera</h2><table><tr><th>Genus</th><th>Trees</th><th>Share</th></tr>\n",
+        );
+        for (g, n, share) in &self.genera {
+            let _ = writeln!(
+                h,
+                "<tr><td><i>{}</i></td><td>{n}</td><td>{:.1}%</td></tr>",
+                esc(g),
+                100.0 * share
+            );
+        }
+        h.push_str(
+            "</table><h2>The city over the years</h2><table><tr><th>Years on</th><th>Trees</th>\
+             <th>Canopy m²</th><th>Leaf area m²</th><th>Sylva $/yr</th><th>i-Tree typical $/yr</th></tr>\n",
+        );
+        for e in &self.epochs {
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.0}</td><td>${:.0}</td><td>${:.0}</td></tr>",
+                e.years, e.trees, e.canopy_m2, e.leaf_area_m2, e.benefits_usd, e.typical_total_usd
+            );
+        }
+        h.push_str("</table><h2>Models</h2><ul>\n");
+        for m in &self.models {
+            let _ = writeln!(h, "<li>{}</li>", esc(m));
+        }
+        h.push_str("</ul><h2>Not computed</h2><ul>\n");
+        for m in &self.not_computed {
+            let _ = writeln!(h, "<li>{}</li>", esc(m));
+        }
+        h.push_str("</ul>\n");
+        h
+    }
+}
