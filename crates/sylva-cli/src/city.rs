@@ -58,6 +58,12 @@ pub fn run(args: &CityArgs) -> Result<()> {
         ground: args.ground_col.clone(),
         name: String::new(),
     };
+    if let Some(dir) = args.cache.as_ref().filter(|d| d.exists() && !d.is_dir()) {
+        bail!(
+            "--cache {}: that is a file; give a folder for the grown trees (it is made if missing)",
+            dir.display()
+        );
+    }
     let options = CityOptions {
         region: args.region.clone(),
         variants: args.variants,

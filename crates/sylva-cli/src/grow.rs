@@ -98,17 +98,13 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             for (i, grower) in cohort.growers.iter_mut().enumerate() {
                 let m = &cohort.species[i];
                 let mut failed = None;
-                pruner.advance(grower, age, |year, cycle, before, after| {
+                cycles[i] = pruner.advance(grower, age, |year, cycle, before, after| {
                     if !args.no_pictures && failed.is_none() && !cycle.cuts.marks.is_empty() {
                         let size = (width * 2, height);
-                        let picture = cycle_picture(m, year, &cycle, &before, after, site, size);
+                        let picture = cycle_picture(m, year, cycle, &before, after, site, size);
                         let name = format!("{}-pruned-age-{}.png", m.species.code, age_label(year));
                         failed = save_picture(&output.join(name), &picture).err();
                     }
-                    cycles[i] = Some(match cycles[i].take() {
-                        Some(earlier) => PruningYear::merged(earlier, cycle),
-                        None => cycle,
-                    });
                 });
                 if let Some(e) = failed {
                     return Err(e);

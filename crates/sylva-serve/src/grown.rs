@@ -12,7 +12,7 @@ use sylva::growth::{Dress, Measured, dressed_mesh};
 use sylva::lod::{LodTree, leaf_shell};
 use sylva::mesh::{MeshOptions, TreeMesh, leaf_template};
 use sylva::skeleton::LeafShape;
-use sylva::street::pruner::{Pruner, PruningYear};
+use sylva::street::pruner::Pruner;
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
 /// A planting site the page offers: its key in the API, what the page calls it, and the site.
@@ -135,15 +135,8 @@ pub fn grow_all(
     };
     for age in ages_of(m) {
         let age = f64::from(age);
-        let mut cycle = None;
-        if let Some((_, p)) = &pruner {
-            p.advance(&mut cohort.growers[0], age, |_, year, _, _| {
-                cycle = Some(match cycle.take() {
-                    Some(earlier) => PruningYear::merged(earlier, year),
-                    None => year,
-                })
-            });
-        }
+        let cycle = (pruner.as_ref())
+            .and_then(|(_, p)| p.advance(&mut cohort.growers[0], age, |_, _, _, _| {}));
         let skeleton = cohort
             .advance_to(age)
             .pop()

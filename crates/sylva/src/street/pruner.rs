@@ -197,23 +197,30 @@ impl Pruner {
     }
 
     /// Grows `grower` on to `age` a year at a time, carrying out every cycle that falls due
-    /// on the way; `each` is given each year's pruning, the tree as it stood before the cuts,
-    /// and the grower after them.
+    /// on the way, and returns them as one ([`PruningYear::merged`]; none if none fell due).
+    /// `each` is shown each year's pruning, the tree as it stood before the cuts, and the
+    /// grower after them.
     pub fn advance(
         &self,
         grower: &mut Grower,
         age: f64,
-        mut each: impl FnMut(f64, PruningYear, Skeleton, &Grower),
-    ) {
+        mut each: impl FnMut(f64, &PruningYear, Skeleton, &Grower),
+    ) -> Option<PruningYear> {
+        let mut merged: Option<PruningYear> = None;
         let mut year = (grower.age() + 1e-6).floor() + 1.0;
         while year <= age + 1e-9 {
             grower.advance_to(year);
             if let Some((cycle, before)) = self.year(grower, year) {
-                each(year, cycle, before, grower);
+                each(year, &cycle, before, grower);
+                merged = Some(match merged {
+                    Some(earlier) => PruningYear::merged(earlier, cycle),
+                    None => cycle,
+                });
             }
             year += 1.0;
         }
         grower.advance_to(age);
+        merged
     }
 
     /// The cycles due at `age` (a whole number of years since planting), carried out on the

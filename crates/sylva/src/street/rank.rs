@@ -205,15 +205,8 @@ pub fn run(
     };
     let mut accounts = Vec::new();
     for age in ages(m, years) {
-        let mut cycle = None;
-        if let Some(p) = &pruner {
-            p.advance(&mut cohort.growers[0], age, |_, year, _, _| {
-                cycle = Some(match cycle.take() {
-                    Some(earlier) => PruningYear::merged(earlier, year),
-                    None => year,
-                })
-            });
-        }
+        let cycle =
+            (pruner.as_ref()).and_then(|p| p.advance(&mut cohort.growers[0], age, |_, _, _, _| {}));
         let skeleton = cohort.advance_to(age).remove(0);
         let dims = cohort.history[0]
             .last()

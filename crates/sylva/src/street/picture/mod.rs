@@ -42,36 +42,18 @@ fn across(skeleton: &Skeleton, site: &Site) -> (f64, f64) {
 /// Draws the site and the tree, `size` pixels (each side 64 to 8192): the section on the left
 /// half, the plan on the right. `marked` kinds have their zones outlined in red.
 pub fn site_picture(skeleton: &Skeleton, site: &Site, marked: &[Kind], size: (u32, u32)) -> Rgba {
-    let (w, h) = (size.0.clamp(64, 8192), size.1.clamp(64, 8192));
-    let mut pixmap = Pixmap::new(w, h).expect("64 to 8192 pixels a side is a valid size");
-    pixmap.fill(Color::from_rgba8(246, 246, 242, 255));
     let zones = Zones::new(site);
-    let half = w as f64 / 2.0;
-    section(
-        &mut pixmap,
-        (0.0, 0.0, half, h as f64),
-        (skeleton, skeleton),
-        site,
-        &zones,
-        (marked, &[]),
-    );
-    plan::plan(
-        &mut pixmap,
-        (half, 0.0, half, h as f64),
-        skeleton,
-        site,
-        &zones,
-        marked,
-    );
-    let mut c = Canvas::fit(
-        &mut pixmap,
-        (0.0, 0.0, w as f64, h as f64),
-        (0.0, 1.0),
-        (0.0, 1.0),
-    );
-    c.segment((0.5, -0.1), (0.5, 1.1), 1.0, &paint(160, 160, 160, 255));
-    // Every pixel is opaque (the background is), so premultiplied is straight RGBA.
-    (w, h, pixmap.take())
+    two_panels(size, |pixmap, [left, right]| {
+        section(
+            pixmap,
+            left,
+            (skeleton, skeleton),
+            site,
+            &zones,
+            (marked, &[]),
+        );
+        plan::plan(pixmap, right, skeleton, site, &zones, marked);
+    })
 }
 
 /// A pruning cycle across the street, `size` pixels (each side 64 to 8192): the tree before
@@ -84,21 +66,25 @@ pub fn pruning_picture(
     cuts: &[CutMark],
     size: (u32, u32),
 ) -> Rgba {
+    let zones = Zones::new(site);
+    two_panels(size, |pixmap, panels| {
+        for (panel, tree) in panels.into_iter().zip([before, after]) {
+            section(pixmap, panel, (tree, before), site, &zones, (&[], cuts));
+        }
+    })
+}
+
+/// A picture `size` pixels (each side 64 to 8192) of two panels side by side, each drawn by
+/// `draw` into its rectangle (x, y, width, height), with a grey line between them.
+fn two_panels(size: (u32, u32), draw: impl FnOnce(&mut Pixmap, [(f64, f64, f64, f64); 2])) -> Rgba {
     let (w, h) = (size.0.clamp(64, 8192), size.1.clamp(64, 8192));
     let mut pixmap = Pixmap::new(w, h).expect("64 to 8192 pixels a side is a valid size");
     pixmap.fill(Color::from_rgba8(246, 246, 242, 255));
-    let zones = Zones::new(site);
     let half = w as f64 / 2.0;
-    for (x, tree) in [(0.0, before), (half, after)] {
-        section(
-            &mut pixmap,
-            (x, 0.0, half, h as f64),
-            (tree, before),
-            site,
-            &zones,
-            (&[], cuts),
-        );
-    }
+    draw(
+        &mut pixmap,
+        [(0.0, 0.0, half, h as f64), (half, 0.0, half, h as f64)],
+    );
     let mut c = Canvas::fit(
         &mut pixmap,
         (0.0, 0.0, w as f64, h as f64),
@@ -106,6 +92,7 @@ pub fn pruning_picture(
         (0.0, 1.0),
     );
     c.segment((0.5, -0.1), (0.5, 1.1), 1.0, &paint(160, 160, 160, 255));
+    // Every pixel is opaque (the background is), so premultiplied is straight RGBA.
     (w, h, pixmap.take())
 }
 
