@@ -46,6 +46,15 @@ impl LocalFrame {
         }
     }
 
+    /// The frame's origin as longitude and latitude, degrees (from its up direction, which is
+    /// the ellipsoid's normal there).
+    pub fn lon_lat(&self) -> (f64, f64) {
+        (
+            self.up.y.atan2(self.up.x).to_degrees(),
+            self.up.z.clamp(-1.0, 1.0).asin().to_degrees(),
+        )
+    }
+
     /// A point given in ECEF, in this frame (east, north, up), m.
     pub fn local(&self, p: DVec3) -> DVec3 {
         let d = p - self.origin;
@@ -148,6 +157,12 @@ mod tests {
         // A point 100 m north and 10 m up of a frame's origin reads so in the frame (within
         // the ellipsoid's curvature over 100 m: under a millimetre up, here).
         let f = LocalFrame::at(-73.95, 40.7);
+        // The frame gives back the longitude and latitude it was made at.
+        let (lon, lat) = f.lon_lat();
+        assert!(
+            (lon + 73.95).abs() < 1e-9 && (lat - 40.7).abs() < 1e-9,
+            "{lon} {lat}"
+        );
         let north = f.of(-73.95, 40.7 + 100.0 / 111_033.0, 10.0);
         assert!(north.x.abs() < 1e-3, "{north}");
         assert!((north.y - 100.0).abs() < 0.2, "{north}");

@@ -11,6 +11,7 @@ pub mod species;
 pub use error::CityError;
 pub mod plan;
 pub mod prototypes;
+pub mod published;
 pub mod report;
 pub mod run;
 pub mod tasks;

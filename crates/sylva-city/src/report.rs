@@ -11,6 +11,7 @@
 use crate::benefits::{NO_DATA, tree_year};
 use crate::plan::{Kind, Plan, ProtoKey};
 use crate::prototypes::Prototype;
+use crate::published::{self, Comparison};
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 use sylva::growth::DBH_CLASS_EDGES_CM;
@@ -87,6 +88,14 @@ pub struct CityReport {
     pub models: Vec<String>,
     /// What is not computed, and why.
     pub not_computed: Vec<String>,
+    /// Per tree at the first epoch: i-Tree Streets' typical-position energy, carbon,
+    /// stormwater and air quality, $ a year.
+    pub typical_per_tree_usd: [Option<f64>; 4],
+    /// Sylva's own benefits per tree, $ a year.
+    pub benefits_per_tree_usd: Option<f64>,
+    /// The published figures per tree of the city that the region most of the trees are grown
+    /// in stands for, beside this city's, where the table has one.
+    pub published: Option<Comparison>,
 }
 
 /// What one tree adds up to.
@@ -128,9 +137,11 @@ fn add(a: Option<f64>, b: Option<f64>) -> Option<f64> {
 /// The report of a planned city whose trees are grown (`prototypes`).
 pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityReport {
     let mut species: BTreeMap<String, SpeciesRow> = BTreeMap::new();
+    let mut regions: BTreeMap<&str, usize> = BTreeMap::new();
     let first = plan.epochs.first();
     for t in first.map_or(&[][..], |e| &e.trees) {
         let Kind::Tree(key) = &t.kind else { continue };
+        *regions.entry(key.region.as_str()).or_default() += 1;
         let tree = tree_of(t, key, plan, prototypes);
         let m = plan.measured.get(&(key.region.clone(), key.code.clone()));
         let row = species.entry(key.code.clone()).or_insert_with(|| {
@@ -165,6 +176,20 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         row.typical_total_usd = add(row.typical_total_usd, tree.typical_total);
     }
     let trees: usize = species.values().map(|s| s.trees).sum();
+    let per_tree = |v: Option<f64>| v.map(|v| v / trees.max(1) as f64);
+    let typical_per_tree_usd: [Option<f64>; 4] = std::array::from_fn(|k| {
+        per_tree(species.values().fold(None, |a, s| add(a, s.typical_usd[k])))
+    });
+    let benefits_per_tree_usd =
+        per_tree(species.values().fold(None, |a, s| add(a, s.benefits_usd)));
+    // The region most trees are grown in (the first of equals).
+    let region = regions
+        .iter()
+        .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+        .map(|(r, _)| *r);
+    let published = region
+        .and_then(published::for_region)
+        .map(|p| published::compare(p, typical_per_tree_usd));
     let leaf: f64 = species.values().map(|s| s.leaf_area_m2).sum();
     let mut species: Vec<SpeciesRow> = species.into_values().collect();
     for s in &mut species {
@@ -253,6 +278,9 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
              i-Tree's)"
                 .into(),
         ],
+        typical_per_tree_usd,
+        benefits_per_tree_usd,
+        published,
     }
 }
 
@@ -358,7 +386,11 @@ impl CityReport {
                 e.years, e.trees, e.canopy_m2, e.leaf_area_m2, e.benefits_usd, e.typical_total_usd
             );
         }
-        h.push_str("</table><h2>Models</h2><ul>\n");
+        h.push_str("</table>\n");
+        if let Some(c) = &self.published {
+            comparison_html(&mut h, c, &esc);
+        }
+        h.push_str("<h2>Models</h2><ul>\n");
         for m in &self.models {
             let _ = writeln!(h, "<li>{}</li>", esc(m));
         }
@@ -369,4 +401,41 @@ impl CityReport {
         h.push_str("</ul>\n");
         h
     }
+}
+
+/// The section that sets this city's benefits per tree beside a published city's.
+fn comparison_html(h: &mut String, c: &Comparison, esc: &dyn Fn(&str) -> String) {
+    let p = &c.published;
+    let _ = writeln!(
+        h,
+        "<h2 id=\"published\">Benefits per tree beside {}'s</h2><p>This city at the first \
+         epoch (i-Tree Streets' typical position at each tree's DBH) beside {}'s {} trees as \
+         published: {}.</p><table><tr><th>$ a tree a year</th><th>This city</th><th>{} {}</th>\
+         <th>Ratio</th></tr>",
+        esc(&p.city),
+        esc(&p.city),
+        p.trees,
+        esc(&p.source),
+        esc(&p.city),
+        p.year
+    );
+    let money = |v: Option<f64>| v.map_or("not computed".to_string(), |v| format!("${v:.2}"));
+    for (category, ours, theirs) in &c.rows {
+        let ratio = match (ours, theirs) {
+            (Some(a), Some(b)) if *b > 0.0 => format!("{:.2}", a / b),
+            _ => "–".into(),
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{ratio}</td></tr>",
+            category.replace('_', " "),
+            money(*ours),
+            money(*theirs)
+        );
+    }
+    h.push_str("</table><p>Why they differ:</p><ul>\n");
+    for d in &c.differences {
+        let _ = writeln!(h, "<li>{}</li>", esc(d));
+    }
+    h.push_str("</ul>\n");
 }

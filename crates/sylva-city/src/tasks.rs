@@ -240,6 +240,7 @@ impl CityJob {
             growths: 0,
             from_cache: 0,
             seconds: [0.0; 3],
+            origin: self.plan.frame.lon_lat(),
         };
         let text = serde_json::to_vec_pretty(&summary_json(&run))
             .map_err(|e| CityError::write(Path::new("summary.json"), e))?;
@@ -274,7 +275,18 @@ pub struct CityRun {
     pub from_cache: usize,
     /// Seconds spent reading and planning, growing, and writing tiles.
     pub seconds: [f64; 3],
+    /// Longitude and latitude of the city's local frame, degrees: where every tileset's root
+    /// transform puts east-north-up (0, 0, 0).
+    pub origin: (f64, f64),
 }
+
+/// What `summary.json` says wrote it (`generator`): a reader (`sylva serve --city`) takes a
+/// folder as Sylva's city by this.
+pub const SUMMARY_GENERATOR: &str = "Sylva sylva city";
+
+/// The layout of a city's folder and of its `summary.json` (`format`); raised whenever a
+/// reader of an older folder would misread it.
+pub const SUMMARY_FORMAT: u32 = 1;
 
 /// The summary as JSON (what `summary.json` holds).
 pub fn summary_json(run: &CityRun) -> serde_json::Value {
@@ -295,6 +307,10 @@ pub fn summary_json(run: &CityRun) -> serde_json::Value {
         })
         .collect();
     serde_json::json!({
+        "generator": SUMMARY_GENERATOR,
+        "version": env!("CARGO_PKG_VERSION"),
+        "format": SUMMARY_FORMAT,
+        "origin": { "longitude": run.origin.0, "latitude": run.origin.1 },
         "rows": s.rows,
         "layout": s.layout,
         "trees": s.trees,
@@ -304,8 +320,8 @@ pub fn summary_json(run: &CityRun) -> serde_json::Value {
         "rejected": s.rejected.iter().map(|r| serde_json::json!({ "line": r.line, "reason": r.reason })).collect::<Vec<_>>(),
         "species": species,
         "prototypes": run.prototypes,
-        "epochs": run.epochs.iter().map(|(y, _, r, later)| serde_json::json!({
-            "years": y, "tiles": r.tiles, "depth": r.depth, "trees": r.trees,
+        "epochs": run.epochs.iter().map(|(y, dir, r, later)| serde_json::json!({
+            "years": y, "tileset": format!("{}tileset.json", dir.display()), "tiles": r.tiles, "depth": r.depth, "trees": r.trees,
             "content_bytes": r.content_bytes, "not_yet_planted": later,
         })).collect::<Vec<_>>(),
     })

@@ -9,13 +9,32 @@ pub fn run(args: &ServeArgs) -> Result<()> {
         host: args.host.clone(),
         port: args.port,
         cache_bytes: (args.cache_mib as usize) << 20,
+        cities: args.cities.clone(),
+        basemap: args.basemap.clone(),
         ..Default::default()
     };
     let open = args.open;
-    sylva_serve::run(&options, |url| {
+    sylva_serve::run(&options, |url, cities| {
+        for c in &cities.list {
+            match &c.problem {
+                Some(why) => eprintln!("sylva serve: city `{}` cannot be shown: {why}", c.name),
+                None => println!(
+                    "sylva serve: city `{}` ({} epochs) at {url}city.html?city={}",
+                    c.name,
+                    c.epochs.len(),
+                    c.name
+                ),
+            }
+        }
         println!("sylva serve: the page is at {url} (Ctrl-C stops)");
-        if open && let Err(e) = open::that_detached(url) {
-            eprintln!("sylva serve: could not open a browser ({e}); open {url} yourself");
+        // With cities, the page opened is the city view.
+        let page = if cities.list.is_empty() {
+            url.to_string()
+        } else {
+            format!("{url}city.html")
+        };
+        if open && let Err(e) = open::that_detached(&page) {
+            eprintln!("sylva serve: could not open a browser ({e}); open {page} yourself");
         }
     })?;
     Ok(())

@@ -472,6 +472,8 @@ async function start() {
   askEarly(`/api/species?${query({})}`);
   for (const code of wanted) askEarly(`/api/growth?${treeQuery({ species: code })}`);
   const [regions, sites] = await Promise.all([getJson('/api/regions'), getJson('/api/sites')]);
+  // The city view, where the server was given cities (`sylva serve --city DIR`).
+  getJson('/api/cities').then((c) => { $('city-link').hidden = c.cities.length === 0; }).catch(() => {});
   state.regions = regions;
   state.sites = sites;
   // A provisional street, drawn once to compile the shaders while the trees download.

@@ -6,6 +6,7 @@
 // point (x, y, z) is drawn at (x, z, -y), as Sylva's GLB files turn it.
 
 import * as THREE from '/vendor/three.min.js';
+import { softwareGl } from '/gl.js';
 
 const at = (x, y, z) => new THREE.Vector3(x, z, -y);
 
@@ -249,19 +250,6 @@ export class Street {
     const p = at(x, y, z).project(this.camera);
     return [(p.x + 1) / 2 * this.canvas.clientWidth, (1 - p.y) / 2 * this.canvas.clientHeight, p.z < 1];
   }
-}
-
-// Whether this browser draws WebGL without a graphics card: it names a software renderer
-// (SwiftShader, llvmpipe, lavapipe), or refuses a context that asks to fail on a major
-// performance caveat (which a browser told to ignore its GPU blocklist does not).
-function softwareGl() {
-  const probe = document.createElement('canvas');
-  const gl = probe.getContext('webgl2', { failIfMajorPerformanceCaveat: true });
-  if (!gl) return true;
-  const info = gl.getExtension('WEBGL_debug_renderer_info');
-  const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
-  gl.getExtension('WEBGL_lose_context')?.loseContext();
-  return /swiftshader|llvmpipe|lavapipe|softpipe|software/i.test(name);
 }
 
 // Diffuse materials shared by every tree, one per colour, vertex colours and sidedness: glTF

@@ -33,6 +33,36 @@ const FILES: &[(&str, &str, &[u8])] = &[
         include_bytes!("../assets/charts.js"),
     ),
     (
+        "/city.html",
+        "text/html; charset=utf-8",
+        include_bytes!("../assets/city.html"),
+    ),
+    (
+        "/city.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("../assets/city.js"),
+    ),
+    (
+        "/gl.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("../assets/gl.js"),
+    ),
+    (
+        "/city-trees.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("../assets/city-trees.js"),
+    ),
+    (
+        "/vendor/city.min.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("../assets/vendor/city.min.js"),
+    ),
+    (
+        "/vendor/3d-tiles-renderer-LICENSE.txt",
+        "text/plain; charset=utf-8",
+        include_bytes!("../assets/vendor/3d-tiles-renderer-LICENSE.txt"),
+    ),
+    (
         "/vendor/three.min.js",
         "text/javascript; charset=utf-8",
         include_bytes!("../assets/vendor/three.min.js"),

@@ -13,12 +13,13 @@
 //!
 //! ```no_run
 //! let options = sylva_serve::Options::default();
-//! sylva_serve::run(&options, |url| println!("open {url}")).unwrap();
+//! sylva_serve::run(&options, |url, _cities| println!("open {url}")).unwrap();
 //! ```
 
 pub mod api;
 pub mod assets;
 pub mod cache;
+pub mod city;
 pub mod grown;
 pub mod params;
 pub mod pictures;
@@ -45,6 +46,10 @@ pub struct Options {
     /// Species grown as the server starts, so that the page's first trees are ready:
     /// (region, species code).
     pub warm: Vec<(String, String)>,
+    /// Folders `sylva city` wrote, shown in the page's city view.
+    pub cities: Vec<std::path::PathBuf>,
+    /// An XYZ tile source drawn under the cities (`{z}`, `{x}`, `{y}` in it).
+    pub basemap: Option<String>,
 }
 
 /// The default memory bound: 1 GiB of grown trees (skeletons, packed trees, the opening
@@ -69,6 +74,8 @@ impl Default for Options {
                 ("InlVal".into(), "PLAC".into()),
                 ("InlVal".into(), "PICH".into()),
             ],
+            cities: Vec::new(),
+            basemap: None,
         }
     }
 }
@@ -97,11 +104,18 @@ pub struct State {
     /// Turns for work a request does on a blocking thread (meshing a tree, drawing a
     /// picture): one per core.
     pub workers: tokio::sync::Semaphore,
+    /// The cities of the city view.
+    pub cities: city::Cities,
 }
 
 impl State {
-    /// A state with the built-in database.
+    /// A state with the built-in database and no city.
     pub fn new(options: &Options) -> Arc<State> {
+        Self::with_cities(options, city::Cities::default())
+    }
+
+    /// A state with the built-in database and `cities`.
+    pub fn with_cities(options: &Options, cities: city::Cities) -> Arc<State> {
         Arc::new(State {
             db: Database::builtin(),
             cache: cache::Cache::new(options.cache_bytes, options.growing_limit),
@@ -111,6 +125,7 @@ impl State {
             workers: tokio::sync::Semaphore::new(
                 std::thread::available_parallelism().map_or(2, |n| n.get()),
             ),
+            cities,
         })
     }
 }
@@ -129,6 +144,8 @@ pub fn router(state: Arc<State>) -> Router {
         .route("/api/table.csv", get(api::table_csv))
         .route("/api/compare.png", get(api::compare_png))
         .route("/api/site.png", get(api::site_png))
+        .route("/api/cities", get(city::list))
+        .route("/city/{name}/{*path}", get(city::file))
         .fallback(assets::serve)
         .with_state(state)
 }
@@ -145,8 +162,12 @@ impl std::fmt::Display for ServeError {
 
 impl std::error::Error for ServeError {}
 
-/// Binds, calls `ready` with the page's address, and serves until Ctrl-C.
-pub fn run(options: &Options, ready: impl FnOnce(&str)) -> Result<(), ServeError> {
+/// Opens the cities, binds, calls `ready` with the page's address and the cities, and serves
+/// until Ctrl-C.
+pub fn run(options: &Options, ready: impl FnOnce(&str, &city::Cities)) -> Result<(), ServeError> {
+    // A city that cannot be opened at all stops the server before it binds; one that is only
+    // damaged is listed with its problem.
+    let cities = city::Cities::open(&options.cities, options.basemap.clone())?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
@@ -162,7 +183,7 @@ pub fn run(options: &Options, ready: impl FnOnce(&str)) -> Result<(), ServeError
         let bound: SocketAddr = listener
             .local_addr()
             .map_err(|e| ServeError(format!("cannot read the bound address: {e}")))?;
-        let state = State::new(options);
+        let state = State::with_cities(options, cities);
         let mut warming = Vec::new();
         for (region, code) in &options.warm {
             if let Ok(m) = state.db.find(region, code) {
@@ -190,7 +211,7 @@ pub fn run(options: &Options, ready: impl FnOnce(&str)) -> Result<(), ServeError
         } else {
             bound.ip().to_string()
         };
-        ready(&format!("http://{host}:{}/", bound.port()));
+        ready(&format!("http://{host}:{}/", bound.port()), &state.cities);
         axum::serve(listener, router(state))
             .with_graceful_shutdown(async {
                 let _ = tokio::signal::ctrl_c().await;

@@ -21,8 +21,17 @@ use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 use sylva::export::SharedMesh;
 
-/// Most trees in a leaf tile (Sylva's choice): some 5 million triangles at 20,000 a tree.
+/// Most trees in a leaf tile (Sylva's choice): some 2.5 million triangles at the most
+/// detailed level's 10,000 a tree.
 pub const LEAF_TREES: usize = 250;
+
+/// Most trees a tile above the leaves draws (Sylva's choice): its tallest, so that a city's
+/// coarse tiles stay some 400,000 triangles at the coarsest level's 400 a tree however many
+/// trees lie below them. Without it the root of a 100,000-tree city drew every tree, 38 million
+/// triangles, wherever its error put the camera. A tile that leaves trees out is in error by the
+/// tallest of them (a missing tree is wrong by its whole height), so a viewer refines it near
+/// the camera; below some 1,000 trees a tile draws them all.
+pub const COARSE_TREES: usize = 1000;
 
 /// What a tileset came to.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -50,8 +59,10 @@ pub struct TileTask {
     pub square: [f64; 4],
     /// Levels below it: 0 for a leaf tile.
     pub height: u32,
-    /// Every tree below it.
+    /// The trees it draws: every tree below it, or the tallest [`COARSE_TREES`] of them.
     pub trees: Vec<TileTree>,
+    /// The tallest tree below it that it does not draw, m (0: it draws them all).
+    pub omitted: f64,
     /// The grown trees they are drawn as.
     pub prototypes: Vec<Prototype>,
     /// The stump's mesh.
@@ -74,8 +85,12 @@ impl TileTask {
         stump: &SharedMesh,
         prototypes_uri: &str,
     ) -> TileTask {
-        let members: Vec<TileTree> = node
-            .trees
+        let (drawn, omitted) = if node.children.is_empty() {
+            (node.trees.clone(), 0.0)
+        } else {
+            tallest(&node.trees, |i| trees[i as usize].height, COARSE_TREES)
+        };
+        let members: Vec<TileTree> = drawn
             .iter()
             .map(|&i| {
                 let tree = trees[i as usize].clone();
@@ -113,11 +128,30 @@ impl TileTask {
             square: node.square,
             height: node.height(),
             trees: members,
+            omitted,
             prototypes: used.iter().map(|k| prototypes[k].clone()).collect(),
             stump: stump.clone(),
             prototypes_uri: prototypes_uri.to_string(),
         }
     }
+}
+
+/// The tallest `most` of `trees` (ties by their place in it), in the order they came in, and
+/// the height of the tallest left out (0 when none is).
+pub fn tallest(trees: &[u32], height: impl Fn(u32) -> f32, most: usize) -> (Vec<u32>, f64) {
+    if trees.len() <= most {
+        return (trees.to_vec(), 0.0);
+    }
+    let mut order: Vec<usize> = (0..trees.len()).collect();
+    let h = |k: usize| height(trees[k]);
+    order.sort_by(|&a, &b| h(b).total_cmp(&h(a)).then(a.cmp(&b)));
+    let omitted = order[most..]
+        .iter()
+        .map(|&k| h(k) as f64)
+        .fold(0.0, f64::max);
+    let mut kept = order[..most].to_vec();
+    kept.sort_unstable();
+    (kept.into_iter().map(|k| trees[k]).collect(), omitted)
 }
 
 /// Makes the content of `task`: what the tileset's JSON needs of the tile, and its GLB.
@@ -166,7 +200,7 @@ pub fn tileset_json(
             n.level, n.x, n.y
         )));
     }
-    let mut root_json = tile_json(root, &by_node, None);
+    let (mut root_json, _, _) = tile_json(root, &by_node, None);
     // The root carries the city's frame: local east-north-up metres to ECEF.
     let root_tile = by_node[&(0, 0, 0)];
     let m = DMat4::from_cols_array(&frame) * DMat4::from_translation(root_tile.centre);
@@ -263,21 +297,34 @@ fn tile_of(task: &TileTask, prototypes: &HashMap<&ProtoKey, &Prototype>) -> Tile
         uri: format!("content/{}/{}-{}.glb", task.level, task.x, task.y),
         centre: DVec3::new((w + e) / 2.0, (s + n) / 2.0, 0.0),
         lod,
-        error: if task.height == 0 { 0.0 } else { error },
+        error: if task.height == 0 {
+            0.0
+        } else {
+            error.max(task.omitted)
+        },
         lo: DVec3::new(w - overhang - margin, s - overhang - margin, zlo - margin),
         hi: DVec3::new(e + overhang + margin, n + overhang + margin, zhi + margin),
         content_bytes: 0,
     }
 }
 
-/// A tile's JSON with its children's; `parent` is the parent's centre (its frame's origin).
-fn tile_json(node: &Node, tiles: &HashMap<(u32, u32, u32), &Tile>, parent: Option<DVec3>) -> Value {
+/// A tile's JSON with its children's, and its box (the least and most corners, in the city's
+/// frame); `parent` is the parent's centre (its frame's origin). The box holds its children's
+/// too: a coarse tile draws only some of the trees below it.
+fn tile_json(
+    node: &Node,
+    tiles: &HashMap<(u32, u32, u32), &Tile>,
+    parent: Option<DVec3>,
+) -> (Value, DVec3, DVec3) {
     let tile = tiles[&(node.level, node.x, node.y)];
-    let children: Vec<Value> = node
-        .children
-        .iter()
-        .map(|c| tile_json(c, tiles, Some(tile.centre)))
-        .collect();
+    let (mut lo, mut hi) = (tile.lo, tile.hi);
+    let mut children = Vec::with_capacity(node.children.len());
+    for c in &node.children {
+        let (json, clo, chi) = tile_json(c, tiles, Some(tile.centre));
+        lo = lo.min(clo);
+        hi = hi.max(chi);
+        children.push(json);
+    }
     // A parent's error is never smaller than its children's.
     let below = children
         .iter()
@@ -285,10 +332,7 @@ fn tile_json(node: &Node, tiles: &HashMap<(u32, u32, u32), &Tile>, parent: Optio
         .fold(0.0, f64::max);
     let error = tile.error.max(below);
     // The box in the tile's own frame, whose origin is its centre.
-    let (c, h) = (
-        (tile.lo + tile.hi) / 2.0 - tile.centre,
-        (tile.hi - tile.lo) / 2.0,
-    );
+    let (c, h) = ((lo + hi) / 2.0 - tile.centre, (hi - lo) / 2.0);
     let mut out = json!({
         "boundingVolume": { "box": [c.x, c.y, c.z, h.x, 0.0, 0.0, 0.0, h.y, 0.0, 0.0, 0.0, h.z] },
         "geometricError": error,
@@ -301,5 +345,21 @@ fn tile_json(node: &Node, tiles: &HashMap<(u32, u32, u32), &Tile>, parent: Optio
     if !children.is_empty() {
         out["children"] = Value::Array(children);
     }
-    out
+    (out, lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_coarse_tile_keeps_its_tallest_trees_in_order_and_is_in_error_by_the_rest() {
+        let trees = [7, 3, 9, 1, 4];
+        let heights = |i: u32| [0.0, 12.0, 0.0, 5.0, 20.0, 0.0, 0.0, 8.0, 0.0, 5.0][i as usize];
+        // Tallest three: 4 (20 m), 1 (12 m), 7 (8 m), kept in the order they came in; the
+        // tallest left out is 5 m tall (3 and 9, tied).
+        assert_eq!(tallest(&trees, heights, 3), (vec![7, 1, 4], 5.0));
+        // A tile of no more than `most` draws them all, in error by nothing.
+        assert_eq!(tallest(&trees, heights, 5), (trees.to_vec(), 0.0));
+    }
 }

@@ -629,6 +629,18 @@ pub struct ServeArgs {
     /// Most memory kept for grown trees, MiB (the oldest used go first).
     #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(64..=65536))]
     pub cache_mib: u64,
+
+    /// A folder `sylva city` wrote, shown in the page's city view (at /city.html): its tiles at
+    /// every epoch, each tree's card, and its report. Give it again for more cities; each is
+    /// named by its folder.
+    #[arg(long = "city", value_name = "DIR")]
+    pub cities: Vec<PathBuf>,
+
+    /// An XYZ map tile source drawn under the cities, e.g.
+    /// https://tile.openstreetmap.org/{z}/{x}/{y}.png (fetched by the browser; without it the
+    /// ground is plain).
+    #[arg(long, value_name = "URL", requires = "cities")]
+    pub basemap: Option<String>,
 }
 
 #[derive(Args, Debug)]

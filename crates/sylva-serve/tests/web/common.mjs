@@ -19,6 +19,7 @@ export function startServer(bin, extra = []) {
         clearTimeout(timer);
         resolve({
           url: m[0],
+          pid: child.pid,
           stop: () => new Promise((done) => { child.removeAllListeners('exit'); child.on('exit', done); child.kill('SIGINT'); }),
         });
       }

@@ -1,0 +1,197 @@
+// A city's trees as the view draws them. Every instanced mesh of a loaded tile is kept as data
+// (each tree's matrix, its row of the tile's property table, its colour under the filters) and
+// not drawn itself: each frame the trees the camera sees, from every tile shown, are gathered
+// into one instanced mesh per grown tree's mesh and material (`Batches`). A view over a few
+// blocks then costs a draw per species and age class in it rather than one per class in each
+// of its tiles (hundreds), and draws only the trees in view, not every tree of tiles some 600 m
+// across. A browser drawing WebGL on its CPU pays most for its draws. Picking and colouring go
+// through the gathering, so a tree is always its own row.
+
+import * as T from '/vendor/city.min.js';
+
+const frustum = new T.Frustum();
+const toLocal = new T.Matrix4();
+const world = new T.Matrix4();
+
+// Tiles share the grown trees' meshes: every tile that draws a species' age class at a level
+// names the same file of `prototypes/`, and its instanced meshes are named by that file's
+// stem and the primitive (`PLAC-InlVal-25-0-L2_1`, its bark; `_2`, its leaves). With three.js's
+// file cache on, each file is fetched once; `share` then gives every tile the first geometry
+// made under that name, so that each mesh reaches the GPU once however many tiles draw it,
+// and the trees of all tiles that draw it gather into one batch below.
+const shared = new Map();  // mesh name -> geometry
+
+export function share(mesh) {
+  const first = shared.get(mesh.name);
+  if (!first) { shared.set(mesh.name, mesh.geometry); return; }
+  if (first !== mesh.geometry) {
+    mesh.geometry.dispose();
+    mesh.geometry = first;
+  }
+}
+
+// Forgets the shared meshes (another city's names may mean other trees).
+export function forget() {
+  shared.clear();
+}
+
+// The bytes a tile holds of its own (its trees' matrices, colours and rows), for the tile
+// cache's bound: the meshes it draws are shared.
+export function ownBytes(root) {
+  let bytes = 0;
+  root.traverse((o) => { if (o.isInstancedMesh) bytes += o.count * (64 + 12 + 400); });
+  return bytes;
+}
+
+// Takes hold of `mesh` (an InstancedMesh of a loaded tile): reads its trees once.
+export function prepare(mesh) {
+  if (mesh.userData.sylva) return mesh.userData.sylva;
+  const n = mesh.count;
+  const ids = mesh.geometry.getAttribute('_FEATURE_ID_0');
+  let meta = null;
+  for (let o = mesh; o && !meta; o = o.parent) meta = o.userData.structuralMetadata || null;
+  const rows = new Array(n);
+  for (let i = 0; i < n; i++) rows[i] = ids && meta ? meta.getPropertyTableData(0, ids.getX(i)) : null;
+  // Each tree's bounding sphere in the mesh's frame: the geometry's, moved and scaled by the
+  // tree's matrix.
+  if (!mesh.geometry.boundingSphere) mesh.geometry.computeBoundingSphere();
+  const sphere = mesh.geometry.boundingSphere;
+  const spheres = new Float32Array(4 * n);
+  const m = new T.Matrix4(), c = new T.Vector3();
+  for (let i = 0; i < n; i++) {
+    mesh.getMatrixAt(i, m);
+    c.copy(sphere.center).applyMatrix4(m);
+    spheres.set([c.x, c.y, c.z, sphere.radius * m.getMaxScaleOnAxis()], 4 * i);
+  }
+  const state = {
+    n,
+    rows,
+    spheres,
+    matrices: mesh.instanceMatrix.array.slice(),
+    colours: new Float32Array(3 * n).fill(1),
+  };
+  mesh.userData.sylva = state;
+  return state;
+}
+
+// The row of tree `i` of the tile mesh `mesh`.
+export function rowOf(mesh, i) {
+  return mesh.userData.sylva?.rows[i] ?? null;
+}
+
+// Every tree of `mesh`: [row, lit].
+export function* trees(mesh) {
+  const s = mesh.userData.sylva;
+  if (!s) return;
+  for (let i = 0; i < s.n; i++) yield [s.rows[i], s.colours[3 * i] > 0.5];
+}
+
+// Colours every tree of `mesh`: full where `keep(row)`, `dim` elsewhere; `null` keeps all.
+export function paint(mesh, keep, dim) {
+  const s = prepare(mesh);
+  for (let i = 0; i < s.n; i++) {
+    const lit = !keep || (s.rows[i] && keep(s.rows[i]));
+    s.colours.set(lit ? [1, 1, 1] : [dim.r, dim.g, dim.b], 3 * i);
+  }
+}
+
+// The trees in view, one instanced mesh per (mesh, material) of the tiles shown.
+export class Batches {
+  constructor(scene) {
+    this.group = new T.Group();
+    this.group.name = 'trees in view';
+    scene.add(this.group);
+    this.byKey = new Map();
+  }
+
+  // Gathers the trees of every tile mesh under `root` that the camera sees (`view`: its
+  // projection times its inverse world matrix).
+  fill(root, view) {
+    for (const b of this.byKey.values()) b.n = 0;
+    root.updateMatrixWorld();
+    root.traverse((o) => {
+      if (!o.isInstancedMesh) return;
+      // The tile's own mesh is data from here on: the batches draw its trees.
+      o.visible = false;
+      const s = prepare(o);
+      toLocal.multiplyMatrices(view, o.matrixWorld);
+      frustum.setFromProjectionMatrix(toLocal);
+      const planes = frustum.planes;
+      let b = null;
+      for (let i = 0; i < s.n; i++) {
+        const x = s.spheres[4 * i], y = s.spheres[4 * i + 1], z = s.spheres[4 * i + 2], r = s.spheres[4 * i + 3];
+        let inside = true;
+        for (let p = 0; p < 6 && inside; p++) {
+          const q = planes[p];
+          inside = q.normal.x * x + q.normal.y * y + q.normal.z * z + q.constant >= -r;
+        }
+        if (!inside) continue;
+        b ??= this.batch(o.geometry, o.material);
+        if (b.n === b.mesh.instanceMatrix.count) this.grow(b);
+        world.fromArray(s.matrices, 16 * i).premultiply(o.matrixWorld);
+        world.toArray(b.mesh.instanceMatrix.array, 16 * b.n);
+        b.mesh.instanceColor.array.set(s.colours.subarray(3 * i, 3 * i + 3), 3 * b.n);
+        b.refs[b.n] = [o, i];
+        b.n++;
+      }
+    });
+    let calls = 0;
+    for (const b of this.byKey.values()) {
+      b.mesh.count = b.n;
+      b.mesh.visible = b.n > 0;
+      b.refs.length = b.n;
+      b.mesh.instanceMatrix.needsUpdate = true;
+      b.mesh.instanceColor.needsUpdate = true;
+      b.mesh.boundingSphere = null;
+      if (b.n) calls++;
+    }
+    return calls;
+  }
+
+  batch(geometry, material) {
+    const key = `${geometry.uuid}|${material.uuid}`;
+    let b = this.byKey.get(key);
+    if (!b) {
+      b = { mesh: this.make(geometry, material, 64), refs: [], n: 0 };
+      this.byKey.set(key, b);
+      this.group.add(b.mesh);
+    }
+    return b;
+  }
+
+  make(geometry, material, capacity) {
+    const mesh = new T.InstancedMesh(geometry, material, capacity);
+    mesh.instanceColor = new T.InstancedBufferAttribute(new Float32Array(3 * capacity).fill(1), 3);
+    // Culled tree by tree above.
+    mesh.frustumCulled = false;
+    return mesh;
+  }
+
+  grow(b) {
+    const old = b.mesh;
+    const mesh = this.make(old.geometry, old.material, 2 * old.instanceMatrix.count);
+    mesh.instanceMatrix.array.set(old.instanceMatrix.array);
+    mesh.instanceColor.array.set(old.instanceColor.array);
+    this.group.remove(old);
+    old.dispose();
+    this.group.add(mesh);
+    b.mesh = mesh;
+  }
+
+  // Drops the batches of meshes no tile shows any more (after a tileset is swapped).
+  clear() {
+    for (const b of this.byKey.values()) { this.group.remove(b.mesh); b.mesh.dispose(); }
+    this.byKey.clear();
+  }
+
+  // The batch meshes, for picking.
+  meshes() {
+    return [...this.byKey.values()].filter((b) => b.n > 0).map((b) => b.mesh);
+  }
+
+  // The tile mesh and tree drawn as instance `id` of batch mesh `mesh`.
+  ref(mesh, id) {
+    for (const b of this.byKey.values()) if (b.mesh === mesh) return b.refs[id] ?? null;
+    return null;
+  }
+}

@@ -1,0 +1,563 @@
+// The city view: the tiles `sylva city` wrote, drawn by 3d-tiles-renderer on three.js, one
+// tileset per epoch swapped in place by the slider; a click opens a tree's card (its row of the
+// tile's property table, then its species' growth and yearly accounts from the street page's
+// API); filters dim the trees they leave out; the city's report beside it.
+//
+// Everything comes from /api/cities and the city's own files under /city/NAME/. What the
+// browser test reads is kept in `window.sylvaCity`.
+
+import * as T from '/vendor/city.min.js';
+import { lineChart, barChart } from '/charts.js';
+import { softwareGl } from '/gl.js';
+import { prepare, rowOf, trees, paint, share, forget, ownBytes, Batches } from '/city-trees.js';
+
+const $ = (id) => document.getElementById(id);
+const probe = { firstTreesMs: null, shownEpoch: null, clicks: [], problems: [] };
+window.sylvaCity = probe;
+
+const DIM = new T.Color(0.22, 0.22, 0.22);
+const LIT = new T.Color(1, 1, 1);
+
+const state = {
+  cities: [], edges: [], basemap: null,
+  city: null,        // the chosen city's entry of /api/cities
+  frame: null,       // its tileset frame (ECEF) to the page's (east, up, south)
+  epoch: 0,
+  tilesets: new Map(),  // epoch index -> TilesRenderer
+  filter: { species: '', dbh: '', benefit: 0 },
+  report: null,
+};
+
+// ---- the scene ------------------------------------------------------------------------------
+
+const canvas = $('scene');
+// A browser drawing WebGL on its CPU (no GPU) fills every pixel itself, every sample of it
+// under multisampling: it draws without, at 0.6 of a pixel per CSS pixel (its time goes to
+// filling pixels: a 100,000-tree city turned at 10 frames a second at 0.75, 23 at 0.5), and asks
+// the tiles for a coarser level, so that the city still turns smoothly.
+const software = softwareGl();
+probe.software = software;
+const renderer = new T.WebGLRenderer({ canvas, antialias: !software });
+renderer.outputColorSpace = T.SRGBColorSpace;
+renderer.setPixelRatio(software ? 0.6 : Math.min(window.devicePixelRatio || 1, 2));
+// `?error=N` in the address pins the tiles' error target in pixels (for a computer whose
+// drawing misleads the page, and for timing one setting).
+const ERROR_TARGET = (() => {
+  const n = Number(new URLSearchParams(location.search).get('error') ?? NaN);
+  return Number.isFinite(n) && n > 0 ? n : software ? 64 : 12;
+})();
+// Each grown tree's mesh file is fetched once and shared by every tile that draws it
+// (`share` in city-trees.js); a city's files hold some 0.4 GB of them at 100,000 trees.
+T.Cache.enabled = true;
+const scene = new T.Scene();
+scene.background = new T.Color('#cfdde6');
+scene.add(new T.HemisphereLight('#f4f7ff', '#5b6650', 1.6));
+const sun = new T.DirectionalLight('#fff6e8', 1.8);
+sun.position.set(0.4, 1, 0.3);
+scene.add(sun);
+const camera = new T.PerspectiveCamera(45, 1, 1, 30000);
+const controls = new T.MapControls(camera, canvas);
+controls.maxPolarAngle = Math.PI * 0.47;
+controls.screenSpacePanning = false;
+const ground = new T.Group();
+scene.add(ground);
+
+let dirty = true;
+const redraw = () => { dirty = true; };
+controls.addEventListener('change', redraw);
+
+function resize() {
+  const w = canvas.clientWidth, h = canvas.clientHeight;
+  if (!w || !h) return;
+  renderer.setSize(w, h, false);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+  for (const t of state.tilesets.values()) t.setResolutionFromRenderer(camera, renderer);
+  redraw();
+}
+new ResizeObserver(resize).observe(canvas);
+
+// Frames drawn, for the browser test's rate (each frame's time since the last drawn).
+const frames = [];
+probe.frames = frames;
+const batches = new Batches(scene);
+const spent = { update: 0, gather: 0, render: 0, loads: 0, calls: 0 };
+probe.spent = spent;
+function loop(now) {
+  requestAnimationFrame(loop);
+  const tiles = state.tilesets.get(state.epoch);
+  const t0 = performance.now();
+  if (tiles) {
+    camera.updateMatrixWorld();
+    tiles.update();
+    spent.update += performance.now() - t0;
+    // The epoch is shown once every tile the view asks for is loaded and drawn.
+    if (probe.shownEpoch == null && !tiles.isLoading && tiles.loadProgress === 1 && tiles.stats.visible > 0) {
+      probe.shownEpoch = state.city.epochs[state.epoch].years;
+      probe.shownMs = performance.now();
+    }
+  }
+  if (!dirty) return;
+  dirty = false;
+  const t1 = performance.now();
+  if (tiles) {
+    const view = new T.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+    spent.calls = batches.fill(tiles.group, view);
+  }
+  const t2 = performance.now();
+  spent.gather += t2 - t1;
+  renderer.render(scene, camera);
+  spent.render += performance.now() - t2;
+  frames.push(now);
+  if (frames.length > 600) frames.splice(0, 300);
+}
+requestAnimationFrame(loop);
+
+// ---- the city's tiles --------------------------------------------------------------------------
+
+// Every tileset of a city shares the frame `sylva city` made at the middle of its trees: its
+// root transform takes local east-north-up metres to the Earth's (ECEF). The page draws in
+// those local metres, turned so that up is three.js's y.
+function pageFrame(rootTransform) {
+  const toLocal = new T.Matrix4().fromArray(rootTransform).invert();
+  const upIsY = new T.Matrix4().set(1, 0, 0, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1);
+  return upIsY.multiply(toLocal);
+}
+
+function dbhClass(dbh) {
+  let c = 0;
+  while (c < state.edges.length && state.edges[c] <= dbh) c++;
+  return c;
+}
+
+function shown(row) {
+  const f = state.filter;
+  if (f.species && row.species !== f.species) return false;
+  if (f.dbh !== '' && dbhClass(row.dbh_cm) !== Number(f.dbh)) return false;
+  return (row.typical_benefits_usd_per_year || 0) >= f.benefit;
+}
+
+function colourTrees(root) {
+  const all = !state.filter.species && state.filter.dbh === '' && !(state.filter.benefit > 0);
+  root.traverse((o) => {
+    if (!o.isInstancedMesh) return;
+    if (all && !o.userData.sylva?.painted) return;
+    paint(o, all ? null : shown, DIM);
+    o.userData.sylva.painted = !all;
+  });
+}
+
+// The tiles' materials as Lambert's, one per colour and kind: the trees are matte, and a CPU
+// drawing WebGL fills a Lambert pixel several times faster than a physically based one.
+const lamberts = new Map();
+function matte(root) {
+  root.traverse((o) => {
+    if (!o.isMesh || o.material.isMeshLambertMaterial) return;
+    const m = o.material;
+    const key = `${m.color.getHexString()}|${m.vertexColors}|${m.side}`;
+    if (!lamberts.has(key)) {
+      lamberts.set(key, new T.MeshLambertMaterial({ color: m.color, vertexColors: m.vertexColors, side: m.side }));
+    }
+    m.dispose();
+    o.material = lamberts.get(key);
+  });
+}
+
+function tilesetOf(index) {
+  if (state.tilesets.has(index)) return state.tilesets.get(index);
+  const epoch = state.city.epochs[index];
+  const tiles = new T.TilesRenderer(epoch.tileset);
+  tiles.registerPlugin(new T.GLTFExtensionsPlugin({ metadata: true }));
+  // Pixels of error allowed before a finer tile is asked for: more on a CPU-drawn page, which
+  // then draws a street's trees at the coarsest level from a few hundred metres.
+  tiles.errorTarget = ERROR_TARGET;
+  // The tile cache counts each tile's own bytes (its trees), not the meshes it shares.
+  tiles.calculateBytesUsed = (tile, model) => (model ? ownBytes(model) : null);
+  tiles.lruCache.maxBytesSize = 256 * 2 ** 20;
+  tiles.setCamera(camera);
+  tiles.setResolutionFromRenderer(camera, renderer);
+  state.frame.decompose(tiles.group.position, tiles.group.quaternion, tiles.group.scale);
+  tiles.addEventListener('load-model', ({ scene: model }) => {
+    const t0 = performance.now();
+    matte(model);
+    model.traverse((o) => { if (o.isInstancedMesh) { prepare(o); share(o); } });
+    colourTrees(model);
+    spent.loads += performance.now() - t0;
+    if (probe.firstTreesMs == null && index === state.epoch) {
+      // The first frame with trees in it is the next one drawn.
+      requestAnimationFrame(() => { probe.firstTreesMs ??= performance.now(); });
+    }
+    redraw();
+  });
+  tiles.addEventListener('needs-render', redraw);
+  tiles.addEventListener('needs-update', redraw);
+  tiles.addEventListener('tiles-load-end', () => { status(''); redraw(); });
+  scene.add(tiles.group);
+  state.tilesets.set(index, tiles);
+  return tiles;
+}
+
+function showEpoch(index) {
+  state.epoch = index;
+  const epoch = state.city.epochs[index];
+  for (const [i, t] of state.tilesets) t.group.visible = i === index;
+  const tiles = tilesetOf(index);
+  tiles.group.visible = true;
+  colourTrees(tiles.group);
+  $('epoch').value = String(index);
+  $('epoch-label').textContent = epoch.years === 0 ? 'as inventoried' : `+${epoch.years} years`;
+  $('counts').textContent = `${epoch.trees.toLocaleString()} trees`;
+  probe.shownEpoch = null;
+  status('loading tiles…');
+  showReportEpoch();
+  redraw();
+}
+
+// ---- the ground ---------------------------------------------------------------------------------
+
+// The trees' extent in page metres, from the root tile's box (centre, then three half axes, in
+// the tileset's east-north-up frame).
+function extentOf(box) {
+  const [cx, cy, , ax, , , , by] = box;
+  return { x0: cx - Math.abs(ax), x1: cx + Math.abs(ax), n0: cy - Math.abs(by), n1: cy + Math.abs(by) };
+}
+
+function drawGround(e) {
+  ground.clear();
+  const w = e.x1 - e.x0, d = e.n1 - e.n0, margin = 0.15 * Math.max(w, d) + 50;
+  const plane = new T.Mesh(new T.PlaneGeometry(w + 2 * margin, d + 2 * margin),
+    new T.MeshLambertMaterial({ color: '#b9c4a6' }));
+  plane.rotation.x = -Math.PI / 2;
+  plane.position.set((e.x0 + e.x1) / 2, -0.05, -(e.n0 + e.n1) / 2);
+  ground.add(plane);
+  const g = new T.BufferGeometry();
+  g.setAttribute('position', new T.Float32BufferAttribute(
+    [e.x0, 0.05, -e.n0, e.x1, 0.05, -e.n0, e.x1, 0.05, -e.n1, e.x0, 0.05, -e.n1], 3));
+  ground.add(new T.LineLoop(g, new T.LineBasicMaterial({ color: '#6a5a3a' })));
+  if (state.basemap && state.city.origin) drawBasemap(e, margin);
+}
+
+// An XYZ (Web Mercator) map under the trees: the tiles of one zoom level over the extent,
+// placed by their corners' longitude and latitude in the city's local metres (metres per degree
+// on the WGS84 ellipsoid at the city's latitude: within a metre over a city's width).
+function drawBasemap(e, margin) {
+  const { longitude: lon0, latitude: lat0 } = state.city.origin;
+  const phi = lat0 * Math.PI / 180;
+  const mLat = 111132.92 - 559.82 * Math.cos(2 * phi) + 1.175 * Math.cos(4 * phi);
+  const mLon = 111412.84 * Math.cos(phi) - 93.5 * Math.cos(3 * phi);
+  const lonOf = (x) => lon0 + x / mLon, latOf = (n) => lat0 + n / mLat;
+  const span = Math.max(e.x1 - e.x0, e.n1 - e.n0) + 2 * margin;
+  const z = Math.max(1, Math.min(19, Math.round(Math.log2(40075016 * Math.cos(phi) / (span / 6)))));
+  const n = 2 ** z;
+  const tx = (lon) => Math.floor(((lon + 180) / 360) * n);
+  const ty = (lat) => {
+    const r = lat * Math.PI / 180;
+    return Math.floor(((1 - Math.log(Math.tan(r) + 1 / Math.cos(r)) / Math.PI) / 2) * n);
+  };
+  const lonAt = (x) => (x / n) * 360 - 180;
+  const latAt = (y) => Math.atan(Math.sinh(Math.PI * (1 - (2 * y) / n))) * 180 / Math.PI;
+  const [xa, xb] = [tx(lonOf(e.x0 - margin)), tx(lonOf(e.x1 + margin))];
+  const [ya, yb] = [ty(latOf(e.n1 + margin)), ty(latOf(e.n0 - margin))];
+  if ((xb - xa + 1) * (yb - ya + 1) > 100) return;
+  const loader = new T.TextureLoader();
+  loader.setCrossOrigin('anonymous');
+  probe.basemapTiles = [];
+  for (let x = xa; x <= xb; x++) for (let y = ya; y <= yb; y++) {
+    const url = state.basemap.replace('{z}', z).replace('{x}', x).replace('{y}', y);
+    probe.basemapTiles.push(url);
+    loader.load(url, (texture) => {
+      texture.colorSpace = T.SRGBColorSpace;
+      const west = (lonAt(x) - lon0) * mLon, east = (lonAt(x + 1) - lon0) * mLon;
+      const north = (latAt(y) - lat0) * mLat, south = (latAt(y + 1) - lat0) * mLat;
+      const tile = new T.Mesh(new T.PlaneGeometry(east - west, north - south),
+        new T.MeshBasicMaterial({ map: texture }));
+      tile.rotation.x = -Math.PI / 2;
+      tile.position.set((west + east) / 2, -0.02, -(north + south) / 2);
+      ground.add(tile);
+      probe.basemapDrawn = (probe.basemapDrawn || 0) + 1;
+      redraw();
+    }, undefined, () => { probe.basemapFailed = (probe.basemapFailed || 0) + 1; });
+  }
+}
+
+// ---- choosing a city ----------------------------------------------------------------------------
+
+function status(text) { $('status').textContent = text || ''; }
+
+async function getJson(url) {
+  const r = await fetch(url);
+  const body = await r.json().catch(() => null);
+  if (!r.ok || body == null) throw new Error(body?.error || `${url}: ${r.status}`);
+  return body;
+}
+
+async function chooseCity(name) {
+  for (const t of state.tilesets.values()) { scene.remove(t.group); t.dispose(); }
+  state.tilesets.clear();
+  batches.clear();
+  forget();
+  $('card').hidden = true;
+  const city = state.cities.find((c) => c.name === name);
+  state.city = city;
+  history.replaceState(null, '', `?city=${encodeURIComponent(name)}`);
+  if (!city || city.problem) { status(city ? city.problem : `no city ${name}`); return; }
+  const first = await getJson(city.epochs[0].tileset);
+  state.frame = pageFrame(first.root.transform);
+  const e = extentOf(first.root.boundingVolume.box);
+  drawGround(e);
+  // The default view: from the south-south-west and 50 degrees up, over the middle of the
+  // trees, near enough that a street's trees are told apart, far enough to see a few blocks.
+  const r = Math.min(300, 0.6 * Math.max(e.x1 - e.x0, e.n1 - e.n0) + 40);
+  const cx = (e.x0 + e.x1) / 2, cz = -(e.n0 + e.n1) / 2;
+  const up = (50 * Math.PI) / 180, round = (20 * Math.PI) / 180;
+  controls.target.set(cx, 0, cz);
+  camera.position.set(cx - r * Math.cos(up) * Math.sin(round), r * Math.sin(up), cz + r * Math.cos(up) * Math.cos(round));
+  controls.update();
+  const slider = $('epoch');
+  slider.max = String(city.epochs.length - 1);
+  slider.disabled = city.epochs.length < 2;
+  $('epoch-marks').innerHTML = city.epochs.map((ep, i) =>
+    `<span style="left:${city.epochs.length > 1 ? (100 * i) / (city.epochs.length - 1) : 0}%">` +
+    `${ep.years === 0 ? 'now' : `+${ep.years}`}</span>`).join('');
+  await loadReport(city);
+  showEpoch(0);
+}
+
+// ---- filters ------------------------------------------------------------------------------------
+
+function fillFilters() {
+  const species = state.report?.species || [];
+  $('f-species').innerHTML = '<option value="">all</option>' + species
+    .map((s) => `<option value="${s.code}">${s.common} (${s.code}, ${s.trees})</option>`).join('');
+  const e = state.edges;
+  const label = (i) => (i === 0 ? `under ${e[0]} cm` : i === e.length ? `${e[e.length - 1]} cm and over`
+    : `${e[i - 1]}–${e[i]} cm`);
+  $('f-dbh').innerHTML = '<option value="">all</option>' +
+    [...Array(e.length + 1).keys()].map((i) => `<option value="${i}">${label(i)}</option>`).join('');
+}
+
+function applyFilter() {
+  state.filter = {
+    species: $('f-species').value,
+    dbh: $('f-dbh').value,
+    benefit: Math.max(0, Number($('f-benefit').value) || 0),
+  };
+  for (const t of state.tilesets.values()) colourTrees(t.group);
+  redraw();
+}
+
+// ---- the tree's card --------------------------------------------------------------------------
+
+let down = null;
+canvas.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });
+canvas.addEventListener('pointerup', (e) => {
+  if (!down || Math.hypot(e.clientX - down[0], e.clientY - down[1]) > 4) return;
+  pick(e.clientX, e.clientY);
+});
+
+const raycaster = new T.Raycaster();
+function treeAt(clientX, clientY) {
+  const tiles = state.tilesets.get(state.epoch);
+  if (!tiles) return null;
+  const r = canvas.getBoundingClientRect();
+  const p = new T.Vector2(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
+  raycaster.setFromCamera(p, camera);
+  for (const hit of raycaster.intersectObjects(batches.meshes(), false)) {
+    const ref = hit.instanceId == null ? null : batches.ref(hit.object, hit.instanceId);
+    const row = ref && rowOf(ref[0], ref[1]);
+    if (row) return row;
+  }
+  return null;
+}
+
+function pick(clientX, clientY) {
+  const t0 = performance.now();
+  const row = treeAt(clientX, clientY);
+  if (row) showCard(row);
+  probe.clicks.push({ ms: performance.now() - t0, id: row ? row.id : null });
+  return row;
+}
+probe.pick = pick;
+
+const f = (v, d = 1) => (v == null || Number.isNaN(v) ? '–' : Number(v).toFixed(d));
+const esc = (s) => String(s ?? '').replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
+
+async function showCard(row) {
+  $('card').hidden = false;
+  $('card-title').textContent = `${row.common_name || row.species}: tree ${row.id}`;
+  const epoch = state.city.epochs[state.epoch];
+  const lines = [
+    ['Inventory row', `id ${esc(row.id)}; written as “${esc(row.species_written)}”`],
+    ['Grown as', `${esc(row.scientific_name)} (${esc(row.species)}) of the ${esc(row.region)} region`],
+    ['Epoch', epoch.years === 0 ? 'as inventoried' : `${epoch.years} years after the inventory`],
+    ['Age', `${f(row.age_years, 0)} years`],
+    ['DBH', `${f(row.dbh_cm)} cm`],
+    ['Height, crown', `${f(row.height_m)} m, ${f(row.crown_diameter_m)} m across`],
+    ['CO₂ stored, taken up', `${f(row.co2_stored_kg, 0)} kg, ${f(row.co2_sequestered_kg_per_year)} kg a year`],
+    ['Rain held', `${f(row.rain_intercepted_m3_per_year, 2)} m³ a year`],
+    ['Benefits (Sylva)', `$${f(row.benefits_usd_per_year, 2)} a year (CO₂ and rain of the grown crown)`],
+    ['Benefits (i-Tree, typical position)', `$${f(row.typical_benefits_usd_per_year, 2)} a year: energy ` +
+      `$${f(row.typical_energy_usd_per_year, 2)}, carbon $${f(row.typical_carbon_usd_per_year, 2)}, ` +
+      `stormwater $${f(row.typical_stormwater_usd_per_year, 2)}, air $${f(row.typical_air_quality_usd_per_year, 2)}`],
+  ];
+  $('card-table').innerHTML = lines.map(([k, v]) => `<tr><th>${k}</th><td>${v}</td></tr>`).join('');
+  const age = Math.max(1, Math.round(row.age_years));
+  const link = `/?region=${encodeURIComponent(row.region)}&species=${encodeURIComponent(row.species)}&age=${age}`;
+  $('card-link').innerHTML = `<a id="street-link" href="${link}">Open ${esc(row.common_name || row.species)} ` +
+    `at ${age} years on the street page</a>`;
+  $('card-note').textContent = 'Growing its species for the charts…';
+  try {
+    const growth = await getJson(`/api/growth?region=${encodeURIComponent(row.region)}&species=${encodeURIComponent(row.species)}`);
+    if ($('card-title').textContent !== `${row.common_name || row.species}: tree ${row.id}`) return;
+    const series = [{ colour: '#2f7d4f', rows: growth.rows }];
+    for (const c of document.querySelectorAll('#card-charts canvas')) lineChart(c, c.dataset.q, series, age);
+    const year = growth.rows.find((r) => r.age === age) || growth.rows[growth.rows.length - 1];
+    const st = year.street;
+    const typical = st.typical ? { ...st, value_usd: st.typical.value_usd, net_usd: st.typical.net_usd } : st;
+    barChart($('card-bars'), [{ label: `${row.species} at ${year.age}`, colour: '#2f7d4f', street: typical }]);
+    $('card-note').textContent = `Charts: the species grown in ${row.region} from planting (solid) against the ` +
+      `measured equations (dashed), this tree's age marked; bars: its account at ${year.age} years at typical ` +
+      `position, as on the street page.`;
+    probe.cardCharts = (probe.cardCharts || 0) + 1;
+  } catch (err) {
+    $('card-note').textContent = `No charts: ${err.message}`;
+  }
+}
+
+// ---- the report ---------------------------------------------------------------------------------
+
+async function loadReport(city) {
+  state.report = null;
+  const files = city.report;
+  $('report-files').innerHTML = ['html', 'csv', 'json'].filter((k) => files[k])
+    .map((k) => `<a href="${files[k]}" download>${k.toUpperCase()}</a>`).join(' ');
+  if (!files.json) {
+    $('report-summary').innerHTML = '<p class="note">No report: run <code>sylva city --report</code> to write one beside the tiles.</p>';
+    $('report-frame').hidden = true;
+    fillFilters();
+    return;
+  }
+  try {
+    state.report = await getJson(files.json);
+  } catch (err) {
+    $('report-summary').innerHTML = `<p class="note">The report cannot be read: ${esc(err.message)}</p>`;
+  }
+  $('report-frame').hidden = !files.html;
+  if (files.html) $('report-frame').src = files.html;
+  fillFilters();
+}
+
+function showReportEpoch() {
+  const r = state.report;
+  if (!r) return;
+  const epochs = r.epochs || [];
+  const first = epochs[0];
+  const now = epochs.find((e) => e.years === state.city.epochs[state.epoch].years) || first;
+  const cell = (e, k, d = 0) => (e ? Number(e[k]).toLocaleString(undefined, { maximumFractionDigits: d }) : '–');
+  const rows = [['Trees', 'trees'], ['Canopy, m²', 'canopy_m2'], ['Leaf area, m²', 'leaf_area_m2'],
+    ['Benefits (Sylva), $/yr', 'benefits_usd'], ['Benefits (i-Tree typical), $/yr', 'typical_total_usd']];
+  // The first epoch, and the one shown beside it.
+  const later = now !== first;
+  const name = (e) => (e.years === 0 ? 'as inventoried' : `+${e.years} years`);
+  $('report-summary').innerHTML = `<table id="report-epochs"><tr><th></th><th>${first ? name(first) : ''}</th>` +
+    (later ? `<th>${name(now)}</th>` : '') + '</tr>' +
+    rows.map(([label, k]) => `<tr><th>${label}</th><td data-k="${k}" data-first>${cell(first, k)}</td>` +
+      (later ? `<td data-k="${k}">${cell(now, k)}</td>` : '') + '</tr>').join('') + '</table>' +
+    (r.flags?.length ? `<p class="note">Flagged: ${r.flags.map(esc).join('; ')}</p>` : '');
+}
+
+// ---- for the browser test ------------------------------------------------------------------------
+
+// Where some drawn trees stand on the screen (mid-height of each instance, inside the canvas),
+// so that the test clicks trees as a user would.
+probe.treePoints = (most = 20) => {
+  const out = [];
+  const r = canvas.getBoundingClientRect();
+  const m = new T.Matrix4(), p = new T.Vector3();
+  for (const mesh of batches.meshes()) {
+    for (let i = 0; i < mesh.count && out.length < most * 20; i++) {
+      const [tile, k] = batches.ref(mesh, i);
+      const row = rowOf(tile, k);
+      mesh.getMatrixAt(i, m);
+      p.setFromMatrixPosition(m);
+      p.y += 0.45 * (row?.height_m || 4);
+      p.project(camera);
+      if (Math.abs(p.x) < 0.9 && Math.abs(p.y) < 0.9 && p.z < 1) {
+        out.push({ x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height, id: row?.id, depth: p.z });
+      }
+    }
+  }
+  // Nearest first: a tree in front of another is the one a click reaches.
+  return out.sort((a, b) => a.depth - b.depth).slice(0, most);
+};
+
+// What the last frame drew, and the shown tiles by depth.
+probe.drawn = () => {
+  const levels = {};
+  const tiles = state.tilesets.get(state.epoch);
+  tiles?.forEachLoadedModel((model, tile) => {
+    const d = tile.internal.depth;
+    if (model.parent && model.visible) levels[d] = (levels[d] || 0) + 1;
+  });
+  return { triangles: renderer.info.render.triangles, calls: renderer.info.render.calls, levels, batches: spent.calls };
+};
+
+// Trees of the shown epoch's loaded tiles, lit (the filter keeps them) and dimmed.
+probe.lit = () => {
+  let lit = 0, dim = 0;
+  state.tilesets.get(state.epoch)?.group.traverse((o) => {
+    if (!o.isInstancedMesh) return;
+    for (const [row, on] of trees(o)) if (row) { if (on) lit++; else dim++; }
+  });
+  return { lit, dim };
+};
+
+// Turns the view about its centre, a degree a frame, for `ms`; resolves to the frames drawn
+// and the time they took.
+probe.turn = (ms) => new Promise((done) => {
+  const t0 = performance.now(), n0 = frames.length;
+  const step = () => {
+    const now = performance.now();
+    if (now - t0 >= ms) { done({ frames: frames.length - n0, ms: now - t0 }); return; }
+    const v = camera.position.clone().sub(controls.target).applyAxisAngle(new T.Vector3(0, 1, 0), Math.PI / 180);
+    camera.position.copy(controls.target).add(v);
+    controls.update();
+    redraw();
+    requestAnimationFrame(step);
+  };
+  requestAnimationFrame(step);
+});
+
+// ---- start --------------------------------------------------------------------------------------
+
+async function start() {
+  const listed = await getJson('/api/cities');
+  state.cities = listed.cities;
+  state.edges = listed.dbh_class_edges_cm;
+  state.basemap = listed.basemap;
+  const bad = state.cities.filter((c) => c.problem);
+  probe.problems = bad.map((c) => c.problem);
+  $('problems').hidden = bad.length === 0;
+  $('problem-list').innerHTML = bad.map((c) => `<li><b>${esc(c.name)}</b>: ${esc(c.problem)}</li>`).join('');
+  const good = state.cities.filter((c) => !c.problem);
+  $('city').innerHTML = good.map((c) => `<option value="${esc(c.name)}">${esc(c.name)} ` +
+    `(${Number(c.trees).toLocaleString()} trees)</option>`).join('');
+  if (!good.length) {
+    status(state.cities.length ? 'No city here can be shown: see the list on the right.'
+      : 'No city: start the server with sylva serve --city DIR (a folder sylva city wrote).');
+    probe.ready = true;
+    return;
+  }
+  const asked = new URLSearchParams(location.search).get('city');
+  const name = good.some((c) => c.name === asked) ? asked : good[0].name;
+  $('city').value = name;
+  $('city').onchange = (e) => chooseCity(e.target.value);
+  $('epoch').oninput = (e) => showEpoch(Number(e.target.value));
+  for (const id of ['f-species', 'f-dbh', 'f-benefit']) $(id).onchange = applyFilter;
+  $('f-benefit').oninput = applyFilter;
+  resize();
+  await chooseCity(name);
+  probe.ready = true;
+}
+
+start().catch((err) => { status(`The city view failed: ${err.message}`); probe.error = err.message; });
