@@ -3,6 +3,7 @@
 pub mod benefits;
 pub mod cache;
 mod error;
+pub mod families;
 pub mod geo;
 pub mod inventory;
 pub mod regions;

@@ -32,6 +32,8 @@ pub struct SpeciesRow {
     pub common: String,
     /// Genus: the scientific name's first word.
     pub genus: String,
+    /// Plant family (APG IV; `families`), if the table has the genus.
+    pub family: Option<String>,
     /// Trees.
     pub trees: usize,
     /// Share of the city's trees.
@@ -80,6 +82,9 @@ pub struct CityReport {
     pub species: Vec<SpeciesRow>,
     /// Every genus and its trees and share, most first.
     pub genera: Vec<(String, usize, f64)>,
+    /// Every family and its trees and share, most first (`unknown` for a genus the table
+    /// lacks).
+    pub families: Vec<(String, usize, f64)>,
     /// What breaks i-Tree's diversity guidelines.
     pub flags: Vec<String>,
     /// Each epoch.
@@ -154,6 +159,11 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                     .unwrap_or("")
                     .to_string(),
                 common: m.map_or(String::new(), |m| m.species.common.clone()),
+                family: scientific
+                    .split_whitespace()
+                    .next()
+                    .and_then(crate::families::family)
+                    .map(str::to_string),
                 scientific,
                 trees: 0,
                 share: 0.0,
@@ -206,6 +216,16 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         .map(|(g, n)| (g, n, n as f64 / trees.max(1) as f64))
         .collect();
     genera.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    let mut families: BTreeMap<String, usize> = BTreeMap::new();
+    for s in &species {
+        let f = s.family.clone().unwrap_or_else(|| "unknown".into());
+        *families.entry(f).or_default() += s.trees;
+    }
+    let mut families: Vec<(String, usize, f64)> = families
+        .into_iter()
+        .map(|(f, n)| (f, n, n as f64 / trees.max(1) as f64))
+        .collect();
+    families.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
     let mut flags: Vec<String> = species
         .iter()
         .filter(|s| s.share > SPECIES_GUIDELINE)
@@ -253,11 +273,13 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         trees,
         species,
         genera,
+        families,
         flags,
         epochs,
         models: vec![
             "composition, DBH classes: the inventory's rows as planned (species by their Urban \
-             Tree Database code, genus the scientific name's first word)"
+             Tree Database code, genus the scientific name's first word, family by APG IV \
+             (2016), conifers by Christenhusz et al. (2011))"
                 .into(),
             "leaf area and canopy: each tree's grown tree of its age class scaled to its \
              height; canopy the crowns' projected discs summed"
@@ -269,7 +291,6 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 .into(),
         ],
         not_computed: vec![
-            "family: no sourced table of plant families is built in".into(),
             "relative age: the Urban Tree Database gives no species' expected life span".into(),
             "replacement value: the CTLA trunk formula needs regional prices per unit of trunk \
              area and species, condition and location ratings, which Sylva does not have"
@@ -293,7 +314,7 @@ impl CityReport {
     /// One row per species, as CSV.
     pub fn csv(&self) -> String {
         let mut out = String::from(
-            "code,scientific,common,genus,trees,share,importance,leaf_area_m2,\
+            "code,scientific,common,genus,family,trees,share,importance,leaf_area_m2,\
              dbh_lt_7_6,dbh_7_6_15_2,dbh_15_2_30_5,dbh_30_5_45_7,dbh_45_7_61,dbh_61_76_2,\
              dbh_76_2_91_4,dbh_91_4_106_7,dbh_ge_106_7,benefits_usd,typical_energy_usd,\
              typical_carbon_usd,typical_stormwater_usd,typical_air_quality_usd,typical_total_usd\n",
@@ -304,11 +325,12 @@ impl CityReport {
             let typical: Vec<String> = s.typical_usd.iter().map(|&v| cell(v)).collect();
             let _ = writeln!(
                 out,
-                "{},\"{}\",\"{}\",{},{},{:.4},{:.2},{:.1},{},{},{},{}",
+                "{},\"{}\",\"{}\",{},{},{},{:.4},{:.2},{:.1},{},{},{},{}",
                 s.code,
                 s.scientific,
                 s.common,
                 s.genus,
+                s.family.as_deref().unwrap_or(""),
                 s.trees,
                 s.share,
                 s.importance,
@@ -372,6 +394,17 @@ impl CityReport {
                 h,
                 "<tr><td><i>{}</i></td><td>{n}</td><td>{:.1}%</td></tr>",
                 esc(g),
+                100.0 * share
+            );
+        }
+        h.push_str(
+            "</table><h2>Families</h2><table><tr><th>Family</th><th>Trees</th><th>Share</th></tr>\n",
+        );
+        for (f, n, share) in &self.families {
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{n}</td><td>{:.1}%</td></tr>",
+                esc(f),
                 100.0 * share
             );
         }

@@ -261,6 +261,11 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
         .map(|g| g[1].as_u64().unwrap())
         .sum();
     assert_eq!(genera as usize, trees);
+    // Every genus of the database has its family (APG IV), so none is unknown.
+    let families = report["families"].as_array().unwrap();
+    let in_families: u64 = families.iter().map(|f| f[1].as_u64().unwrap()).sum();
+    assert_eq!(in_families as usize, trees);
+    assert!(families.iter().all(|f| f[0] != "unknown"), "{families:?}");
     let csv = std::fs::read_to_string(out.join("report.csv")).unwrap();
     assert_eq!(csv.lines().count(), species.len() + 1);
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
