@@ -22,6 +22,10 @@ pub const SPECIES_GUIDELINE: f64 = 0.10;
 /// ...and for one genus.
 pub const GENUS_GUIDELINE: f64 = 0.20;
 
+/// The report's age classes, years since planting: Sylva's choice, as the Urban Tree Database
+/// publishes no age classes (its sampled trees reach some 40 to 110 years).
+pub const AGE_CLASS_EDGES_YEARS: [f64; 4] = [10.0, 20.0, 40.0, 60.0];
+
 /// One species of the city at the first epoch.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SpeciesRow {
@@ -41,6 +45,14 @@ pub struct SpeciesRow {
     /// Trees in each of the Urban Tree Database's nine DBH classes (cm: under 7.6, 7.6-15.2,
     /// ... , 106.7 and over).
     pub dbh_classes: [usize; 9],
+    /// Trees by estimated age, years since planting (`AGE_CLASS_EDGES_YEARS`: under 10, 10-20,
+    /// 20-40, 40-60, 60 and over).
+    pub age_classes: [usize; 5],
+    /// Mean estimated age, years.
+    pub mean_age_years: f64,
+    /// Trees at least as old as the oldest the Urban Tree Database measured of the species in
+    /// its region: their age is that oldest age, and their DBH may be larger than its data.
+    pub at_oldest_measured: usize,
     /// One-sided leaf area, m².
     pub leaf_area_m2: f64,
     /// Importance value: share of the trees plus share of the leaf area (i-Tree Streets'),
@@ -168,6 +180,9 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 trees: 0,
                 share: 0.0,
                 dbh_classes: [0; 9],
+                age_classes: [0; 5],
+                mean_age_years: 0.0,
+                at_oldest_measured: 0,
                 leaf_area_m2: 0.0,
                 importance: 0.0,
                 benefits_usd: None,
@@ -178,6 +193,14 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         row.trees += 1;
         let class = DBH_CLASS_EDGES_CM.partition_point(|&edge| edge <= t.dbh as f64);
         row.dbh_classes[class] += 1;
+        // Each tree's age is from its DBH by the Urban Tree Database's equations (`plan`),
+        // held within the ages the database measured.
+        let age = t.age as f64;
+        row.age_classes[AGE_CLASS_EDGES_YEARS.partition_point(|&edge| edge <= age)] += 1;
+        row.mean_age_years += age;
+        if m.is_some_and(|m| age >= m.ages.1 - 1e-3) {
+            row.at_oldest_measured += 1;
+        }
         row.leaf_area_m2 += tree.leaf;
         row.benefits_usd = add(row.benefits_usd, tree.benefits);
         for (sum, v) in row.typical_usd.iter_mut().zip(tree.typical) {
@@ -203,6 +226,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
     let leaf: f64 = species.values().map(|s| s.leaf_area_m2).sum();
     let mut species: Vec<SpeciesRow> = species.into_values().collect();
     for s in &mut species {
+        s.mean_age_years /= s.trees.max(1) as f64;
         s.share = s.trees as f64 / trees.max(1) as f64;
         s.importance = 100.0 * (s.share + s.leaf_area_m2 / leaf.max(1e-9));
     }
@@ -281,6 +305,11 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
              Tree Database code, genus the scientific name's first word, family by APG IV \
              (2016), conifers by Christenhusz et al. (2011))"
                 .into(),
+            "relative age: as i-Tree Streets shows it, the trees of each species by DBH class; \
+             beside it each tree's age estimated from its DBH by the Urban Tree Database's \
+             age-DBH equation for its species and region (McPherson et al. 2016), held within \
+             the ages the database measured (trees beyond are counted as at the data's oldest)"
+                .into(),
             "leaf area and canopy: each tree's grown tree of its age class scaled to its \
              height; canopy the crowns' projected discs summed"
                 .into(),
@@ -291,7 +320,9 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 .into(),
         ],
         not_computed: vec![
-            "relative age: the Urban Tree Database gives no species' expected life span".into(),
+            "age as a share of life expectancy: the Urban Tree Database gives no species' \
+             expected life span"
+                .into(),
             "replacement value: the CTLA trunk formula needs regional prices per unit of trunk \
              area and species, condition and location ratings, which Sylva does not have"
                 .into(),
@@ -316,16 +347,18 @@ impl CityReport {
         let mut out = String::from(
             "code,scientific,common,genus,family,trees,share,importance,leaf_area_m2,\
              dbh_lt_7_6,dbh_7_6_15_2,dbh_15_2_30_5,dbh_30_5_45_7,dbh_45_7_61,dbh_61_76_2,\
-             dbh_76_2_91_4,dbh_91_4_106_7,dbh_ge_106_7,benefits_usd,typical_energy_usd,\
+             dbh_76_2_91_4,dbh_91_4_106_7,dbh_ge_106_7,age_lt_10,age_10_20,age_20_40,\
+             age_40_60,age_ge_60,mean_age_years,at_oldest_measured,benefits_usd,typical_energy_usd,\
              typical_carbon_usd,typical_stormwater_usd,typical_air_quality_usd,typical_total_usd\n",
         );
         let cell = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.2}"));
         for s in &self.species {
             let classes: Vec<String> = s.dbh_classes.iter().map(|n| n.to_string()).collect();
+            let ages: Vec<String> = s.age_classes.iter().map(|n| n.to_string()).collect();
             let typical: Vec<String> = s.typical_usd.iter().map(|&v| cell(v)).collect();
             let _ = writeln!(
                 out,
-                "{},\"{}\",\"{}\",{},{},{},{:.4},{:.2},{:.1},{},{},{},{}",
+                "{},\"{}\",\"{}\",{},{},{},{:.4},{:.2},{:.1},{},{},{:.1},{},{},{},{}",
                 s.code,
                 s.scientific,
                 s.common,
@@ -336,6 +369,9 @@ impl CityReport {
                 s.importance,
                 s.leaf_area_m2,
                 classes.join(","),
+                ages.join(","),
+                s.mean_age_years,
+                s.at_oldest_measured,
                 cell(s.benefits_usd),
                 typical.join(","),
                 cell(s.typical_total_usd)
@@ -365,15 +401,19 @@ impl CityReport {
         h.push_str(
             "<h2>Composition, size and benefits by species</h2><table><tr><th>Species</th>\
              <th>Trees</th><th>Share</th><th>Importance</th><th>Leaf area m²</th>\
-             <th>DBH classes (cm: &lt;7.6 … ≥106.7)</th><th>Sylva $/yr</th>\
+             <th>DBH classes: relative age as i-Tree Streets shows it (cm: &lt;7.6 … ≥106.7)</th>\
+             <th>Estimated age (years: &lt;10 · 10–20 · 20–40 · 40–60 · ≥60)</th>\
+             <th>Mean age</th><th>At the data's oldest</th><th>Sylva $/yr</th>\
              <th>i-Tree typical $/yr</th></tr>\n",
         );
         for s in &self.species {
             let classes: Vec<String> = s.dbh_classes.iter().map(|n| n.to_string()).collect();
+            let ages: Vec<String> = s.age_classes.iter().map(|n| n.to_string()).collect();
             let _ = writeln!(
                 h,
                 "<tr><td>{} <i>{}</i> ({})</td><td>{}</td><td>{:.1}%</td><td>{:.1}</td>\
-                 <td>{:.0}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                 <td>{:.0}</td><td>{}</td><td>{}</td><td>{:.0}</td><td>{}</td><td>{}</td>\
+                 <td>{}</td></tr>",
                 esc(&s.common),
                 esc(&s.scientific),
                 esc(&s.code),
@@ -382,6 +422,9 @@ impl CityReport {
                 s.importance,
                 s.leaf_area_m2,
                 classes.join(" · "),
+                ages.join(" · "),
+                s.mean_age_years,
+                s.at_oldest_measured,
                 money(s.benefits_usd),
                 money(s.typical_total_usd)
             );

@@ -253,6 +253,16 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
             .map(|n| n.as_u64().unwrap())
             .sum();
         assert_eq!(classes, s["trees"].as_u64().unwrap(), "{s}");
+        let ages: u64 = s["age_classes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_u64().unwrap())
+            .sum();
+        assert_eq!(ages, s["trees"].as_u64().unwrap(), "{s}");
+        let mean = s["mean_age_years"].as_f64().unwrap();
+        assert!(mean > 0.0 && mean < 150.0, "{s}");
+        assert!(s["at_oldest_measured"].as_u64().unwrap() <= ages, "{s}");
     }
     let genera: u64 = report["genera"]
         .as_array()
@@ -270,6 +280,7 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
     assert_eq!(csv.lines().count(), species.len() + 1);
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("Not computed") && html.contains("replacement value"));
+    assert!(html.contains("relative age as i-Tree Streets shows it"));
     assert!(checked.tiles > 4, "{checked:?}");
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();

@@ -1,8 +1,9 @@
 // A city's trees as the view draws them. Every instanced mesh of a loaded tile is kept as data
 // (each tree's matrix, its row of the tile's property table, its colour under the filters) and
 // not drawn itself: each frame the trees the camera sees, from every tile shown, are gathered
-// into one instanced mesh per grown tree's mesh and material (`Batches`). A view over a few
-// blocks then costs a draw per species and age class in it rather than one per class in each
+// into one instanced mesh per grown tree, its bark and leaves made one mesh (`combine`,
+// `Batches`). A view over a few blocks then costs a draw per species and age class in it
+// rather than two per class in each
 // of its tiles (hundreds), and draws only the trees in view, not every tree of tiles some 600 m
 // across. A browser drawing WebGL on its CPU pays most for its draws. Picking and colouring go
 // through the gathering, so a tree is always its own row.
@@ -33,6 +34,71 @@ export function share(mesh) {
 // Forgets the shared meshes (another city's names may mean other trees).
 export function forget() {
   shared.clear();
+  for (const g of merged.values()) g.dispose();
+  merged.clear();
+}
+
+// A grown tree is two meshes in a tile, its bark and its leaves, with the same trees: drawn
+// apart, they cost two draws per species and age class in view, and a browser drawing on its
+// CPU spends most of a frame on its draws (a 100,000-tree city turned at 7 frames a second,
+// 12 with half the draws). `combine` makes them one mesh, each part's colour (its material's
+// times its vertices') carried by its vertices, drawn with one matte two-sided material; the
+// first part's trees then stand for the tree, and the other parts are data only.
+const merged = new Map();  // the parts' meshes and materials -> their merged mesh
+export const TREE_MATERIAL = new T.MeshLambertMaterial({ vertexColors: true, side: 2 /* DoubleSide */ });
+
+function mergedOf(parts) {
+  const key = parts.map((p) => `${p.geometry.uuid}/${p.material.uuid}`).join('|');
+  let geometry = merged.get(key);
+  if (geometry) return geometry;
+  let vertices = 0;
+  for (const p of parts) vertices += p.geometry.getAttribute('position').count;
+  const position = new Float32Array(3 * vertices), normal = new Float32Array(3 * vertices);
+  const colour = new Float32Array(3 * vertices);
+  const index = [];
+  let v = 0;
+  for (const p of parts) {
+    const g = p.geometry, at = g.getAttribute('position'), n = g.getAttribute('normal');
+    const vc = g.getAttribute('color'), c = p.material.color;
+    for (let i = 0; i < at.count; i++) {
+      const k = 3 * (v + i);
+      position[k] = at.getX(i); position[k + 1] = at.getY(i); position[k + 2] = at.getZ(i);
+      if (n) { normal[k] = n.getX(i); normal[k + 1] = n.getY(i); normal[k + 2] = n.getZ(i); }
+      colour[k] = c.r * (vc ? vc.getX(i) : 1);
+      colour[k + 1] = c.g * (vc ? vc.getY(i) : 1);
+      colour[k + 2] = c.b * (vc ? vc.getZ(i) : 1);
+    }
+    if (g.index) for (let i = 0; i < g.index.count; i++) index.push(v + g.index.getX(i));
+    else for (let i = 0; i < at.count; i++) index.push(v + i);
+    v += at.count;
+  }
+  geometry = new T.BufferGeometry();
+  geometry.setAttribute('position', new T.Float32BufferAttribute(position, 3));
+  geometry.setAttribute('normal', new T.Float32BufferAttribute(normal, 3));
+  geometry.setAttribute('color', new T.Float32BufferAttribute(colour, 3));
+  geometry.setIndex(index);
+  geometry.computeBoundingSphere();
+  merged.set(key, geometry);
+  return geometry;
+}
+
+// Makes each tree of a loaded tile (`root`) one mesh: the parts of one glTF node are the
+// instanced meshes of one parent named by the node and their primitive (`…-L2_1`, `…-L2_2`).
+export function combine(root) {
+  const trees = new Map();
+  root.traverse((o) => {
+    if (!o.isInstancedMesh) return;
+    const key = `${o.parent?.uuid}|${o.name.replace(/_\d+$/, '')}`;
+    if (!trees.has(key)) trees.set(key, []);
+    trees.get(key).push(o);
+  });
+  for (const parts of trees.values()) {
+    const first = parts[0];
+    const s = prepare(first);
+    if (s.merged || parts.some((p) => p.count !== first.count)) continue;
+    s.merged = mergedOf(parts);
+    s.spheres = spheresOf(first, s.merged.boundingSphere);
+  }
 }
 
 // The bytes a tile holds of its own (its trees' matrices, colours and rows), for the tile
@@ -52,21 +118,13 @@ export function prepare(mesh) {
   for (let o = mesh; o && !meta; o = o.parent) meta = o.userData.structuralMetadata || null;
   const rows = new Array(n);
   for (let i = 0; i < n; i++) rows[i] = ids && meta ? meta.getPropertyTableData(0, ids.getX(i)) : null;
-  // Each tree's bounding sphere in the mesh's frame: the geometry's, moved and scaled by the
-  // tree's matrix.
   if (!mesh.geometry.boundingSphere) mesh.geometry.computeBoundingSphere();
-  const sphere = mesh.geometry.boundingSphere;
-  const spheres = new Float32Array(4 * n);
-  const m = new T.Matrix4(), c = new T.Vector3();
-  for (let i = 0; i < n; i++) {
-    mesh.getMatrixAt(i, m);
-    c.copy(sphere.center).applyMatrix4(m);
-    spheres.set([c.x, c.y, c.z, sphere.radius * m.getMaxScaleOnAxis()], 4 * i);
-  }
   const state = {
     n,
     rows,
-    spheres,
+    spheres: spheresOf(mesh, mesh.geometry.boundingSphere),
+    // The tree's parts as one mesh (`combine`), on its first part only.
+    merged: null,
     matrices: mesh.instanceMatrix.array.slice(),
     colours: new Float32Array(3 * n).fill(1),
   };
@@ -74,15 +132,28 @@ export function prepare(mesh) {
   return state;
 }
 
+// Each tree's bounding sphere in the mesh's frame: `sphere`, moved and scaled by the tree's
+// matrix.
+function spheresOf(mesh, sphere) {
+  const spheres = new Float32Array(4 * mesh.count);
+  const m = new T.Matrix4(), c = new T.Vector3();
+  for (let i = 0; i < mesh.count; i++) {
+    mesh.getMatrixAt(i, m);
+    c.copy(sphere.center).applyMatrix4(m);
+    spheres.set([c.x, c.y, c.z, sphere.radius * m.getMaxScaleOnAxis()], 4 * i);
+  }
+  return spheres;
+}
+
 // The row of tree `i` of the tile mesh `mesh`.
 export function rowOf(mesh, i) {
   return mesh.userData.sylva?.rows[i] ?? null;
 }
 
-// Every tree of `mesh`: [row, lit].
+// Every tree of `mesh`, if it stands for its trees (`combine`): [row, lit].
 export function* trees(mesh) {
   const s = mesh.userData.sylva;
-  if (!s) return;
+  if (!s?.merged) return;
   for (let i = 0; i < s.n; i++) yield [s.rows[i], s.colours[3 * i] > 0.5];
 }
 
@@ -95,7 +166,7 @@ export function paint(mesh, keep, dim) {
   }
 }
 
-// The trees in view, one instanced mesh per (mesh, material) of the tiles shown.
+// The trees in view, one instanced mesh per grown tree of the tiles shown.
 export class Batches {
   constructor(scene) {
     this.group = new T.Group();
@@ -114,6 +185,7 @@ export class Batches {
       // The tile's own mesh is data from here on: the batches draw its trees.
       o.visible = false;
       const s = prepare(o);
+      if (!s.merged) return;
       toLocal.multiplyMatrices(view, o.matrixWorld);
       frustum.setFromProjectionMatrix(toLocal);
       const planes = frustum.planes;
@@ -126,7 +198,7 @@ export class Batches {
           inside = q.normal.x * x + q.normal.y * y + q.normal.z * z + q.constant >= -r;
         }
         if (!inside) continue;
-        b ??= this.batch(o.geometry, o.material);
+        b ??= this.batch(s.merged, TREE_MATERIAL);
         if (b.n === b.mesh.instanceMatrix.count) this.grow(b);
         world.fromArray(s.matrices, 16 * i).premultiply(o.matrixWorld);
         world.toArray(b.mesh.instanceMatrix.array, 16 * b.n);
@@ -140,8 +212,12 @@ export class Batches {
       b.mesh.count = b.n;
       b.mesh.visible = b.n > 0;
       b.refs.length = b.n;
-      b.mesh.instanceMatrix.needsUpdate = true;
-      b.mesh.instanceColor.needsUpdate = true;
+      // Only the trees gathered go to the GPU, not the batch's whole capacity.
+      for (const [a, size] of [[b.mesh.instanceMatrix, 16], [b.mesh.instanceColor, 3]]) {
+        a.clearUpdateRanges();
+        a.addUpdateRange(0, size * b.n);
+        a.needsUpdate = true;
+      }
       b.mesh.boundingSphere = null;
       if (b.n) calls++;
     }

@@ -9,7 +9,7 @@
 import * as T from '/vendor/city.min.js';
 import { lineChart, barChart } from '/charts.js';
 import { softwareGl } from '/gl.js';
-import { prepare, rowOf, trees, paint, share, forget, ownBytes, Batches } from '/city-trees.js';
+import { prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches } from '/city-trees.js';
 
 const $ = (id) => document.getElementById(id);
 const probe = { firstTreesMs: null, shownEpoch: null, clicks: [], problems: [] };
@@ -32,14 +32,16 @@ const state = {
 
 const canvas = $('scene');
 // A browser drawing WebGL on its CPU (no GPU) fills every pixel itself, every sample of it
-// under multisampling: it draws without, at 0.6 of a pixel per CSS pixel (its time goes to
-// filling pixels: a 100,000-tree city turned at 10 frames a second at 0.75, 23 at 0.5), and asks
-// the tiles for a coarser level, so that the city still turns smoothly.
+// under multisampling: it draws without, at half a pixel per CSS pixel, and asks the tiles for
+// a coarser level, so that the city still turns smoothly. (A 100,000-tree city on 2 cores
+// turned at 7-8 frames a second at 0.6 with a draw per bark and per leaves, 10 with one per
+// tree, 10-12 at 0.5; below 0.5 it gains nothing: the rest is the draws and the page's own
+// compositing.)
 const software = softwareGl();
 probe.software = software;
 const renderer = new T.WebGLRenderer({ canvas, antialias: !software });
 renderer.outputColorSpace = T.SRGBColorSpace;
-renderer.setPixelRatio(software ? 0.6 : Math.min(window.devicePixelRatio || 1, 2));
+renderer.setPixelRatio(software ? 0.5 : Math.min(window.devicePixelRatio || 1, 2));
 // `?error=N` in the address pins the tiles' error target in pixels (for a computer whose
 // drawing misleads the page, and for timing one setting).
 const ERROR_TARGET = (() => {
@@ -147,8 +149,10 @@ function colourTrees(root) {
   });
 }
 
-// The tiles' materials as Lambert's, one per colour and kind: the trees are matte, and a CPU
-// drawing WebGL fills a Lambert pixel several times faster than a physically based one.
+// The tiles' materials as Lambert's, one per colour and kind, so that every tile's parts of one
+// grown tree are the same mesh and material and merge once (`combine`); the trees are drawn
+// matte (a CPU drawing WebGL fills a Lambert pixel several times faster than a physically
+// based one).
 const lamberts = new Map();
 function matte(root) {
   root.traverse((o) => {
@@ -181,6 +185,7 @@ function tilesetOf(index) {
     const t0 = performance.now();
     matte(model);
     model.traverse((o) => { if (o.isInstancedMesh) { prepare(o); share(o); } });
+    combine(model);
     colourTrees(model);
     spent.loads += performance.now() - t0;
     if (probe.firstTreesMs == null && index === state.epoch) {
@@ -258,7 +263,9 @@ function drawBasemap(e, margin) {
   const latAt = (y) => Math.atan(Math.sinh(Math.PI * (1 - (2 * y) / n))) * 180 / Math.PI;
   const [xa, xb] = [tx(lonOf(e.x0 - margin)), tx(lonOf(e.x1 + margin))];
   const [ya, yb] = [ty(latOf(e.n1 + margin)), ty(latOf(e.n0 - margin))];
-  if ((xb - xa + 1) * (yb - ya + 1) > 100) return;
+  const count = (xb - xa + 1) * (yb - ya + 1);
+  if (count > 100) return;
+  const plain = ground.children[0];
   const loader = new T.TextureLoader();
   loader.setCrossOrigin('anonymous');
   probe.basemapTiles = [];
@@ -267,6 +274,10 @@ function drawBasemap(e, margin) {
     probe.basemapTiles.push(url);
     loader.load(url, (texture) => {
       texture.colorSpace = T.SRGBColorSpace;
+      // Seen from above, a map tile is drawn near its own size: no mipmaps, which a CPU
+      // drawing WebGL pays for in every pixel (1006: three.js's LinearFilter).
+      texture.generateMipmaps = false;
+      texture.minFilter = 1006;
       const west = (lonAt(x) - lon0) * mLon, east = (lonAt(x + 1) - lon0) * mLon;
       const north = (latAt(y) - lat0) * mLat, south = (latAt(y + 1) - lat0) * mLat;
       const tile = new T.Mesh(new T.PlaneGeometry(east - west, north - south),
@@ -275,6 +286,9 @@ function drawBasemap(e, margin) {
       tile.position.set((west + east) / 2, -0.02, -(north + south) / 2);
       ground.add(tile);
       probe.basemapDrawn = (probe.basemapDrawn || 0) + 1;
+      // The map's tiles cover the plain ground and its margin: once all are in, it is not
+      // drawn beneath them.
+      if (probe.basemapDrawn === count) plain.visible = false;
       redraw();
     }, undefined, () => { probe.basemapFailed = (probe.basemapFailed || 0) + 1; });
   }

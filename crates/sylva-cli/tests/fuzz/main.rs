@@ -377,17 +377,20 @@ establishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.
 removal_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n\
 [[pruning]]\nup_to_dbh_cm = 15.0\nprice = 30.0\ncycle_years = 3\n";
 
+/// What became of one case: its folder (kept only where it broke a rule), its outcome, and the
+/// rule it broke.
+type Ran = (PathBuf, harness::Outcome, Option<String>);
+
 /// Runs every case, each in a fresh folder of its own, on twice as many threads as there are
-/// cores; the outcomes (and folders) come back in the cases' order.
-fn run_all(all: &[Case], root: &Path) -> Vec<(PathBuf, harness::Outcome)> {
+/// cores; the outcomes come back in the cases' order.
+fn run_all(all: &[Case], root: &Path) -> Vec<Ran> {
     let next = AtomicUsize::new(0);
     // Most cases are a process that starts, reads a little and refuses: much of their time is
     // spent starting up and writing files, not computing, and one case per core left the two
     // cores of a CI machine a quarter idle. Twice as many keep them busy; no case comes near
     // the time limit even so (the slowest, a growth, takes some 14 s of its 90).
     let threads = 2 * std::thread::available_parallelism().map_or(1, |n| n.get());
-    let done: Mutex<Vec<Option<(PathBuf, harness::Outcome)>>> =
-        Mutex::new((0..all.len()).map(|_| None).collect());
+    let done: Mutex<Vec<Option<Ran>>> = Mutex::new((0..all.len()).map(|_| None).collect());
     std::thread::scope(|scope| {
         for _ in 0..threads {
             scope.spawn(|| {
@@ -406,7 +409,14 @@ fn run_all(all: &[Case], root: &Path) -> Vec<(PathBuf, harness::Outcome)> {
                         std::fs::create_dir(dir.join("a-folder")).unwrap();
                     }
                     let outcome = run(case, &dir);
-                    done.lock().unwrap()[i] = Some((dir, outcome));
+                    // A case's folder goes as soon as it is judged: a campaign writes some
+                    // gigabytes of trees in all (a Fields tree of random rules can be 150 MB),
+                    // more than a CI machine's disk holds at once. Broken cases keep theirs.
+                    let why = broken(case, &outcome);
+                    if why.is_none() {
+                        let _ = std::fs::remove_dir_all(&dir);
+                    }
+                    done.lock().unwrap()[i] = Some((dir, outcome, why));
                 }
             });
         }
@@ -437,7 +447,7 @@ fn no_input_makes_sylva_panic_hang_or_leave_a_partial_file() {
     let outcomes = run_all(&all, &root);
     let mut failures = Vec::new();
     let mut table: Vec<(&str, [usize; 3], f64, i64)> = Vec::new();
-    for (case, (dir, outcome)) in all.iter().zip(outcomes) {
+    for (case, (dir, outcome, why)) in all.iter().zip(outcomes) {
         let row = match table.iter_mut().find(|r| r.0 == case.family) {
             Some(r) => r,
             None => {
@@ -447,7 +457,7 @@ fn no_input_makes_sylva_panic_hang_or_leave_a_partial_file() {
         };
         row.2 = row.2.max(outcome.seconds);
         row.3 = row.3.max(outcome.peak_kb);
-        match broken(case, &outcome) {
+        match why {
             None if outcome.code == Some(0) => row.1[0] += 1,
             None => row.1[1] += 1,
             Some(why) => {
@@ -461,10 +471,8 @@ fn no_input_makes_sylva_panic_hang_or_leave_a_partial_file() {
                     outcome.stderr.trim(),
                     dir.display()
                 ));
-                continue;
             }
         }
-        let _ = std::fs::remove_dir_all(dir);
     }
     eprintln!("fuzz campaign, seed {seed}, {n} cases per family:");
     eprintln!(

@@ -166,6 +166,13 @@ try {
     check(r.years === e.years && r.trees === sum.trees, `+${e.years}: the report's ${r.trees} trees are the tiles' ${sum.trees}`);
     close(r.benefits_usd, sum.benefits, `+${e.years}: the report's benefits $${r.benefits_usd.toFixed(2)} are the tiles' sum`);
     close(r.typical_total_usd, sum.typical, `+${e.years}: the report's i-Tree benefits $${r.typical_total_usd.toFixed(2)} are the tiles' sum`);
+    // The first epoch's ages by species (the tiles hold each tree's age as f32).
+    if (i > 0) continue;
+    const off = report.species.filter((s) => {
+      const a = sum.ages[s.code];
+      return !a || a.trees !== s.trees || Math.abs(a.years / a.trees - s.mean_age_years) > 1e-3 * Math.max(1, s.mean_age_years);
+    });
+    check(off.length === 0, `each species' trees and mean age in the report are the tiles' (${report.species.length} species${off.length ? `; not: ${off.map((s) => s.code).join(', ')}` : ''})`);
   }
   // Beside Modesto's published benefits per tree (McPherson et al. 1999), held to within the
   // factors docs/benefits.md explains (prices and population; aesthetics not computed).
@@ -226,7 +233,7 @@ function rawGet(base, path) {
 function sumTiles(tilesetPath) {
   const dir = tilesetPath.slice(0, tilesetPath.lastIndexOf('/') + 1);
   const json = JSON.parse(readFileSync(tilesetPath, 'utf8'));
-  const sum = { trees: 0, benefits: 0, typical: 0 };
+  const sum = { trees: 0, benefits: 0, typical: 0, ages: {} };
   const walk = (tile) => {
     if (tile.children?.length) { tile.children.forEach(walk); return; }
     if (!tile.content) return;
@@ -236,6 +243,9 @@ function sumTiles(tilesetPath) {
     for (let i = 0; i < t.count; i++) {
       sum.benefits += t.get('benefits_usd_per_year', i);
       sum.typical += t.get('typical_benefits_usd_per_year', i);
+      const a = (sum.ages[t.get('species', i)] ||= { trees: 0, years: 0 });
+      a.trees += 1;
+      a.years += t.get('age_years', i);
     }
   };
   walk(json.root);
