@@ -392,7 +392,8 @@ impl CityReport {
             "<!doctype html><meta charset=\"utf-8\"><title>Sylva: the city's trees</title>\
              <style>body{font:14px system-ui,sans-serif;margin:2em}table{border-collapse:\
              collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}\
-             td:first-child,th:first-child{text-align:left}.flag{color:#a33}</style>\n",
+             td:first-child,th:first-child{text-align:left}td+td{white-space:nowrap}.flag{color:#a33}\
+             </style>\n",
         );
         let _ = writeln!(h, "<h1>The city's trees</h1><p>{} trees.</p>", self.trees);
         for f in &self.flags {
@@ -401,7 +402,7 @@ impl CityReport {
         h.push_str(
             "<h2>Composition, size and benefits by species</h2><table><tr><th>Species</th>\
              <th>Trees</th><th>Share</th><th>Importance</th><th>Leaf area m²</th>\
-             <th>DBH classes: relative age as i-Tree Streets shows it (cm: &lt;7.6 … ≥106.7)</th>\
+             <th>DBH classes, cm (&lt;7.6 … ≥106.7): relative age as i-Tree Streets shows it</th>\
              <th>Estimated age (years: &lt;10 · 10–20 · 20–40 · 40–60 · ≥60)</th>\
              <th>Mean age</th><th>At the data's oldest</th><th>Sylva $/yr</th>\
              <th>i-Tree typical $/yr</th></tr>\n",
@@ -429,30 +430,11 @@ impl CityReport {
                 money(s.typical_total_usd)
             );
         }
+        h.push_str("</table>\n");
+        shares_html(&mut h, "Genera", "Genus", &self.genera, true, &esc);
+        shares_html(&mut h, "Families", "Family", &self.families, false, &esc);
         h.push_str(
-            "</table><h2>Genera</h2><table><tr><th>Genus</th><th>Trees</th><th>Share</th></tr>\n",
-        );
-        for (g, n, share) in &self.genera {
-            let _ = writeln!(
-                h,
-                "<tr><td><i>{}</i></td><td>{n}</td><td>{:.1}%</td></tr>",
-                esc(g),
-                100.0 * share
-            );
-        }
-        h.push_str(
-            "</table><h2>Families</h2><table><tr><th>Family</th><th>Trees</th><th>Share</th></tr>\n",
-        );
-        for (f, n, share) in &self.families {
-            let _ = writeln!(
-                h,
-                "<tr><td>{}</td><td>{n}</td><td>{:.1}%</td></tr>",
-                esc(f),
-                100.0 * share
-            );
-        }
-        h.push_str(
-            "</table><h2>The city over the years</h2><table><tr><th>Years on</th><th>Trees</th>\
+            "<h2>The city over the years</h2><table><tr><th>Years on</th><th>Trees</th>\
              <th>Canopy m²</th><th>Leaf area m²</th><th>Sylva $/yr</th><th>i-Tree typical $/yr</th></tr>\n",
         );
         for e in &self.epochs {
@@ -479,6 +461,34 @@ impl CityReport {
     }
 }
 
+/// A table of names (genera in italics) with their trees and share of the city's.
+fn shares_html(
+    h: &mut String,
+    title: &str,
+    heading: &str,
+    rows: &[(String, usize, f64)],
+    italic: bool,
+    esc: &dyn Fn(&str) -> String,
+) {
+    let _ = writeln!(
+        h,
+        "<h2>{title}</h2><table><tr><th>{heading}</th><th>Trees</th><th>Share</th></tr>"
+    );
+    for (name, n, share) in rows {
+        let name = if italic {
+            format!("<i>{}</i>", esc(name))
+        } else {
+            esc(name)
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{name}</td><td>{n}</td><td>{:.1}%</td></tr>",
+            100.0 * share
+        );
+    }
+    h.push_str("</table>\n");
+}
+
 /// The section that sets this city's benefits per tree beside a published city's.
 fn comparison_html(h: &mut String, c: &Comparison, esc: &dyn Fn(&str) -> String) {
     let p = &c.published;
@@ -491,7 +501,7 @@ fn comparison_html(h: &mut String, c: &Comparison, esc: &dyn Fn(&str) -> String)
         esc(&p.city),
         esc(&p.city),
         p.trees,
-        esc(&p.source),
+        esc(p.source.trim_end_matches('.')),
         esc(&p.city),
         p.year
     );

@@ -245,20 +245,21 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
     assert_eq!(sum(&|s| s["trees"].as_f64().unwrap()) as usize, trees);
     assert!((sum(&|s| s["share"].as_f64().unwrap()) - 1.0).abs() < 1e-9);
     assert!((sum(&|s| s["importance"].as_f64().unwrap()) - 200.0).abs() < 1e-6);
+    let counted = |s: &serde_json::Value, classes: &str| -> u64 {
+        s[classes]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_u64().unwrap())
+            .sum()
+    };
     for s in species {
-        let classes: u64 = s["dbh_classes"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|n| n.as_u64().unwrap())
-            .sum();
-        assert_eq!(classes, s["trees"].as_u64().unwrap(), "{s}");
-        let ages: u64 = s["age_classes"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|n| n.as_u64().unwrap())
-            .sum();
+        assert_eq!(
+            counted(s, "dbh_classes"),
+            s["trees"].as_u64().unwrap(),
+            "{s}"
+        );
+        let ages = counted(s, "age_classes");
         assert_eq!(ages, s["trees"].as_u64().unwrap(), "{s}");
         let mean = s["mean_age_years"].as_f64().unwrap();
         assert!(mean > 0.0 && mean < 150.0, "{s}");

@@ -190,8 +190,15 @@ try {
   }
   const shown = await page.$$eval('#report-epochs td[data-k=trees]', (cells) => cells.map((c) => c.textContent));
   check(shown[0] === report.epochs[0].trees.toLocaleString('en-US'), `the page's report shows ${shown[0]} trees at the first epoch`);
+  // The full report in its frame, as a reader sees it.
+  const frame = page.frameLocator('#report-frame');
+  await frame.locator('h1').waitFor({ timeout: 30000 });
+  const headings = await frame.locator('h2').allTextContents();
+  check(['Families', 'Genera', 'Not computed'].every((h) => headings.includes(h)), `the report's page has its sections: ${headings.join(', ')}`);
+  check(/Estimated age/.test(await frame.locator('table').first().textContent()), 'the report gives each species\' estimated ages');
   if (shots) {
     await page.locator('#report').scrollIntoViewIfNeeded();
+    await page.waitForTimeout(1000);
     writeFileSync(`${shots}/city-report.png`, await page.screenshot());
   }
 
