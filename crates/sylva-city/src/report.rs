@@ -151,6 +151,25 @@ fn add(a: Option<f64>, b: Option<f64>) -> Option<f64> {
     }
 }
 
+/// The species' trees summed by `group` (genus, family), with their share of the city's
+/// `trees`, most first.
+fn shares_by(
+    species: &[SpeciesRow],
+    trees: usize,
+    group: impl Fn(&SpeciesRow) -> String,
+) -> Vec<(String, usize, f64)> {
+    let mut sums: BTreeMap<String, usize> = BTreeMap::new();
+    for s in species {
+        *sums.entry(group(s)).or_default() += s.trees;
+    }
+    let mut rows: Vec<(String, usize, f64)> = sums
+        .into_iter()
+        .map(|(name, n)| (name, n, n as f64 / trees.max(1) as f64))
+        .collect();
+    rows.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    rows
+}
+
 /// The report of a planned city whose trees are grown (`prototypes`).
 pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityReport {
     let mut species: BTreeMap<String, SpeciesRow> = BTreeMap::new();
@@ -163,19 +182,16 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         let m = plan.measured.get(&(key.region.clone(), key.code.clone()));
         let row = species.entry(key.code.clone()).or_insert_with(|| {
             let scientific = m.map_or(String::new(), |m| m.species.scientific.clone());
+            let genus = scientific
+                .split_whitespace()
+                .next()
+                .unwrap_or("")
+                .to_string();
             SpeciesRow {
                 code: key.code.clone(),
-                genus: scientific
-                    .split_whitespace()
-                    .next()
-                    .unwrap_or("")
-                    .to_string(),
+                family: crate::families::family(&genus).map(str::to_string),
+                genus,
                 common: m.map_or(String::new(), |m| m.species.common.clone()),
-                family: scientific
-                    .split_whitespace()
-                    .next()
-                    .and_then(crate::families::family)
-                    .map(str::to_string),
                 scientific,
                 trees: 0,
                 share: 0.0,
@@ -231,25 +247,10 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         s.importance = 100.0 * (s.share + s.leaf_area_m2 / leaf.max(1e-9));
     }
     species.sort_by(|a, b| b.trees.cmp(&a.trees).then(a.code.cmp(&b.code)));
-    let mut genera: BTreeMap<String, usize> = BTreeMap::new();
-    for s in &species {
-        *genera.entry(s.genus.clone()).or_default() += s.trees;
-    }
-    let mut genera: Vec<(String, usize, f64)> = genera
-        .into_iter()
-        .map(|(g, n)| (g, n, n as f64 / trees.max(1) as f64))
-        .collect();
-    genera.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
-    let mut families: BTreeMap<String, usize> = BTreeMap::new();
-    for s in &species {
-        let f = s.family.clone().unwrap_or_else(|| "unknown".into());
-        *families.entry(f).or_default() += s.trees;
-    }
-    let mut families: Vec<(String, usize, f64)> = families
-        .into_iter()
-        .map(|(f, n)| (f, n, n as f64 / trees.max(1) as f64))
-        .collect();
-    families.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    let genera = shares_by(&species, trees, |s| s.genus.clone());
+    let families = shares_by(&species, trees, |s| {
+        s.family.clone().unwrap_or_else(|| "unknown".into())
+    });
     let mut flags: Vec<String> = species
         .iter()
         .filter(|s| s.share > SPECIES_GUIDELINE)

@@ -42,13 +42,15 @@ export function forget() {
 // apart, they cost two draws per species and age class in view, and a browser drawing on its
 // CPU spends most of a frame on its draws (a 100,000-tree city turned at 7 frames a second,
 // 12 with half the draws). `combine` makes them one mesh, each part's colour (its material's
-// times its vertices') carried by its vertices, drawn with one matte two-sided material; the
+// times its vertices') carried by its vertices, drawn with one matte two-sided material (a CPU
+// drawing WebGL fills a Lambert pixel several times faster than a physically based one); the
 // first part's trees then stand for the tree, and the other parts are data only.
-const merged = new Map();  // the parts' meshes and materials -> their merged mesh
+const merged = new Map();  // the parts' meshes and colours -> their merged mesh
 export const TREE_MATERIAL = new T.MeshLambertMaterial({ vertexColors: true, side: 2 /* DoubleSide */ });
 
 function mergedOf(parts) {
-  const key = parts.map((p) => `${p.geometry.uuid}/${p.material.uuid}`).join('|');
+  // Tiles share their meshes (`share`), not their materials: a part's colour is the key.
+  const key = parts.map((p) => `${p.geometry.uuid}/${p.material.color.toArray().join(',')}`).join('|');
   let geometry = merged.get(key);
   if (geometry) return geometry;
   let vertices = 0;
@@ -83,21 +85,21 @@ function mergedOf(parts) {
 }
 
 // Makes each tree of a loaded tile (`root`) one mesh: the parts of one glTF node are the
-// instanced meshes of one parent named by the node and their primitive (`…-L2_1`, `…-L2_2`).
+// instanced meshes of one parent named by the node and their primitive (`…-L2_1`, `…-L2_2`),
+// with as many trees.
 export function combine(root) {
   const trees = new Map();
   root.traverse((o) => {
     if (!o.isInstancedMesh) return;
-    const key = `${o.parent?.uuid}|${o.name.replace(/_\d+$/, '')}`;
+    const key = `${o.parent?.uuid}|${o.name.replace(/_\d+$/, '')}|${o.count}`;
     if (!trees.has(key)) trees.set(key, []);
     trees.get(key).push(o);
   });
   for (const parts of trees.values()) {
-    const first = parts[0];
-    const s = prepare(first);
-    if (s.merged || parts.some((p) => p.count !== first.count)) continue;
+    const s = prepare(parts[0]);
+    if (s.merged) continue;
     s.merged = mergedOf(parts);
-    s.spheres = spheresOf(first, s.merged.boundingSphere);
+    s.spheres = spheresOf(parts[0], s.merged.boundingSphere);
   }
 }
 
@@ -118,13 +120,13 @@ export function prepare(mesh) {
   for (let o = mesh; o && !meta; o = o.parent) meta = o.userData.structuralMetadata || null;
   const rows = new Array(n);
   for (let i = 0; i < n; i++) rows[i] = ids && meta ? meta.getPropertyTableData(0, ids.getX(i)) : null;
-  if (!mesh.geometry.boundingSphere) mesh.geometry.computeBoundingSphere();
   const state = {
     n,
     rows,
-    spheres: spheresOf(mesh, mesh.geometry.boundingSphere),
-    // The tree's parts as one mesh (`combine`), on its first part only.
+    // The tree's parts as one mesh, and each tree's bounding sphere by it (`combine`), on its
+    // first part only.
     merged: null,
+    spheres: null,
     matrices: mesh.instanceMatrix.array.slice(),
     colours: new Float32Array(3 * n).fill(1),
   };

@@ -149,24 +149,6 @@ function colourTrees(root) {
   });
 }
 
-// The tiles' materials as Lambert's, one per colour and kind, so that every tile's parts of one
-// grown tree are the same mesh and material and merge once (`combine`); the trees are drawn
-// matte (a CPU drawing WebGL fills a Lambert pixel several times faster than a physically
-// based one).
-const lamberts = new Map();
-function matte(root) {
-  root.traverse((o) => {
-    if (!o.isMesh || o.material.isMeshLambertMaterial) return;
-    const m = o.material;
-    const key = `${m.color.getHexString()}|${m.vertexColors}|${m.side}`;
-    if (!lamberts.has(key)) {
-      lamberts.set(key, new T.MeshLambertMaterial({ color: m.color, vertexColors: m.vertexColors, side: m.side }));
-    }
-    m.dispose();
-    o.material = lamberts.get(key);
-  });
-}
-
 function tilesetOf(index) {
   if (state.tilesets.has(index)) return state.tilesets.get(index);
   const epoch = state.city.epochs[index];
@@ -183,7 +165,6 @@ function tilesetOf(index) {
   state.frame.decompose(tiles.group.position, tiles.group.quaternion, tiles.group.scale);
   tiles.addEventListener('load-model', ({ scene: model }) => {
     const t0 = performance.now();
-    matte(model);
     model.traverse((o) => { if (o.isInstancedMesh) { prepare(o); share(o); } });
     combine(model);
     colourTrees(model);
@@ -239,13 +220,13 @@ function drawGround(e) {
   g.setAttribute('position', new T.Float32BufferAttribute(
     [e.x0, 0.05, -e.n0, e.x1, 0.05, -e.n0, e.x1, 0.05, -e.n1, e.x0, 0.05, -e.n1], 3));
   ground.add(new T.LineLoop(g, new T.LineBasicMaterial({ color: '#6a5a3a' })));
-  if (state.basemap && state.city.origin) drawBasemap(e, margin);
+  if (state.basemap && state.city.origin) drawBasemap(e, margin, plane);
 }
 
 // An XYZ (Web Mercator) map under the trees: the tiles of one zoom level over the extent,
 // placed by their corners' longitude and latitude in the city's local metres (metres per degree
 // on the WGS84 ellipsoid at the city's latitude: within a metre over a city's width).
-function drawBasemap(e, margin) {
+function drawBasemap(e, margin, plain) {
   const { longitude: lon0, latitude: lat0 } = state.city.origin;
   const phi = lat0 * Math.PI / 180;
   const mLat = 111132.92 - 559.82 * Math.cos(2 * phi) + 1.175 * Math.cos(4 * phi);
@@ -265,7 +246,7 @@ function drawBasemap(e, margin) {
   const [ya, yb] = [ty(latOf(e.n1 + margin)), ty(latOf(e.n0 - margin))];
   const count = (xb - xa + 1) * (yb - ya + 1);
   if (count > 100) return;
-  const plain = ground.children[0];
+  let drawn = 0;
   const loader = new T.TextureLoader();
   loader.setCrossOrigin('anonymous');
   probe.basemapTiles = [];
@@ -285,10 +266,10 @@ function drawBasemap(e, margin) {
       tile.rotation.x = -Math.PI / 2;
       tile.position.set((west + east) / 2, -0.02, -(north + south) / 2);
       ground.add(tile);
-      probe.basemapDrawn = (probe.basemapDrawn || 0) + 1;
+      probe.basemapDrawn = ++drawn;
       // The map's tiles cover the plain ground and its margin: once all are in, it is not
       // drawn beneath them.
-      if (probe.basemapDrawn === count) plain.visible = false;
+      if (drawn === count) plain.visible = false;
       redraw();
     }, undefined, () => { probe.basemapFailed = (probe.basemapFailed || 0) + 1; });
   }
