@@ -21,6 +21,15 @@ use sylva::street::typical::Reference;
 /// A figure no model or price gives.
 pub const NO_DATA: f32 = -1.0;
 
+/// The benefit categories of a tree's year, in report order.
+pub const CATEGORIES: [&str; 5] = [
+    "energy",
+    "carbon",
+    "stormwater",
+    "air_quality",
+    "aesthetics",
+];
+
 /// One tree's year.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TreeYear {
@@ -30,11 +39,17 @@ pub struct TreeYear {
     pub co2_sequestered_kg: f32,
     /// Rain held back this year, m³.
     pub rain_intercepted_m3: f32,
-    /// The two valued at the region's prices, dollars.
+    /// Sylva's own computed categories summed (carbon, stormwater, air quality, aesthetics;
+    /// energy is not computed: an inventory has no façades), dollars.
     pub benefits_usd: f32,
+    /// Sylva's own by category ([`CATEGORIES`]): energy (not computed), carbon taken up,
+    /// stormwater held by the grown crown, air quality (i-Tree's uptake per m² of leaf at this
+    /// DBH on the grown crown's leaf, BVOCs subtracted), aesthetics (the crown's yearly leaf
+    /// gain, by its species' measured leaf-area curve), dollars.
+    pub own_usd: [f32; 5],
     /// At typical position: energy (cooling and heating), carbon (sequestered and avoided),
-    /// stormwater, air quality (BVOCs subtracted), dollars.
-    pub typical_usd: [f32; 4],
+    /// stormwater, air quality (BVOCs subtracted), aesthetics, dollars.
+    pub typical_usd: [f32; 5],
     /// At typical position: every priced benefit, dollars.
     pub typical_benefits_usd: f32,
 }
@@ -46,7 +61,8 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
         co2_sequestered_kg: NO_DATA,
         rain_intercepted_m3: NO_DATA,
         benefits_usd: NO_DATA,
-        typical_usd: [NO_DATA; 4],
+        own_usd: [NO_DATA; 5],
+        typical_usd: [NO_DATA; 5],
         typical_benefits_usd: NO_DATA,
     };
     let (Kind::Tree(key), Some(p), Some(m)) = (&tree.kind, p, m) else {
@@ -66,24 +82,35 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
     let valued = |amount: Option<f64>, per: Option<f64>| amount.zip(per).map(|(a, b)| a * b);
     let carbon = valued(sequestered, prices.as_ref().and_then(|p| p.co2_per_kg));
     let water = valued(rain, prices.as_ref().and_then(|p| p.stormwater_per_m3));
-    let money = match (carbon, water) {
-        (None, None) => None,
-        (c, w) => Some(c.unwrap_or(0.0) + w.unwrap_or(0.0)),
-    };
     let f = |x: Option<f64>| x.map_or(NO_DATA, |v| v as f32);
-    let typical = Reference::of(m)
-        .ok()
-        .map(|r| r.at(dbh, prices.as_ref()).money);
+    let typical = Reference::of(m).ok().map(|r| r.at(dbh, prices.as_ref()));
     let sum = |a: Option<f64>, b: Option<f64>| match (a, b) {
         (None, None) => None,
         (a, b) => Some(a.unwrap_or(0.0) + b.unwrap_or(0.0)),
     };
-    let typical_usd = typical.map_or([NO_DATA; 4], |t| {
+    // The grown crown's own air quality: i-Tree's uptake and BVOC emission per m² of leaf at
+    // this DBH, on its own leaf area (as `sylva grow` accounts it).
+    let own_leaf = leaf * s * s;
+    let air = typical.as_ref().and_then(|t| {
+        let i_tree = t.amounts.leaf_area_m2;
+        let share = if i_tree > 0.0 { own_leaf / i_tree } else { 0.0 };
+        sum(t.money.air_quality, t.money.bvoc).map(|v| v * share)
+    });
+    // Its aesthetics: the leaf it gains this year, the grown crown's leaf times its species'
+    // measured yearly rise in leaf area, at the region's price per m².
+    let gain = (m.leaf_area(age) > 0.0)
+        .then(|| own_leaf * (1.0 - m.leaf_area(age - 1.0) / m.leaf_area(age)).max(0.0));
+    let aesthetics = valued(gain, prices.as_ref().and_then(|p| p.leaf_gain_per_m2));
+    let own = [None, carbon, water, air, aesthetics];
+    let money = own.iter().fold(None, |a, &v| sum(a, v));
+    let typical_usd = typical.as_ref().map_or([NO_DATA; 5], |t| {
+        let t = &t.money;
         [
             f(sum(t.cooling, t.heating)),
             f(sum(t.carbon, t.co2_avoided)),
             f(t.stormwater),
             f(sum(t.air_quality, t.bvoc)),
+            f(t.aesthetics),
         ]
     });
     TreeYear {
@@ -91,8 +118,9 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
         co2_sequestered_kg: f(sequestered),
         rain_intercepted_m3: f(rain),
         benefits_usd: f(money),
+        own_usd: own.map(f),
         typical_usd,
-        typical_benefits_usd: f(typical.map(|t| t.total())),
+        typical_benefits_usd: f(typical.map(|t| t.money.total())),
     }
 }
 
@@ -171,6 +199,11 @@ mod tests {
             "{y:?}"
         );
         assert!(y.typical_usd.iter().all(|&v| v > 0.0), "{y:?}");
+        // Sylva's own: every category but energy (no façade), summed as its benefits.
+        assert_eq!(y.own_usd[0], NO_DATA);
+        assert!(y.own_usd[1..].iter().all(|&v| v > 0.0), "{y:?}");
+        let own: f32 = y.own_usd[1..].iter().sum();
+        assert!((own - y.benefits_usd).abs() < 1e-3, "{y:?}");
         let sum: f32 = y.typical_usd.iter().sum();
         assert!((sum - y.typical_benefits_usd).abs() < 1e-3, "{y:?}");
         // A stump gives nothing: every figure is the no-data value.

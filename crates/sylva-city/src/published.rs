@@ -119,18 +119,16 @@ pub struct Comparison {
 }
 
 /// This city's i-Tree Streets typical-position figures per tree (energy, carbon, stormwater,
-/// air quality) beside `published`'s.
-pub fn compare(published: Published, typical_per_tree: [Option<f64>; 4]) -> Comparison {
+/// air quality, aesthetics) beside `published`'s.
+pub fn compare(published: Published, typical_per_tree: [Option<f64>; 5]) -> Comparison {
     let computed: f64 = typical_per_tree.iter().flatten().sum();
     let rows = CATEGORIES
         .iter()
         .enumerate()
         .map(|(k, &c)| {
             let ours = match k {
-                0..4 => typical_per_tree[k],
-                // Aesthetics and other benefits are not computed; the total is of the four
-                // that are.
-                4 => None,
+                // Aesthetics stands for the published "aesthetics and other".
+                0..5 => typical_per_tree[k],
                 _ => Some(computed),
             };
             (c.to_string(), ours, published.get(c))
@@ -143,9 +141,14 @@ pub fn compare(published: Published, typical_per_tree: [Option<f64>; 4]) -> Comp
              inventory's trees at their own DBH",
             published.city, published.trees, published.year
         ),
-        "aesthetics and other benefits (the property value trees add, and the rest) are not \
-         computed in this report, so its total leaves them out"
-            .into(),
+        format!(
+            "aesthetics: the yearly leaf-area gain priced by i-Tree Streets' method; {}; {}'s \
+             own median sale price was not reachable, and the published category also holds \
+             'other' benefits",
+            sylva::street::aesthetics::home_price(&published.region)
+                .map_or("no home price".into(), |h| h.describe()),
+            published.city
+        ),
         "energy: i-Tree Streets prices each tree at its species' usual distances and directions \
          from buildings (typical position); the published figure was modelled for the city's \
          own trees"

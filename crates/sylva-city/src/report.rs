@@ -8,13 +8,14 @@
 //! benefits from `benefits::tree_year` (Sylva's own carbon and rain, and i-Tree Streets'
 //! typical position at its DBH).
 
-use crate::benefits::{NO_DATA, tree_year};
+use crate::benefits::{CATEGORIES, NO_DATA, tree_year};
 use crate::plan::{Kind, Plan, ProtoKey};
 use crate::prototypes::Prototype;
 use crate::published::{self, Comparison};
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 use sylva::growth::DBH_CLASS_EDGES_CM;
+use sylva::street::Survival;
 
 /// i-Tree's guideline for one species: at most this share of the trees (Santamour 1990's
 /// 10-20-30 rule, as i-Tree Streets flags it).
@@ -58,12 +59,16 @@ pub struct SpeciesRow {
     /// Importance value: share of the trees plus share of the leaf area (i-Tree Streets'),
     /// in percent (0 to 200).
     pub importance: f64,
-    /// Sylva's own benefits (CO2 taken up and rain held back, at the region's prices), $ a
-    /// year; none where no tree of it has a model.
+    /// Sylva's own benefits of the categories it computes here (carbon, stormwater, air
+    /// quality, aesthetics; energy is not: no façades), $ a year; none where no tree of it has
+    /// a model.
     pub benefits_usd: Option<f64>,
+    /// Sylva's own by category (`benefits::CATEGORIES`: energy, carbon, stormwater, air quality,
+    /// aesthetics), $ a year; none where not computed.
+    pub own_usd: [Option<f64>; 5],
     /// i-Tree Streets' typical position at each tree's DBH: energy, carbon, stormwater, air
-    /// quality, $ a year.
-    pub typical_usd: [Option<f64>; 4],
+    /// quality, aesthetics, $ a year.
+    pub typical_usd: [Option<f64>; 5],
     /// Every priced typical benefit, $ a year.
     pub typical_total_usd: Option<f64>,
 }
@@ -83,6 +88,11 @@ pub struct EpochRow {
     pub benefits_usd: f64,
     /// i-Tree Streets' typical-position benefits, $ a year.
     pub typical_total_usd: f64,
+    /// The share of the first epoch's trees expected to be standing, each by its estimated
+    /// age through its region's survival (`sylva::street::survival`); the tiles draw them all.
+    pub expected_alive_share: f64,
+    /// Sylva's own benefits with each tree weighted by its chance of standing, $ a year.
+    pub expected_benefits_usd: f64,
 }
 
 /// The report.
@@ -106,9 +116,12 @@ pub struct CityReport {
     /// What is not computed, and why.
     pub not_computed: Vec<String>,
     /// Per tree at the first epoch: i-Tree Streets' typical-position energy, carbon,
-    /// stormwater and air quality, $ a year.
-    pub typical_per_tree_usd: [Option<f64>; 4],
-    /// Sylva's own benefits per tree, $ a year.
+    /// stormwater, air quality and aesthetics, $ a year.
+    pub typical_per_tree_usd: [Option<f64>; 5],
+    /// Per tree at the first epoch: Sylva's own, by the same categories (energy not
+    /// computed), $ a year.
+    pub own_per_tree_usd: [Option<f64>; 5],
+    /// Sylva's own benefits per tree, the computed categories summed, $ a year.
     pub benefits_per_tree_usd: Option<f64>,
     /// The published figures per tree of the city that the region most of the trees are grown
     /// in stands for, beside this city's, where the table has one.
@@ -120,7 +133,8 @@ struct Tree {
     leaf: f64,
     canopy: f64,
     benefits: Option<f64>,
-    typical: [Option<f64>; 4],
+    own: [Option<f64>; 5],
+    typical: [Option<f64>; 5],
     typical_total: Option<f64>,
 }
 
@@ -139,6 +153,7 @@ fn tree_of(
         leaf: p.map_or(0.0, |p| p.surfaces.0 * s * s),
         canopy: std::f64::consts::PI * (t.crown_diameter as f64 / 2.0).powi(2),
         benefits: some(year.benefits_usd),
+        own: year.own_usd.map(some),
         typical: year.typical_usd.map(some),
         typical_total: some(year.typical_benefits_usd),
     }
@@ -202,7 +217,8 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 leaf_area_m2: 0.0,
                 importance: 0.0,
                 benefits_usd: None,
-                typical_usd: [None; 4],
+                own_usd: [None; 5],
+                typical_usd: [None; 5],
                 typical_total_usd: None,
             }
         });
@@ -222,13 +238,18 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         for (sum, v) in row.typical_usd.iter_mut().zip(tree.typical) {
             *sum = add(*sum, v);
         }
+        for (sum, v) in row.own_usd.iter_mut().zip(tree.own) {
+            *sum = add(*sum, v);
+        }
         row.typical_total_usd = add(row.typical_total_usd, tree.typical_total);
     }
     let trees: usize = species.values().map(|s| s.trees).sum();
     let per_tree = |v: Option<f64>| v.map(|v| v / trees.max(1) as f64);
-    let typical_per_tree_usd: [Option<f64>; 4] = std::array::from_fn(|k| {
+    let typical_per_tree_usd: [Option<f64>; 5] = std::array::from_fn(|k| {
         per_tree(species.values().fold(None, |a, s| add(a, s.typical_usd[k])))
     });
+    let own_per_tree_usd: [Option<f64>; 5] =
+        std::array::from_fn(|k| per_tree(species.values().fold(None, |a, s| add(a, s.own_usd[k]))));
     let benefits_per_tree_usd =
         per_tree(species.values().fold(None, |a, s| add(a, s.benefits_usd)));
     // The region most trees are grown in (the first of equals).
@@ -270,6 +291,14 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
             100.0 * g.2
         )
     }));
+    // Each inventory row's age and region at the first epoch: its chance of standing later.
+    let planted: HashMap<usize, (f64, &str)> = (first.map_or(&[][..], |e| &e.trees).iter())
+        .filter_map(|t| match &t.kind {
+            Kind::Tree(key) => Some((t.row, (t.age as f64, key.region.as_str()))),
+            Kind::Stump => None,
+        })
+        .collect();
+    let years0 = first.map_or(0, |e| e.years);
     let epochs = plan
         .epochs
         .iter()
@@ -281,7 +310,10 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 leaf_area_m2: 0.0,
                 benefits_usd: 0.0,
                 typical_total_usd: 0.0,
+                expected_alive_share: 0.0,
+                expected_benefits_usd: 0.0,
             };
+            let later = f64::from(e.years.saturating_sub(years0));
             for t in &e.trees {
                 let Kind::Tree(key) = &t.kind else { continue };
                 let tree = tree_of(t, key, plan, prototypes);
@@ -290,7 +322,14 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 row.leaf_area_m2 += tree.leaf;
                 row.benefits_usd += tree.benefits.unwrap_or(0.0);
                 row.typical_total_usd += tree.typical_total.unwrap_or(0.0);
+                let standing = planted.get(&t.row).map_or(1.0, |&(age, region)| {
+                    let s = Survival::builtin(region);
+                    s.alive_after(age + later) / s.alive_after(age)
+                });
+                row.expected_alive_share += standing;
+                row.expected_benefits_usd += standing * tree.benefits.unwrap_or(0.0);
             }
+            row.expected_alive_share /= row.trees.max(1) as f64;
             row
         })
         .collect();
@@ -315,9 +354,15 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
              height; canopy the crowns' projected discs summed"
                 .into(),
             "importance value: share of trees plus share of leaf area (i-Tree Streets)".into(),
-            "benefits: Sylva's own CO2 taken up (Jenkins et al. 2003) and rain held back by the \
-             grown crown at the region's prices; typical: i-Tree Streets' per-tree tables at \
-             each tree's DBH (energy, carbon, stormwater, air quality)"
+            "benefits: Sylva's own CO2 taken up (Jenkins et al. 2003), rain held back by the \
+             grown crown, its air quality (i-Tree's uptake per m² of leaf on the crown's own \
+             leaf) and aesthetics (its yearly leaf gain at the region's price per m², McPherson \
+             2007's method), at the region's prices; typical: i-Tree Streets' per-tree tables \
+             at each tree's DBH (energy, carbon, stormwater, air quality, aesthetics)"
+                .into(),
+            "survival: each epoch's trees weighted by their chance of standing, from their \
+             estimated age by the region's yearly survival (5% die a year while establishing, \
+             then fewer, to the Community Tree Guides' share alive at 40 years)"
                 .into(),
         ],
         not_computed: vec![
@@ -327,11 +372,13 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
             "replacement value: the CTLA trunk formula needs regional prices per unit of trunk \
              area and species, condition and location ratings, which Sylva does not have"
                 .into(),
-            "energy on the site: an inventory has no façades (the typical position's energy is \
-             i-Tree's)"
+            "Sylva's own energy: an inventory has no façades, so the grown crowns' shade on \
+             buildings is not computed (the typical position's energy is i-Tree's); Sylva's \
+             own total is of the other four categories"
                 .into(),
         ],
         typical_per_tree_usd,
+        own_per_tree_usd,
         benefits_per_tree_usd,
         published,
     }
@@ -349,14 +396,18 @@ impl CityReport {
             "code,scientific,common,genus,family,trees,share,importance,leaf_area_m2,\
              dbh_lt_7_6,dbh_7_6_15_2,dbh_15_2_30_5,dbh_30_5_45_7,dbh_45_7_61,dbh_61_76_2,\
              dbh_76_2_91_4,dbh_91_4_106_7,dbh_ge_106_7,age_lt_10,age_10_20,age_20_40,\
-             age_40_60,age_ge_60,mean_age_years,at_oldest_measured,benefits_usd,typical_energy_usd,\
-             typical_carbon_usd,typical_stormwater_usd,typical_air_quality_usd,typical_total_usd\n",
+             age_40_60,age_ge_60,mean_age_years,at_oldest_measured,benefits_usd,own_energy_usd,\
+             own_carbon_usd,own_stormwater_usd,own_air_quality_usd,own_aesthetics_usd,\
+             typical_energy_usd,typical_carbon_usd,typical_stormwater_usd,typical_air_quality_usd,\
+             typical_aesthetics_usd,typical_total_usd\n",
         );
         let cell = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.2}"));
         for s in &self.species {
             let classes: Vec<String> = s.dbh_classes.iter().map(|n| n.to_string()).collect();
             let ages: Vec<String> = s.age_classes.iter().map(|n| n.to_string()).collect();
-            let typical: Vec<String> = s.typical_usd.iter().map(|&v| cell(v)).collect();
+            let typical: Vec<String> = (s.own_usd.iter().chain(&s.typical_usd))
+                .map(|&v| cell(v))
+                .collect();
             let _ = writeln!(
                 out,
                 "{},\"{}\",\"{}\",{},{},{},{:.4},{:.2},{:.1},{},{},{:.1},{},{},{},{}",
@@ -405,8 +456,8 @@ impl CityReport {
              <th>Trees</th><th>Share</th><th>Importance</th><th>Leaf area m²</th>\
              <th>DBH classes, cm (&lt;7.6 … ≥106.7): relative age as i-Tree Streets shows it</th>\
              <th>Estimated age (years: &lt;10 · 10–20 · 20–40 · 40–60 · ≥60)</th>\
-             <th>Mean age</th><th>At the data's oldest</th><th>Sylva $/yr</th>\
-             <th>i-Tree typical $/yr</th></tr>\n",
+             <th>Mean age</th><th>At the data's oldest</th><th>Sylva $/yr (four categories; \
+             energy not computed)</th><th>i-Tree typical $/yr</th></tr>\n",
         );
         for s in &self.species {
             let classes: Vec<String> = s.dbh_classes.iter().map(|n| n.to_string()).collect();
@@ -432,17 +483,27 @@ impl CityReport {
             );
         }
         h.push_str("</table>\n");
+        self.categories_html(&mut h);
         shares_html(&mut h, "Genera", "Genus", &self.genera, true, &esc);
         shares_html(&mut h, "Families", "Family", &self.families, false, &esc);
         h.push_str(
             "<h2>The city over the years</h2><table><tr><th>Years on</th><th>Trees</th>\
-             <th>Canopy m²</th><th>Leaf area m²</th><th>Sylva $/yr</th><th>i-Tree typical $/yr</th></tr>\n",
+             <th>Canopy m²</th><th>Leaf area m²</th><th>Sylva $/yr</th><th>i-Tree typical $/yr</th>\
+             <th>Expected standing</th><th>Sylva $/yr, expected</th></tr>\n",
         );
         for e in &self.epochs {
             let _ = writeln!(
                 h,
-                "<tr><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.0}</td><td>${:.0}</td><td>${:.0}</td></tr>",
-                e.years, e.trees, e.canopy_m2, e.leaf_area_m2, e.benefits_usd, e.typical_total_usd
+                "<tr><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.0}</td><td>${:.0}</td><td>${:.0}</td>\
+                 <td>{:.1}%</td><td>${:.0}</td></tr>",
+                e.years,
+                e.trees,
+                e.canopy_m2,
+                e.leaf_area_m2,
+                e.benefits_usd,
+                e.typical_total_usd,
+                100.0 * e.expected_alive_share,
+                e.expected_benefits_usd
             );
         }
         h.push_str("</table>\n");
@@ -459,6 +520,38 @@ impl CityReport {
         }
         h.push_str("</ul>\n");
         h
+    }
+}
+
+impl CityReport {
+    /// Benefits per tree at the first epoch by category, Sylva's own beside i-Tree's typical
+    /// position: every category present, a missing one said to be not computed.
+    fn categories_html(&self, h: &mut String) {
+        h.push_str(
+            "<h2>Benefits per tree by category</h2><table><tr><th>$ a tree a year</th>\
+             <th>Sylva (the grown crowns)</th><th>i-Tree typical position</th></tr>\n",
+        );
+        let money = |v: Option<f64>| {
+            v.map_or("not computed (an inventory has no façades)".into(), |v| {
+                format!("${v:.2}")
+            })
+        };
+        for (k, c) in CATEGORIES.iter().enumerate() {
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+                c.replace('_', " "),
+                money(self.own_per_tree_usd[k]),
+                money(self.typical_per_tree_usd[k])
+            );
+        }
+        let sum = |v: &[Option<f64>]| v.iter().flatten().sum::<f64>();
+        let _ = writeln!(
+            h,
+            "<tr><td>Sylva: the four computed; i-Tree: all five</td><td>${:.2}</td><td>${:.2}</td></tr></table>",
+            sum(&self.own_per_tree_usd),
+            sum(&self.typical_per_tree_usd)
+        );
     }
 }
 

@@ -133,7 +133,10 @@ pub fn benefit_chart(
                 c.removal,
                 c.sidewalk,
                 c.cleanup,
+                c.other,
                 c.average,
+                c.cycles,
+                c.utility,
             ]
         };
         let top = accounts
@@ -141,9 +144,10 @@ pub fn benefit_chart(
             .map(|a| ups(a).iter().sum::<f64>())
             .fold(1.0f64, f64::max)
             * 1.1;
+        // The axis holds every bar and the net line, however far below the costs take it.
         let bottom = accounts
             .iter()
-            .map(|a| downs(a).iter().sum::<f64>())
+            .map(|a| downs(a).iter().sum::<f64>().max(-a.net(basis)))
             .fold(0.0f64, f64::max)
             * 1.1;
         let a0 = accounts.first().map_or(0.0, |a| a.age) - 0.5;
@@ -151,12 +155,15 @@ pub fn benefit_chart(
         let mut chart = ChartBuilder::on(&plot)
             .caption(
                 format!(
-                    "{} in {}, {}: yearly benefits (up) and costs (down), dollars",
+                    "{} in {}, {}: a living tree's benefits (up), costs (down), $ a year; \
+                     {:.0}% of those planted alive at {}",
                     m.label(),
                     m.region.code,
-                    basis.name()
+                    basis.name(),
+                    100.0 * accounts.last().map_or(1.0, |a| a.cohort.alive_at_end),
+                    accounts.last().map_or(0.0, |a| a.age)
                 ),
-                ("sans-serif", 26),
+                ("sans-serif", 22),
             )
             .margin(16)
             .x_label_area_size(40)
@@ -192,7 +199,10 @@ pub fn benefit_chart(
             RGBColor(200, 60, 60),
             RGBColor(110, 110, 110),
             RGBColor(170, 150, 120),
+            RGBColor(150, 150, 200),
             RGBColor(200, 120, 120),
+            RGBColor(225, 160, 90),
+            RGBColor(90, 90, 160),
         ];
         let down_names = [
             "heating penalty",
@@ -202,7 +212,10 @@ pub fn benefit_chart(
             "removal",
             "sidewalk repair",
             "clean-up",
+            "pest, liability, administration",
             "costs (programme average)",
+            "pruning cycles (city)",
+            "line clearance (utility)",
         ];
         for (k, (colour, name)) in up_colours.into_iter().zip(up_names).enumerate() {
             if accounts.iter().all(|a| ups(a)[k] == 0.0) {

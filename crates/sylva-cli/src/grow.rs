@@ -31,9 +31,16 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     let ages = run_ages(first, args.from, args.to, args.step).map_err(anyhow::Error::msg)?;
     // Every input is read and checked before anything is written.
     let (site, prices, costs) = load_street(&args.street)?;
+    let survival = crate::shared::survival(&args.street)?;
     let mut assessors: Vec<Assessor> = species
         .iter()
-        .map(|m| Assessor::new(m, site.clone(), prices.clone(), costs.clone()))
+        .map(|m| {
+            let a = Assessor::new(m, site.clone(), prices.clone(), costs.clone());
+            match &survival {
+                Some(s) => a.with_survival(s.clone()),
+                None => a,
+            }
+        })
         .collect();
     if args.street.prices.is_some() || args.street.costs.is_some() {
         // Money was asked for: every benefit model must be there.
@@ -92,7 +99,15 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     let pruner = (site.as_ref())
         .filter(|_| !args.street.no_pruning)
         .and_then(|s| Pruner::new(s, costs.as_ref()));
+    if pruner.is_some() {
+        assessors.iter_mut().for_each(Assessor::charge_cycles);
+    }
+    // Each record's cycles are those since the record before (since planting for the first):
+    // with --step 10 ten years' visits, charged as a tenth a year beside one year's benefits.
+    let mut last_age: Option<f64> = None;
     for &age in &ages {
+        let span = last_age.map_or(age, |a| age - a);
+        last_age = Some(age);
         let mut cycles: Vec<Option<PruningYear>> = cohort.species.iter().map(|_| None).collect();
         if let (Some(pruner), Some(site)) = (&pruner, &site) {
             for (i, grower) in cohort.growers.iter_mut().enumerate() {
@@ -117,8 +132,8 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             let m = &cohort.species[i];
             let grown = cohort.history[i].last().context("an age was recorded")?;
             let mut account = assessors[i].year(age, &grown.model, skeleton);
-            if let Some(p) = &pruner {
-                account.record_pruning(cycles[i].take(), p.replaces_itemised_pruning());
+            if pruner.is_some() {
+                account.record_pruning(cycles[i].take(), span);
             }
             let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &report::MESH);
             let stem = format!("{}-age-{}{season}", m.species.code, age_label(age));

@@ -5,7 +5,7 @@ use crate::args::{RankArgs, RankBy};
 use crate::shared::{database, load_street, with_progress};
 use anyhow::{Result, bail};
 use sylva::growth::Measured;
-use sylva::street::rank::{Pruning, first_conflicts, rank};
+use sylva::street::rank::{Pruning, Study, first_conflicts, rank};
 use sylva::street::{Basis, Kind};
 
 pub fn run(args: &RankArgs) -> Result<()> {
@@ -17,6 +17,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
         );
     }
     let (site, prices, costs) = load_street(&args.street)?;
+    let survival = crate::shared::survival(&args.street)?;
     let basis = match args.by {
         Some(RankBy::Typical) => Basis::Typical,
         Some(RankBy::Site) => Basis::Site,
@@ -60,21 +61,20 @@ pub fn run(args: &RankArgs) -> Result<()> {
     }
     let count = species.len();
     let ranked = with_progress(count, |tick| {
-        rank(
-            species,
-            args.years,
-            args.seed,
-            site.as_ref(),
-            prices.as_ref(),
-            costs.as_ref(),
-            match (args.street.no_pruning, args.pruning_losses) {
+        let study = Study {
+            years: args.years,
+            seed: args.seed,
+            site: site.clone(),
+            prices: prices.clone(),
+            costs: costs.clone(),
+            survival: survival.clone(),
+            pruning: match (args.street.no_pruning, args.pruning_losses) {
                 (true, _) => Pruning::Off,
                 (false, true) => Pruning::Compare,
                 (false, false) => Pruning::Regime,
             },
-            basis,
-            &|_| tick(),
-        )
+        };
+        rank(species, &study, basis, &|_| tick())
     });
     if args.json {
         for r in &ranked {
@@ -96,15 +96,18 @@ pub fn run(args: &RankArgs) -> Result<()> {
                     "costs_usd": r.accounts.iter().any(|a| a.costs.is_some())
                         .then(|| (r.costs() * 100.0).round() / 100.0),
                     "net_usd": (r.net(basis) * 100.0).round() / 100.0,
+                    "per_tree_planted": true,
+                    "alive_at_end": (r.alive_at_end() * 1e4).round() / 1e4,
+                    "costs_by_item_usd": rounded(&r.costs_by_item()),
                     "typical": {
                         "benefits_usd": (r.benefits(Basis::Typical) * 100.0).round() / 100.0,
                         "net_usd": (r.net(Basis::Typical) * 100.0).round() / 100.0,
-                        "by_category_usd": by_category(r, Basis::Typical),
+                        "by_category_usd": rounded(&r.by_category(Basis::Typical)),
                     },
                     "site": {
                         "benefits_usd": (r.benefits(Basis::Site) * 100.0).round() / 100.0,
                         "net_usd": (r.net(Basis::Site) * 100.0).round() / 100.0,
-                        "by_category_usd": by_category(r, Basis::Site),
+                        "by_category_usd": rounded(&r.by_category(Basis::Site)),
                     },
                     "first_conflicts": first,
                     "pruning": pruning_json(r),
@@ -206,23 +209,14 @@ pub fn run(args: &RankArgs) -> Result<()> {
     Ok(())
 }
 
-/// A run's benefits summed over its years in each of i-Tree's categories, dollars (`null`
-/// where a category is not computed).
-fn by_category(r: &sylva::street::rank::Ranked, basis: Basis) -> serde_json::Value {
+/// Named dollar figures as a JSON object, to the cent (`null` where not computed).
+fn rounded(items: &[(&'static str, Option<f64>)]) -> serde_json::Value {
     let mut out = serde_json::Map::new();
-    for a in &r.accounts {
-        for (name, v) in a.money(basis).categories() {
-            let entry = out.entry(name).or_insert(serde_json::Value::Null);
-            if let Some(v) = v {
-                let sum = entry.as_f64().unwrap_or(0.0) + v;
-                *entry = serde_json::json!(sum);
-            }
-        }
-    }
-    for v in out.values_mut() {
-        if let Some(x) = v.as_f64() {
-            *v = serde_json::json!((x * 100.0).round() / 100.0);
-        }
+    for (name, v) in items {
+        out.insert(
+            name.to_string(),
+            serde_json::json!(v.map(|x| (x * 100.0).round() / 100.0)),
+        );
     }
     out.into()
 }

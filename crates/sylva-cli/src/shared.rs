@@ -14,7 +14,7 @@ use sylva::forest::{Forest, ForestSpec, ForestSpecies};
 use sylva::growth::Database;
 use sylva::lod::LodTree;
 use sylva::nagel::WhiskParams;
-use sylva::street::{Costs, Prices, Site};
+use sylva::street::{Costs, Prices, Site, Survival};
 use sylva::{Skeleton, TreeParams};
 use sylva_render::{Picture, Renderer};
 
@@ -209,5 +209,14 @@ pub fn load_street(args: &StreetArgs) -> Result<(Option<Site>, Option<Prices>, O
     let site = args.site.as_deref().map(Site::load).transpose()?;
     let prices = args.prices.as_deref().map(Prices::load).transpose()?;
     let costs = args.costs.as_deref().map(Costs::load).transpose()?;
+    survival(args)?;
     Ok((site, prices, costs))
+}
+
+/// `--survival`, checked; none for the region's built-in.
+pub fn survival(args: &StreetArgs) -> Result<Option<Survival>> {
+    Ok(args
+        .survival
+        .map(|s| Survival::constant(s, "--survival"))
+        .transpose()?)
 }

@@ -58,7 +58,10 @@ function treeQuery(extra) {
 // grown tree's own on the site.
 function account(st) {
   if (state.basis !== 'typical' || !st.typical) return st;
-  return { ...st, value_usd: st.typical.value_usd, net_usd: st.typical.net_usd, conflicts: [] };
+  return {
+    ...st, value_usd: st.typical.value_usd, net_usd: st.typical.net_usd,
+    planted_net_usd: st.typical.planted_net_usd, conflicts: [],
+  };
 }
 const street = new Street($('scene'));
 window.sylvaStreet = street;
@@ -293,11 +296,11 @@ function drawNumbers() {
   const f = (v, d = 1) => (v == null ? '–' : Number(v).toFixed(d));
   const typical = state.basis === 'typical';
   const head = ['Species', 'Height m', 'DBH cm', 'Crown m', 'Leaf area m²', 'CO₂ stored kg',
-    'CO₂ taken up kg/yr', 'Rain held m³', 'Cooling kWh', 'Air quality $/yr', 'Net $/yr', 'In the way'];
+    'CO₂ taken up kg/yr', 'Rain held m³', 'Cooling kWh', 'Air quality $/yr', 'Net $/yr', 'Per tree planted $/yr', 'In the way'];
   const lines = state.chosen.map((code, i) => {
     const s = state.species.find((x) => x.code === code);
     const r = row(code);
-    if (!r) return `<tr><td style="color:${COLOURS[i]}">${s.common}</td><td colspan="11">growing…</td></tr>`;
+    if (!r) return `<tr><td style="color:${COLOURS[i]}">${s.common}</td><td colspan="12">growing…</td></tr>`;
     const st = account(r.street);
     const t = r.street.typical;
     let conflicts = typical ? 'no site' : st.conflicts.map((c) => c.kind.replace('_', ' ')).join(', ') || 'nothing';
@@ -318,13 +321,17 @@ function drawNumbers() {
       `<td>${f(r.model.leaf_area, 0)}</td><td>${f(st.co2_stored_kg, 0)}</td>` +
       `<td>${f(flows[0])}</td><td>${f(flows[1], 2)}</td>` +
       `<td>${f(flows[2], 0)}</td><td>${f(st.value_usd.air_quality, 0)}</td>` +
-      `<td>${f(st.net_usd, 0)}</td><td>${conflicts}</td></tr>`;
+      `<td>${f(st.net_usd, 0)}</td>` +
+      `<td>${f(st.planted_net_usd, 0)} <small>(${f(100 * st.alive_share, 0)}% alive)</small></td>` +
+      `<td>${conflicts}</td></tr>`;
   });
   const basis = typical
     ? 'Benefits at typical position: i-Tree Streets\' figures for the species at the grown DBH.'
     : 'Benefits of the grown tree on this site.';
   $('table').innerHTML = `<tr>${head.map((h) => `<th>${h}</th>`).join('')}</tr>${lines.join('')}` +
-    `<tr><td colspan="12" class="note">Grown tree, with the measured equation in brackets. ${basis}</td></tr>`;
+    `<tr><td colspan="13" class="note">Grown tree, with the measured equation in brackets. ${basis} ` +
+    'Net $/yr is a living tree\'s; per tree planted it is weighted by the share of the trees planted still standing ' +
+    '(5% die a year while establishing, then fewer, to the tree guides\' share alive at 40 years).</td></tr>';
   const items = state.chosen.map((code, i) => {
     const s = state.species.find((x) => x.code === code);
     const r = row(code);

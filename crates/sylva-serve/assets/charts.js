@@ -96,8 +96,10 @@ export const COSTS = [
   ['removal', 'Removal', '#7d7d7d'],
   ['sidewalk', 'Sidewalk', '#b09a70'],
   ['cleanup', 'Clean-up', '#6f8f8f'],
+  ['pest_liability_administration', 'Pest, liability, admin', '#8a8fc0'],
   ['average', 'Programme average', '#9c5b5b'],
   ['cycles', 'Pruning cycles', '#d08a2e'],
+  ['line_clearance_utility', 'Line clearance (utility)', '#5a5aa0'],
 ];
 
 // `items`: [{ label, colour, street }].

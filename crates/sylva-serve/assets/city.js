@@ -390,10 +390,12 @@ async function showCard(row) {
     ['Height, crown', `${f(row.height_m)} m, ${f(row.crown_diameter_m)} m across`],
     ['CO₂ stored, taken up', `${f(row.co2_stored_kg, 0)} kg, ${f(row.co2_sequestered_kg_per_year)} kg a year`],
     ['Rain held', `${f(row.rain_intercepted_m3_per_year, 2)} m³ a year`],
-    ['Benefits (Sylva)', `$${f(row.benefits_usd_per_year, 2)} a year (CO₂ and rain of the grown crown)`],
+    ['Benefits (Sylva)', `$${f(row.benefits_usd_per_year, 2)} a year: CO₂, rain, air and aesthetics of the ` +
+      'grown crown (its energy not computed: no façades)'],
     ['Benefits (i-Tree, typical position)', `$${f(row.typical_benefits_usd_per_year, 2)} a year: energy ` +
       `$${f(row.typical_energy_usd_per_year, 2)}, carbon $${f(row.typical_carbon_usd_per_year, 2)}, ` +
-      `stormwater $${f(row.typical_stormwater_usd_per_year, 2)}, air $${f(row.typical_air_quality_usd_per_year, 2)}`],
+      `stormwater $${f(row.typical_stormwater_usd_per_year, 2)}, air $${f(row.typical_air_quality_usd_per_year, 2)}, ` +
+      `aesthetics $${f(row.typical_aesthetics_usd_per_year, 2)}`],
   ];
   $('card-table').innerHTML = lines.map(([k, v]) => `<tr><th>${k}</th><td>${v}</td></tr>`).join('');
   const age = Math.max(1, Math.round(row.age_years));
@@ -448,9 +450,16 @@ function showReportEpoch() {
   const epochs = r.epochs || [];
   const first = epochs[0];
   const now = epochs.find((e) => e.years === state.city.epochs[state.epoch].years) || first;
-  const cell = (e, k, d = 0) => (e ? Number(e[k]).toLocaleString(undefined, { maximumFractionDigits: d }) : '–');
+  const cell = (e, k, d = 0) => {
+    if (!e) return '–';
+    const v = k === 'expected_alive_share' ? 100 * e[k] : e[k];
+    return Number(v).toLocaleString(undefined, { maximumFractionDigits: k === 'expected_alive_share' ? 1 : d });
+  };
   const rows = [['Trees', 'trees'], ['Canopy, m²', 'canopy_m2'], ['Leaf area, m²', 'leaf_area_m2'],
-    ['Benefits (Sylva), $/yr', 'benefits_usd'], ['Benefits (i-Tree typical), $/yr', 'typical_total_usd']];
+    ['Benefits (Sylva: four of five categories, energy not computed), $/yr', 'benefits_usd'],
+    ['Benefits (i-Tree typical), $/yr', 'typical_total_usd'],
+    ['Trees expected standing, %', 'expected_alive_share'],
+    ['Benefits (Sylva), expected, $/yr', 'expected_benefits_usd']];
   // The first epoch, and the one shown beside it.
   const later = now !== first;
   const name = (e) => (e.years === 0 ? 'as inventoried' : `+${e.years} years`);

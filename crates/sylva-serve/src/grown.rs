@@ -126,6 +126,10 @@ pub fn grow_all(
         .iter()
         .map(|s| Assessor::new(m, Some(s.site.clone()), None, None))
         .collect();
+    // The pruned site's account charges its cycles in place of the cost table's own pruning.
+    if let Some((s, _)) = &pruner {
+        assessors[*s].charge_cycles();
+    }
     let mut cohort = Cohort::new(vec![m.clone()], seed);
     // The page draws no bark pattern (its rings are too coarse to carry one), but a species
     // whose twigs are darker than its bark (the white birch's) shows them so.
@@ -148,8 +152,8 @@ pub fn grow_all(
             .iter_mut()
             .map(|a| a.year(age, &record.model, &skeleton))
             .collect();
-        if let Some((s, p)) = &pruner {
-            accounts[*s].record_pruning(cycle, p.replaces_itemised_pruning());
+        if let Some((s, _)) = &pruner {
+            accounts[*s].record_pruning(cycle, 1.0);
         }
         let lod = LodTree::build(&kites(&skeleton), &web_mesh);
         let mut entry = AgeEntry {

@@ -413,12 +413,17 @@ pub fn pruning_times(
     runs: usize,
 ) -> Result<(f64, f64), crate::street::StreetError> {
     use crate::street::Site;
-    use crate::street::rank::{Pruning, run};
+    use crate::street::rank::{Pruning, Study, run};
     let measured = Database::builtin().find(region, code)?;
     let site = Site::parse(BENCH_SITE, "the benchmark's site")?;
     let time = |pruning: Pruning| {
+        let study = Study {
+            site: Some(site.clone()),
+            pruning,
+            ..Study::new(years)
+        };
         let t = Instant::now();
-        std::hint::black_box(run(&measured, years, 0, Some(&site), None, None, pruning));
+        std::hint::black_box(run(&measured, &study));
         t.elapsed().as_secs_f64()
     };
     let (mut pruned, mut grown) = (f64::INFINITY, f64::INFINITY);

@@ -57,12 +57,13 @@ pub fn schema() -> serde_json::Value {
                 "co2_stored_kg": benefit("CO2 held in the tree, kg (Jenkins et al. 2003 biomass by DBH)"),
                 "co2_sequestered_kg_per_year": benefit("CO2 taken up this year, kg"),
                 "rain_intercepted_m3_per_year": benefit("Rain held back this year, m3"),
-                "benefits_usd_per_year": benefit("This year's CO2 uptake and rain interception at the region's built-in prices, US dollars"),
+                "benefits_usd_per_year": benefit("This year's CO2 uptake, rain interception, air quality and aesthetics of the grown crown at the region's built-in prices (its energy is not computed: no façades), US dollars"),
                 "typical_energy_usd_per_year": benefit("At i-Tree Streets' typical position, at this DBH: cooling and heating saved (a winter penalty negative), US dollars"),
                 "typical_carbon_usd_per_year": benefit("At typical position: CO2 sequestered and avoided, US dollars"),
                 "typical_stormwater_usd_per_year": benefit("At typical position: rain held back, US dollars"),
                 "typical_air_quality_usd_per_year": benefit("At typical position: pollutants taken up and not emitted, less BVOCs emitted, US dollars"),
-                "typical_benefits_usd_per_year": benefit("At typical position: every priced benefit (aesthetics are not priced), US dollars"),
+                "typical_aesthetics_usd_per_year": benefit("At typical position: aesthetics and property value (i-Tree's yearly leaf-area gain at the region's price per m², McPherson 2007), US dollars"),
+                "typical_benefits_usd_per_year": benefit("At typical position: every benefit, US dollars"),
             }
         }}
     })
@@ -209,6 +210,10 @@ fn table(trees: &[TileTree]) -> PropertyTable {
             (
                 "typical_air_quality_usd_per_year".into(),
                 year(&|y| y.typical_usd[3]),
+            ),
+            (
+                "typical_aesthetics_usd_per_year".into(),
+                year(&|y| y.typical_usd[4]),
             ),
             (
                 "typical_benefits_usd_per_year".into(),

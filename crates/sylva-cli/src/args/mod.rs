@@ -538,10 +538,17 @@ pub struct StreetArgs {
     #[arg(long, value_name = "PRICES.toml")]
     pub prices: Option<PathBuf>,
 
-    /// Costs of planting and keeping a tree (planting, establishment, pruning by size class
-    /// and cycle, removal, sidewalk repair, clean-up); none are built in.
+    /// Costs of planting and keeping a tree (planting, establishment, pruning by DBH class
+    /// and cycle, removal by DBH, sidewalk repair, clean-up, pest, liability, administration;
+    /// or a programme's per_tree_per_year) instead of the built-in sized table.
     #[arg(long, value_name = "COSTS.toml")]
     pub costs: Option<PathBuf>,
+
+    /// The share of living trees that survive each year, over 0 and at most 1 (default: the
+    /// region's: 5% die a year while establishing, then fewer, to the tree guides' share alive
+    /// at 40 years). Figures are per tree planted; 1 keeps every tree alive.
+    #[arg(long, value_name = "SHARE", allow_negative_numbers = true)]
+    pub survival: Option<f64>,
 
     /// Never cut the trees: they grow on through the site's zones (default: with --site, the
     /// site's [pruning] regime, or the us-street standard's, cuts them as its cycles fall due).

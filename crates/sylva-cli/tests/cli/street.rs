@@ -50,8 +50,13 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
     assert!(run.status.success(), "{}", text(&run.stderr));
     let said = text(&run.stdout);
     assert!(said.contains("first conflicts: at"), "{said}");
-    // Aesthetics are counted in m² but not priced by default, and said so.
-    assert!(said.contains("not counted: aesthetics"), "{said}");
+    // Aesthetics are priced from the region's median home value (McPherson 2007's method);
+    // what the cost table lacks is said.
+    assert!(!said.contains("not counted: aesthetics"), "{said}");
+    assert!(
+        said.contains("not counted: costs of pest management"),
+        "{said}"
+    );
     assert!(
         said.contains("typical position from i-Tree Streets InlVal `PLAC`"),
         "{said}"
@@ -80,15 +85,23 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         // penalty, never a gain.
         assert!(number(row, "heating_penalty_kbtu") >= 0.0, "{row:?}");
         let costs: f64 = [
-            "planting", "pruning", "removal", "sidewalk", "cleanup", "average", "cycles",
+            "planting",
+            "pruning",
+            "removal",
+            "sidewalk",
+            "cleanup",
+            "other",
+            "average",
+            "cycles",
+            "line_clearance_utility",
         ]
         .iter()
         .map(|c| number(row, &format!("cost_{c}_usd")))
         .sum();
-        // Every category of the site's account is priced except aesthetics (no built-in
-        // price: an empty cell, not a zero).
-        assert_eq!(column(&header, row, "value_aesthetics_usd"), "");
+        // Every category of the site's account is priced, aesthetics too.
+        assert!(number(row, "value_aesthetics_usd") >= 0.0);
         let categories = [
+            "aesthetics",
             "carbon",
             "co2_avoided",
             "stormwater",
@@ -123,8 +136,8 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
     // Cooling grows with the crown.
     assert!(number(&rows[7], "cooling_kwh") > number(&rows[1], "cooling_kwh"));
     // By age 8 the crown has grown into the wires' clearance, and the utility's 4-year cycle
-    // has cleared it, charged at the itemised class price (the cycles replace the yearly
-    // pruning line).
+    // has cleared it, charged at the itemised class price to the utility (the cycles replace
+    // the yearly pruning line).
     for age in [4, 8] {
         let row = &rows[age - 1];
         assert!(
@@ -142,7 +155,7 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         assert!(number(row, "pruning_removal_cuts") + number(row, "pruning_reduction_cuts") > 0.0);
         assert_eq!(
             number(row, "pruning_cost_usd"),
-            number(row, "cost_cycles_usd")
+            number(row, "cost_cycles_usd") + number(row, "cost_line_clearance_utility_usd")
         );
         let class = if number(row, "dbh_measured_cm") <= 15.0 {
             30.0
@@ -151,9 +164,9 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         };
         assert_eq!(number(row, "pruning_visits"), 1.0, "{row:?}");
         assert_eq!(
-            number(row, "pruning_cost_usd"),
+            number(row, "cost_line_clearance_utility_usd"),
             class,
-            "the class price: {row:?}"
+            "the class price, the utility's: {row:?}"
         );
     }
     assert!(rows.iter().all(|r| number(r, "cost_pruning_usd") == 0.0));
@@ -228,9 +241,16 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
     assert!(street["co2_stored_kg"].as_f64().unwrap() > 0.0);
     // Never cut: no pruning, and the leader grows on into the wires' clearance.
     assert!(street["pruning"].is_null(), "{street}");
-    // No --costs: Modesto's published programme average per tree, nothing itemised.
-    assert_eq!(street["cost_usd"]["average"], 28.77);
-    assert_eq!(street["cost_usd"]["pruning"], 0.0);
+    // No --costs: the built-in sized table, no programme average; never cut, so the table's
+    // own pruning ($3.90 a cm of DBH a visit, every 4 years under 15 cm, else 8) is charged.
+    assert_eq!(street["cost_usd"]["average"], 0.0);
+    let dbh = record["dbh_cm"].as_f64().unwrap();
+    let cycle = if dbh <= 15.0 { 4.0 } else { 8.0 };
+    let pruning = street["cost_usd"]["pruning"].as_f64().unwrap();
+    assert!(
+        (pruning - 3.90 * dbh / cycle).abs() < 0.01,
+        "{pruning} at {dbh} cm"
+    );
     assert!(
         street["conflicts"]
             .as_array()
@@ -264,7 +284,22 @@ fn bad_sites_prices_and_costs_are_refused_before_anything_is_written() {
             "--prices",
             vec!["ozone_per_kg", "finite"],
         ),
-        (COSTS.replace("cleanup_per_year = 3.0\n", ""), "--costs", vec!["cleanup_per_year"]),
+        (COSTS.replace("planting = 200.0\n", ""), "--costs", vec!["planting"]),
+        (
+            COSTS.replace("[[pruning]]\nup_to_dbh_cm = 200.0", "[[pruning]]\nfrom_dbh_cm = 20.0\nup_to_dbh_cm = 200.0"),
+            "--costs",
+            vec!["pruning.from_dbh_cm", "no gap"],
+        ),
+        (
+            "source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\nozone_per_kg = 1.0\nnox_per_kg = 28.2\npm10_per_kg = 20.7\nso2_per_kg = 8.2\nvoc_per_kg = 10.3\nmedian_home_price = -250000.0\n".into(),
+            "--prices",
+            vec!["median_home_price"],
+        ),
+        (
+            "source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\nozone_per_kg = 1.0\nnox_per_kg = 28.2\npm10_per_kg = 20.7\nso2_per_kg = 8.2\nvoc_per_kg = 10.3\nmedian_home_price = 250000.0\nlocation_factor = 3.0\n".into(),
+            "--prices",
+            vec!["location_factor"],
+        ),
     ];
     for (i, (body, flag, needles)) in cases.iter().enumerate() {
         let file = dir.path().join(format!("bad-{i}.toml"));
@@ -287,6 +322,40 @@ fn bad_sites_prices_and_costs_are_refused_before_anything_is_written() {
             assert!(err.contains(n), "case {i}: `{n}` not in {err}");
         }
         assert!(!out.exists(), "case {i}: nothing written");
+    }
+    // A survival out of range, for grow and rank alike.
+    for (i, bad) in ["1.5", "0", "-0.1", "nan"].iter().enumerate() {
+        let out = dir.path().join(format!("survival-{i}"));
+        for command in [
+            vec![
+                "grow",
+                "PLAC",
+                "--to",
+                "3",
+                "--survival",
+                bad,
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            vec![
+                "rank",
+                "--years",
+                "3",
+                "--species",
+                "PLAC",
+                "--survival",
+                bad,
+            ],
+        ] {
+            let run = sylva(&command);
+            let err = text(&run.stderr);
+            assert_eq!(run.status.code(), Some(1), "--survival {bad}: {err}");
+            assert!(
+                err.contains("--survival") && err.contains("at most 1"),
+                "{err}"
+            );
+            assert!(!out.exists(), "--survival {bad}: nothing written");
+        }
     }
     // Money asked for a palm: Jenkins et al. have no group for palms.
     let prices = dir.path().join("prices.toml");
@@ -388,8 +457,8 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         rows.iter()
             .all(|r| r["site"]["net_usd"] == r["net_usd"] && r["typical"]["net_usd"].is_f64())
     );
-    // Another region, no site, ranked by the typical position: every category but aesthetics
-    // (no built-in price) has a number for every species.
+    // Another region, no site, ranked by the typical position: every category, aesthetics
+    // too, has a number for every species.
     let run = sylva(&["rank", "--region", "NoEast", "--years", "3", "--json"]);
     assert!(run.status.success(), "{}", text(&run.stderr));
     for line in text(&run.stdout).lines() {
@@ -398,7 +467,7 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         assert_eq!(r["net_usd"], r["typical"]["net_usd"], "{r}");
         let cats = r["typical"]["by_category_usd"].as_object().unwrap();
         for (name, v) in cats {
-            assert_eq!(v.is_null(), name == "aesthetics", "{name}: {r}");
+            assert!(!v.is_null(), "{name}: {r}");
         }
     }
     // The site model set beside i-Tree's figures around the standard house.

@@ -1,29 +1,48 @@
-//! What a street tree costs to plant and keep, year by year: a city's itemised costs from a
-//! TOML file, or a programme's published average per tree.
+//! What a street tree costs to plant and keep, year by year, sized by the tree: planting,
+//! pruning visits priced by DBH on a cycle, removal by DBH when the tree dies, and the yearly
+//! items (sidewalk repair, clean-up, pest management, liability, administration) a city's own
+//! table gives; or a programme's published average per tree.
 //!
-//! Built in is one published municipal figure: Modesto spent $2.6 million on its urban forest
-//! in fiscal year 1997-98, $28.77 per public tree, 74% of it on the care of mature trees
-//! (McPherson, Simpson, Peper & Xiao 1999, "Benefit-cost analysis of Modesto's municipal urban
-//! forest", Journal of Arboriculture 25(5):235-248). It is a population's average, not sized
-//! by the tree, and charged as such every year; the community tree guides' itemised tables
-//! (planting, pruning by size class and cycle, removal, sidewalk repair, clean-up) could not be
-//! read for this release, so itemised costs come from `--costs costs.toml` (docs/benefits.md).
+//! Built in for every region is `data/street/costs.toml`, in the same format as `--costs`:
+//! each item the nearest published source found (planting in Davis, CA; pruning time per inch
+//! of DBH from Churack et al. 1994 at a 2012 California contract's hourly rate; removal by DBH
+//! from four Midwest states; sidewalk repair from Berkeley), named in the file and in every
+//! report. Modesto's programme average, $28.77 a tree a year in fiscal 1997-98 (McPherson,
+//! Simpson, Peper & Xiao 1999, Journal of Arboriculture 25(5):235-248), stays available as
+//! [`Costs::modesto_average`]: about half of it was pruning (McPherson & Simpson 2002, Urban
+//! Forestry & Urban Greening 1(2)), so where a site's cycles are charged the average drops that
+//! share and no cut is paid for twice.
+//!
+//! Every figure is per *living* tree: a tree that dies costs its removal, charged as the
+//! year's chance of dying (street::survival) times the removal price at its DBH, so that
+//! weighting a year by the share alive gives the cost per tree planted.
 
 use super::StreetError;
 use super::prices::{non_negative, parse, read, value};
 use serde::Deserialize;
 use std::path::Path;
 
-/// Pruning price of one size class.
+/// One DBH class of a cost table.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct Pruning {
+pub struct Class {
+    /// The class starts at this DBH, cm (default: where the class before it ends, or 0).
+    pub from_dbh_cm: Option<f64>,
     /// The class holds trees up to this DBH, cm.
     pub up_to_dbh_cm: f64,
-    /// Price of one pruning, $.
-    pub price: f64,
-    /// Years between prunings.
-    pub cycle_years: f64,
+    /// Price of one visit (pruning) or of the job (removal), $.
+    pub price: Option<f64>,
+    /// Or a price per cm of the tree's DBH, $.
+    pub price_per_cm_dbh: Option<f64>,
+    /// Years between prunings (pruning classes only).
+    pub cycle_years: Option<f64>,
+}
+
+impl Class {
+    /// The price for a tree of `dbh_cm`.
+    fn price_at(&self, dbh_cm: f64) -> f64 {
+        self.price.unwrap_or(0.0) + self.price_per_cm_dbh.unwrap_or(0.0) * dbh_cm
+    }
 }
 
 /// A city's costs, item by item, dollars.
@@ -40,17 +59,26 @@ pub struct Itemised {
     pub establishment_per_year: f64,
     /// How many years establishment lasts.
     pub establishment_years: f64,
-    /// Pruning by size class, smallest first.
-    pub pruning: Vec<Pruning>,
-    /// Removal and stump grinding, $ per cm of DBH.
-    pub removal_per_cm_dbh: f64,
-    /// Chance a year that the tree must come out (storm, decline): the yearly removal cost is
-    /// this chance times the removal price.
-    pub removal_chance_per_year: f64,
+    /// Pruning by DBH class, smallest first, each with its cycle.
+    pub pruning: Vec<Class>,
+    /// Removal and stump by DBH class, smallest first (or `removal_per_cm_dbh`).
+    #[serde(default)]
+    pub removal: Vec<Class>,
+    /// Removal and stump grinding, $ per cm of DBH (where no `[[removal]]` classes are given).
+    pub removal_per_cm_dbh: Option<f64>,
+    /// A fixed chance a year that a living tree must come out (storm, decline). Without it the
+    /// chance is the run's survival's.
+    pub removal_chance_per_year: Option<f64>,
     /// Sidewalk and curb repair charged to the tree per year.
-    pub sidewalk_repair_per_year: f64,
+    pub sidewalk_repair_per_year: Option<f64>,
     /// Leaf, litter and storm clean-up per year.
-    pub cleanup_per_year: f64,
+    pub cleanup_per_year: Option<f64>,
+    /// Pest and disease management per year.
+    pub pest_per_year: Option<f64>,
+    /// Liability and legal per year.
+    pub liability_per_year: Option<f64>,
+    /// Administration and inspection per year.
+    pub administration_per_year: Option<f64>,
 }
 
 /// A programme's average cost per tree and year.
@@ -63,6 +91,9 @@ pub struct Average {
     pub year: u32,
     /// Dollars per tree per year.
     pub per_tree_per_year: f64,
+    /// The share of it spent on pruning (0 to 1), dropped where a site's cycles are charged.
+    #[serde(default)]
+    pub pruning_share: f64,
 }
 
 /// What a tree costs.
@@ -74,51 +105,83 @@ pub enum Costs {
     Average(Average),
 }
 
-/// One year's costs of one tree, dollars.
+/// One year's costs of one living tree, dollars.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct YearCosts {
     /// Planting and establishment.
     pub planting: f64,
-    /// Pruning.
+    /// Pruning on the cost table's own cycle (none where a site's cycles are charged).
     pub pruning: f64,
-    /// Expected removal.
+    /// Removal: the year's chance of coming out times its price.
     pub removal: f64,
     /// Sidewalk repair.
     pub sidewalk: f64,
     /// Clean-up.
     pub cleanup: f64,
-    /// A programme's average, where no items are known.
+    /// Pest management, liability and administration.
+    pub other: f64,
+    /// A programme's average, where no items are known (less its pruning share where a site's
+    /// cycles are charged).
     pub average: f64,
-    /// The pruning cycles the site's regime cut this year, where the tree was grown with it
-    /// (`street::pruner`); with itemised costs they replace `pruning`.
+    /// The city's pruning cycles the site's regime cut this year, where the tree was grown
+    /// with it (`street::pruner`): they replace `pruning` and the average's pruning share.
     pub cycles: f64,
+    /// The utility's line clearance this year: not the city's money, but a cost of the tree.
+    pub utility: f64,
 }
 
 impl YearCosts {
-    /// All of them.
+    /// All of them, the utility's included.
     pub fn total(&self) -> f64 {
+        self.city() + self.utility
+    }
+
+    /// What the city pays.
+    pub fn city(&self) -> f64 {
         self.planting
             + self.pruning
             + self.removal
             + self.sidewalk
             + self.cleanup
+            + self.other
             + self.average
             + self.cycles
     }
+
+    /// Per tree planted, where `alive` of the trees planted stand through the year: planting
+    /// is paid for every tree planted, the rest for the living.
+    pub fn per_planted(&self, alive: f64) -> f64 {
+        self.planting + alive * (self.total() - self.planting)
+    }
 }
 
+/// The built-in table, embedded.
+const BUILTIN: &str = include_str!("../../data/street/costs.toml");
+
 impl Costs {
-    /// The built-in costs of a region: Modesto's programme average for the Inland Valleys,
-    /// none elsewhere.
-    pub fn builtin(region: &str) -> Option<Costs> {
-        (region == "InlVal").then(|| {
-            Costs::Average(Average {
-                source: "Modesto's urban forestry spending per public tree, fiscal year \
-                         1997-98 (McPherson, Simpson, Peper & Xiao 1999)"
-                    .into(),
-                year: 1998,
-                per_tree_per_year: 28.77,
-            })
+    /// The built-in costs, the same table for every region (see the module's notes).
+    pub fn builtin(_region: &str) -> Option<Costs> {
+        static TABLE: std::sync::OnceLock<Costs> = std::sync::OnceLock::new();
+        Some(
+            TABLE
+                .get_or_init(|| {
+                    Costs::parse(BUILTIN, "data/street/costs.toml")
+                        .expect("the built-in cost table is checked by a test")
+                })
+                .clone(),
+        )
+    }
+
+    /// Modesto's programme average, half of it pruning.
+    pub fn modesto_average() -> Costs {
+        Costs::Average(Average {
+            source: "Modesto's urban forestry spending per public tree, fiscal year 1997-98 \
+                     (McPherson, Simpson, Peper & Xiao 1999); about half of it pruning \
+                     (McPherson & Simpson 2002)"
+                .into(),
+            year: 1998,
+            per_tree_per_year: 28.77,
+            pruning_share: 0.5,
         })
     }
 
@@ -130,76 +193,152 @@ impl Costs {
         }
     }
 
+    /// The items a table leaves out, each said as not computed.
+    pub fn not_computed(&self) -> Vec<String> {
+        let Costs::Itemised(c) = self else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (name, v) in [
+            ("clean-up", c.cleanup_per_year),
+            ("pest management", c.pest_per_year),
+            ("liability", c.liability_per_year),
+            ("administration", c.administration_per_year),
+            ("sidewalk repair", c.sidewalk_repair_per_year),
+        ] {
+            if v.is_none() {
+                out.push(name);
+            }
+        }
+        if c.removal.is_empty() && c.removal_per_cm_dbh.is_none() {
+            out.push("removal");
+        }
+        if out.is_empty() {
+            return Vec::new();
+        }
+        vec![format!(
+            "costs of {}: no figure in {} (give --costs with them)",
+            out.join(", "),
+            c.source.split(':').next().unwrap_or(&c.source)
+        )]
+    }
+
     /// Reads and checks a costs file: itemised, or `per_tree_per_year` with its source and
     /// year.
     pub fn load(path: &Path) -> Result<Costs, StreetError> {
-        let file = path.display().to_string();
-        let text = read(path)?;
+        Costs::parse(&read(path)?, &path.display().to_string())
+    }
+
+    /// Parses and checks a cost table's text; `file` names it in errors.
+    pub fn parse(text: &str, file: &str) -> Result<Costs, StreetError> {
         let average = text
             .parse::<toml::Table>()
             .is_ok_and(|t| t.contains_key("per_tree_per_year"));
         if average {
-            let a: Average = parse(&text, &file)?;
-            non_negative(&file, "per_tree_per_year", a.per_tree_per_year)?;
+            let a: Average = parse(text, file)?;
+            non_negative(file, "per_tree_per_year", a.per_tree_per_year)?;
+            if !(0.0..=1.0).contains(&a.pruning_share) {
+                return Err(value(
+                    file,
+                    "pruning_share",
+                    a.pruning_share,
+                    "a share, 0 to 1",
+                ));
+            }
             return Ok(Costs::Average(a));
         }
-        let costs: Itemised = parse(&text, &file)?;
+        let costs: Itemised = parse(text, file)?;
         for (key, v) in [
-            ("planting", costs.planting),
-            ("establishment_per_year", costs.establishment_per_year),
-            ("establishment_years", costs.establishment_years),
+            ("planting", Some(costs.planting)),
+            ("establishment_per_year", Some(costs.establishment_per_year)),
+            ("establishment_years", Some(costs.establishment_years)),
             ("removal_per_cm_dbh", costs.removal_per_cm_dbh),
             ("sidewalk_repair_per_year", costs.sidewalk_repair_per_year),
             ("cleanup_per_year", costs.cleanup_per_year),
+            ("pest_per_year", costs.pest_per_year),
+            ("liability_per_year", costs.liability_per_year),
+            ("administration_per_year", costs.administration_per_year),
         ] {
-            non_negative(&file, key, v)?;
+            if let Some(v) = v {
+                non_negative(file, key, v)?;
+            }
         }
-        if !(0.0..=1.0).contains(&costs.removal_chance_per_year) {
+        if let Some(chance) = costs.removal_chance_per_year
+            && !(0.0..=1.0).contains(&chance)
+        {
             return Err(value(
-                &file,
+                file,
                 "removal_chance_per_year",
-                costs.removal_chance_per_year,
+                chance,
                 "a chance, 0 to 1",
             ));
         }
         if costs.pruning.is_empty() {
             return Err(value(
-                &file,
+                file,
                 "pruning",
                 0.0,
                 "at least one [[pruning]] class",
             ));
         }
-        let mut last = 0.0;
-        for p in &costs.pruning {
-            non_negative(&file, "pruning.price", p.price)?;
-            if !(1.0..=100.0).contains(&p.cycle_years) {
-                return Err(value(
-                    &file,
-                    "pruning.cycle_years",
-                    p.cycle_years,
-                    "1 to 100 years",
-                ));
-            }
-            if !(p.up_to_dbh_cm > last && p.up_to_dbh_cm.is_finite()) {
-                return Err(value(
-                    &file,
-                    "pruning.up_to_dbh_cm",
-                    p.up_to_dbh_cm,
-                    "classes in rising order of DBH, cm",
-                ));
-            }
-            last = p.up_to_dbh_cm;
+        check_classes(file, "pruning", &costs.pruning, true)?;
+        check_classes(file, "removal", &costs.removal, false)?;
+        if !costs.removal.is_empty() && costs.removal_per_cm_dbh.is_some() {
+            return Err(StreetError::Syntax {
+                file: file.to_string(),
+                message: "give removal either as [[removal]] classes or as \
+                          removal_per_cm_dbh, not both"
+                    .into(),
+            });
         }
         Ok(Costs::Itemised(costs))
     }
 
-    /// The costs of the year that ends at `age`, for a tree of `dbh_cm`.
-    pub fn year(&self, age: f64, dbh_cm: f64) -> YearCosts {
+    /// The price of a pruning visit to a tree of `dbh_cm`, and its cycle in years; none for a
+    /// programme average.
+    pub fn pruning_visit(&self, dbh_cm: f64) -> Option<(f64, f64)> {
+        let Costs::Itemised(c) = self else {
+            return None;
+        };
+        let class = class_of(&c.pruning, dbh_cm)?;
+        Some((class.price_at(dbh_cm), class.cycle_years.unwrap_or(1.0)))
+    }
+
+    /// The price of buying and planting a tree; none in a programme average.
+    pub fn planting_price(&self) -> f64 {
+        match self {
+            Costs::Itemised(c) => c.planting,
+            Costs::Average(_) => 0.0,
+        }
+    }
+
+    /// The price of removing a tree of `dbh_cm`; none where the table has none.
+    pub fn removal_price(&self, dbh_cm: f64) -> Option<f64> {
+        let Costs::Itemised(c) = self else {
+            return None;
+        };
+        match c.removal_per_cm_dbh {
+            Some(per_cm) => Some(per_cm * dbh_cm),
+            None => class_of(&c.removal, dbh_cm).map(|k| k.price_at(dbh_cm)),
+        }
+    }
+
+    /// The costs of one living tree of `dbh_cm` in the year that ends at `age`, whose chance
+    /// of dying in that year is `death_chance` (street::survival; a table's own
+    /// `removal_chance_per_year` takes its place). `cycles_charged`: a site's pruning cycles
+    /// are charged apart, so the table's own pruning (or the average's pruning share) is not.
+    pub fn year(
+        &self,
+        age: f64,
+        dbh_cm: f64,
+        death_chance: f64,
+        cycles_charged: bool,
+    ) -> YearCosts {
         let c = match self {
             Costs::Average(a) => {
+                let share = if cycles_charged { a.pruning_share } else { 0.0 };
                 return YearCosts {
-                    average: a.per_tree_per_year,
+                    average: a.per_tree_per_year * (1.0 - share),
                     ..Default::default()
                 };
             }
@@ -211,56 +350,185 @@ impl Costs {
             } else {
                 0.0
             };
-        let class = c
-            .pruning
-            .iter()
-            .find(|p| dbh_cm <= p.up_to_dbh_cm)
-            .or(c.pruning.last());
+        let pruning = match self.pruning_visit(dbh_cm) {
+            Some((price, cycle)) if !cycles_charged => price / cycle,
+            _ => 0.0,
+        };
+        let chance = c.removal_chance_per_year.unwrap_or(death_chance);
+        let yearly = |v: Option<f64>| v.unwrap_or(0.0);
         YearCosts {
             planting,
-            pruning: class.map_or(0.0, |p| p.price / p.cycle_years),
-            removal: c.removal_chance_per_year * c.removal_per_cm_dbh * dbh_cm,
-            sidewalk: c.sidewalk_repair_per_year,
-            cleanup: c.cleanup_per_year,
+            pruning,
+            removal: chance * self.removal_price(dbh_cm).unwrap_or(0.0),
+            sidewalk: yearly(c.sidewalk_repair_per_year),
+            cleanup: yearly(c.cleanup_per_year),
+            other: yearly(c.pest_per_year)
+                + yearly(c.liability_per_year)
+                + yearly(c.administration_per_year),
             average: 0.0,
             cycles: 0.0,
+            utility: 0.0,
         }
     }
+}
+
+/// The class holding `dbh_cm`; the last class beyond the table.
+fn class_of(classes: &[Class], dbh_cm: f64) -> Option<&Class> {
+    (classes.iter())
+        .find(|k| dbh_cm <= k.up_to_dbh_cm)
+        .or(classes.last())
+}
+
+/// DBH classes must run from 0 upwards with no gap or overlap, each with one price.
+fn check_classes(
+    file: &str,
+    table: &str,
+    classes: &[Class],
+    pruning: bool,
+) -> Result<(), StreetError> {
+    let mut last = 0.0;
+    for k in classes {
+        let from = k.from_dbh_cm.unwrap_or(last);
+        if from != last {
+            return Err(value(
+                file,
+                &format!("{table}.from_dbh_cm"),
+                from,
+                &format!("{last} cm, where the class before ends: DBH classes leave no gap"),
+            ));
+        }
+        if !(k.up_to_dbh_cm > from && k.up_to_dbh_cm.is_finite()) {
+            return Err(value(
+                file,
+                &format!("{table}.up_to_dbh_cm"),
+                k.up_to_dbh_cm,
+                "classes in rising order of DBH, cm",
+            ));
+        }
+        match (k.price, k.price_per_cm_dbh) {
+            (Some(v), None) => non_negative(file, &format!("{table}.price"), v)?,
+            (None, Some(v)) => non_negative(file, &format!("{table}.price_per_cm_dbh"), v)?,
+            _ => {
+                return Err(StreetError::Syntax {
+                    file: file.to_string(),
+                    message: format!(
+                        "each [[{table}]] class needs one of `price` or `price_per_cm_dbh`"
+                    ),
+                });
+            }
+        }
+        match (pruning, k.cycle_years) {
+            (true, Some(c)) if !(1.0..=100.0).contains(&c) => {
+                return Err(value(
+                    file,
+                    &format!("{table}.cycle_years"),
+                    c,
+                    "1 to 100 years",
+                ));
+            }
+            (true, None) => {
+                return Err(StreetError::Syntax {
+                    file: file.to_string(),
+                    message: format!("each [[{table}]] class needs `cycle_years`"),
+                });
+            }
+            (false, Some(_)) => {
+                return Err(StreetError::Syntax {
+                    file: file.to_string(),
+                    message: format!("[[{table}]] classes take no `cycle_years`"),
+                });
+            }
+            _ => {}
+        }
+        last = k.up_to_dbh_cm;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    const GOOD: &str = "source = \"test\"\nyear = 2024\nplanting = 200.0\nestablishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.0\nremoval_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n[[pruning]]\nup_to_dbh_cm = 15.0\nprice = 30.0\ncycle_years = 3\n[[pruning]]\nup_to_dbh_cm = 200.0\nprice = 300.0\ncycle_years = 5\n";
+
     #[test]
     fn itemised_costs_by_year_and_their_errors() {
         let dir = tempfile::tempdir().unwrap();
         let costs = dir.path().join("costs.toml");
-        let good = "source = \"test\"\nyear = 2024\nplanting = 200.0\nestablishment_per_year = 50.0\nestablishment_years = 3\nremoval_per_cm_dbh = 20.0\nremoval_chance_per_year = 0.01\nsidewalk_repair_per_year = 4.0\ncleanup_per_year = 3.0\n[[pruning]]\nup_to_dbh_cm = 15.0\nprice = 30.0\ncycle_years = 3\n[[pruning]]\nup_to_dbh_cm = 200.0\nprice = 300.0\ncycle_years = 5\n";
-        std::fs::write(&costs, good).unwrap();
+        std::fs::write(&costs, GOOD).unwrap();
         let c = Costs::load(&costs).unwrap();
         assert!(matches!(c, Costs::Itemised(_)));
-        let y = c.year(1.0, 2.0);
+        let y = c.year(1.0, 2.0, 0.0, false);
         assert_eq!(y.planting, 250.0);
         assert_eq!(y.pruning, 10.0);
-        let y = c.year(20.0, 40.0);
+        let y = c.year(20.0, 40.0, 0.0, false);
         assert_eq!(y.planting, 0.0);
         assert_eq!(y.pruning, 60.0);
         assert!((y.removal - 8.0).abs() < 1e-12);
         assert!((y.total() - (60.0 + 8.0 + 4.0 + 3.0)).abs() < 1e-12);
-        std::fs::write(&costs, good.replace("cycle_years = 5", "cycle_years = 0")).unwrap();
+        // A site's cycles replace the table's own pruning.
+        assert_eq!(c.year(20.0, 40.0, 0.0, true).pruning, 0.0);
+        std::fs::write(&costs, GOOD.replace("cycle_years = 5", "cycle_years = 0")).unwrap();
         let e = Costs::load(&costs).unwrap_err().to_string();
         assert!(e.contains("pruning.cycle_years"), "{e}");
-        std::fs::write(&costs, good.replace("cleanup_per_year = 3.0\n", "")).unwrap();
+        std::fs::write(&costs, GOOD.replace("planting = 200.0\n", "")).unwrap();
         let e = Costs::load(&costs).unwrap_err().to_string();
+        assert!(e.contains("costs.toml") && e.contains("planting"), "{e}");
+    }
+
+    #[test]
+    fn a_gap_between_dbh_classes_is_an_error_naming_the_key() {
+        let gap = GOOD.replace(
+            "[[pruning]]\nup_to_dbh_cm = 200.0",
+            "[[pruning]]\nfrom_dbh_cm = 20.0\nup_to_dbh_cm = 200.0",
+        );
+        let e = Costs::parse(&gap, "gap.toml").unwrap_err().to_string();
         assert!(
-            e.contains("costs.toml") && e.contains("cleanup_per_year"),
+            e.contains("gap.toml") && e.contains("pruning.from_dbh_cm") && e.contains("no gap"),
+            "{e}"
+        );
+        let both = GOOD.replace("price = 30.0\n", "price = 30.0\nprice_per_cm_dbh = 2.0\n");
+        let e = Costs::parse(&both, "both.toml").unwrap_err().to_string();
+        assert!(e.contains("price_per_cm_dbh"), "{e}");
+        let negative = GOOD.replace(
+            "sidewalk_repair_per_year = 4.0",
+            "sidewalk_repair_per_year = -4.0",
+        );
+        let e = Costs::parse(&negative, "n.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("sidewalk_repair_per_year") && e.contains(">= 0"),
             "{e}"
         );
     }
 
     #[test]
-    fn an_average_is_charged_every_year_and_modesto_has_one() {
+    fn the_builtin_table_sizes_pruning_and_removal_by_the_tree() {
+        let c = Costs::builtin("InlVal").unwrap();
+        // Churack et al.'s 7.5 minutes per inch at $79.20 an hour: 12 in (30.48 cm) is the
+        // contract's grid price per tree, $118.80, within the rounding of $3.90 a cm.
+        let (visit, cycle) = c.pruning_visit(30.48).unwrap();
+        assert!((visit - 118.8).abs() < 0.5, "{visit}");
+        assert_eq!(cycle, 8.0);
+        assert_eq!(c.pruning_visit(10.0).unwrap().1, 4.0);
+        // A crapemyrtle's visit costs a fraction of a plane's.
+        assert!(c.pruning_visit(10.0).unwrap().0 * 5.0 < c.pruning_visit(60.0).unwrap().0);
+        // Removal by Sydnor et al.'s classes.
+        assert_eq!(c.removal_price(20.0), Some(184.0));
+        assert_eq!(c.removal_price(70.0), Some(670.0));
+        assert_eq!(c.removal_price(150.0), Some(1563.0));
+        // A dying tree's removal is its chance times the price.
+        let y = c.year(10.0, 20.0, 0.05, false);
+        assert!((y.removal - 0.05 * 184.0).abs() < 1e-9);
+        assert_eq!(c.year(1.0, 1.0, 0.0, false).planting, 75.0);
+        let missing = c.not_computed().join(" ");
+        assert!(
+            missing.contains("clean-up") && missing.contains("pest"),
+            "{missing}"
+        );
+    }
+
+    #[test]
+    fn an_average_drops_its_pruning_share_where_cycles_are_charged() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("avg.toml");
         std::fs::write(
@@ -269,8 +537,8 @@ mod tests {
         )
         .unwrap();
         let c = Costs::load(&path).unwrap();
-        assert_eq!(c.year(1.0, 2.0).total(), 40.0);
-        assert_eq!(c.year(30.0, 50.0).total(), 40.0);
+        assert_eq!(c.year(1.0, 2.0, 0.0, false).total(), 40.0);
+        assert_eq!(c.year(30.0, 50.0, 0.1, true).total(), 40.0);
         std::fs::write(
             &path,
             "source = \"x\"\nyear = 2020\nper_tree_per_year = -4.0\n",
@@ -284,9 +552,16 @@ mod tests {
         std::fs::write(&path, "source = \"x\"\nper_tree_per_year = 4.0\n").unwrap();
         let e = Costs::load(&path).unwrap_err().to_string();
         assert!(e.contains("year"), "{e}");
-        let modesto = Costs::builtin("InlVal").unwrap();
-        assert_eq!(modesto.year(10.0, 20.0).average, 28.77);
+        let e = Costs::parse(
+            "source = \"x\"\nyear = 2020\nper_tree_per_year = 4.0\npruning_share = 1.5\n",
+            "s.toml",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("pruning_share"), "{e}");
+        let modesto = Costs::modesto_average();
+        assert_eq!(modesto.year(10.0, 20.0, 0.0, false).average, 28.77);
+        assert!((modesto.year(10.0, 20.0, 0.0, true).average - 14.385).abs() < 1e-9);
         assert!(modesto.source().contains("1997-98"));
-        assert!(Costs::builtin("GulfCo").is_none());
     }
 }

@@ -25,6 +25,7 @@ use super::money::{Basis, Money};
 use super::prices::Prices;
 use super::shade::{Energy, Sky, energy};
 use super::site::Site;
+use super::survival::{Cohort, Survival};
 use super::typical::{AirQuality, EmissionFactors, Reference, Typical};
 use crate::Skeleton;
 use crate::growth::{Dimensions, Measured};
@@ -66,6 +67,9 @@ pub struct YearAccount {
     /// This year's pruning, where a cycle fell due and the tree was grown with the site's
     /// regime ([`super::pruner`]).
     pub pruning: Option<super::pruner::PruningYear>,
+    /// The share of the trees planted that stand through this year, and that die in it
+    /// ([`super::survival`]): every other figure is a living tree's.
+    pub cohort: Cohort,
 }
 
 impl YearAccount {
@@ -78,25 +82,38 @@ impl YearAccount {
         }
     }
 
-    /// Benefits less costs of what is computed, dollars.
+    /// Benefits less costs of what is computed, dollars: a living tree's.
     pub fn net(&self, basis: Basis) -> f64 {
         self.money(basis).total() - self.costs.map_or(0.0, |c| c.total())
     }
 
-    /// Puts a year's pruning into the account of a tree grown under a pruning regime: the
-    /// conflicts it resolved, and its cost where the account has costs (`replaces_itemised`:
-    /// the cycles replace itemised costs' yearly pruning line,
-    /// [`super::pruner::Pruner::replaces_itemised_pruning`]).
-    pub fn record_pruning(
-        &mut self,
-        cycle: Option<super::pruner::PruningYear>,
-        replaces_itemised: bool,
-    ) {
+    /// Benefits per tree planted: a living tree's, weighted by the share standing.
+    pub fn planted_benefits(&self, basis: Basis) -> f64 {
+        self.cohort.alive * self.money(basis).total()
+    }
+
+    /// Costs per tree planted: planting for every tree, the rest for those standing (a dying
+    /// tree's removal is in a living tree's costs as its chance of dying).
+    pub fn planted_costs(&self) -> f64 {
+        self.costs.map_or(0.0, |c| c.per_planted(self.cohort.alive))
+    }
+
+    /// Benefits less costs per tree planted.
+    pub fn planted_net(&self, basis: Basis) -> f64 {
+        self.planted_benefits(basis) - self.planted_costs()
+    }
+
+    /// Puts the pruning of the `span` years this account stands for (1 in a yearly run) into
+    /// the account of a tree grown under a pruning regime: the conflicts it resolved, and its
+    /// cost where the account has costs, a year's share of it, the city's crews apart from
+    /// the utility's line clearance. The cycles replace the cost table's own pruning
+    /// ([`Assessor::charge_cycles`]).
+    pub fn record_pruning(&mut self, cycle: Option<super::pruner::PruningYear>, span: f64) {
         if let Some(costs) = &mut self.costs {
-            if replaces_itemised {
-                costs.pruning = 0.0;
-            }
-            costs.cycles = cycle.as_ref().map_or(0.0, |c| c.cost);
+            let span = span.max(1.0);
+            let (all, line) = cycle.as_ref().map_or((0.0, 0.0), |c| (c.cost, c.line_cost));
+            costs.cycles = (all - line) / span;
+            costs.utility = line / span;
         }
         self.pruning = cycle.map(|mut c| {
             c.settle(&self.conflicts);
@@ -118,6 +135,9 @@ pub struct Assessor {
     factors: Option<EmissionFactors>,
     last: Option<(f64, f64)>,
     last_leaf: Option<(f64, f64)>,
+    last_age: Option<f64>,
+    survival: Survival,
+    cycles_charged: bool,
     missing: Vec<String>,
 }
 
@@ -160,11 +180,10 @@ impl Assessor {
                 "costs: none are built in for {region} (give --costs costs.toml)"
             )),
             Some(Costs::Average(a)) => missing.push(format!(
-                "itemised costs: not built in; each year is charged {}: ${:.2} a tree, not \
-                 sized by the tree (give --costs for a city's items)",
+                "itemised costs: each year is charged {}: ${:.2} a tree, not sized by the tree",
                 a.source, a.per_tree_per_year
             )),
-            Some(Costs::Itemised(_)) => {}
+            Some(c @ Costs::Itemised(_)) => missing.extend(c.not_computed()),
         }
         let reference = Reference::of(m)
             .map_err(|why| {
@@ -202,8 +221,29 @@ impl Assessor {
             reference,
             last: None,
             last_leaf: None,
+            last_age: None,
+            survival: Survival::builtin(region),
+            cycles_charged: false,
             missing,
         }
+    }
+
+    /// The same account with another survival (`--survival`).
+    pub fn with_survival(mut self, survival: Survival) -> Assessor {
+        self.survival = survival;
+        self
+    }
+
+    /// The survival the account weighs its years by.
+    pub fn survival(&self) -> &Survival {
+        &self.survival
+    }
+
+    /// Says the tree is grown under a site's pruning regime whose cycles are charged as they
+    /// fall ([`YearAccount::record_pruning`]): the cost table's own pruning is then not
+    /// charged, nor a programme average's pruning share, so no cut is paid for twice.
+    pub fn charge_cycles(&mut self) {
+        self.cycles_charged = true;
     }
 
     /// Where the typical-position figures come from, where they do.
@@ -314,12 +354,15 @@ impl Assessor {
                 .zip(per_leaf)
                 .map(|(t, k)| t.amounts.stormwater_m3 * k),
         };
+        // The leaf area gained over the most the crown has held: leaf regrown after a cut
+        // only restores what it had, and is not a gain again (aesthetics price the gain).
         let leaf_gain = match self.last_leaf {
-            Some((a, before)) if age > a => ((crown.leaf_area - before) / (age - a)).max(0.0),
+            Some((a, most)) if age > a => ((crown.leaf_area - most) / (age - a)).max(0.0),
             // The first year of a run: the mean gain since planting.
             _ => crown.leaf_area / age.max(1.0),
         };
-        self.last_leaf = Some((age, crown.leaf_area));
+        let most = self.last_leaf.map_or(0.0, |l| l.1).max(crown.leaf_area);
+        self.last_leaf = Some((age, most));
         // Energy saved on the façade, as i-Tree counts it: kWh, and kBtu of gas (negative).
         let saved = energy.map(|e| (e.electricity_kwh(), e.natural_gas_kbtu()));
         let avoided = saved
@@ -356,6 +399,17 @@ impl Assessor {
             bvoc: air_value.map(|v| v.1),
             aesthetics: price(Some(leaf_gain), p.and_then(|p| p.leaf_gain_per_m2)),
         };
+        // The years this account stands for: one in a yearly run, more where a run records
+        // every few years.
+        let first = self.last_age.is_none();
+        let span = self.last_age.map_or(1.0, |a| (age - a).max(1e-9));
+        self.last_age = Some(age);
+        let cohort = self.survival.year(age, span);
+        let death_chance = if cohort.alive > 0.0 {
+            cohort.died / cohort.alive
+        } else {
+            0.0
+        };
         YearAccount {
             age,
             dbh_cm: dbh,
@@ -369,9 +423,18 @@ impl Assessor {
             leaf_gain_m2: leaf_gain,
             money,
             typical,
-            costs: self.costs.as_ref().map(|c| c.year(age, dbh)),
+            costs: self.costs.as_ref().map(|c| {
+                let mut y = c.year(age, dbh, death_chance, self.cycles_charged);
+                // A species whose data begin after its first year is planted in the first year
+                // of its run all the same.
+                if first && age > 1.0 {
+                    y.planting += c.planting_price();
+                }
+                y
+            }),
             pruning: None,
             conflicts,
+            cohort,
         }
     }
 }

@@ -31,6 +31,7 @@
 //! A benefit without a sourced model or input is reported as missing, with the reason, never
 //! as zero. `docs/benefits.md` gives every formula and source.
 
+pub mod aesthetics;
 pub mod calibrate;
 pub mod carbon;
 pub mod climate;
@@ -50,6 +51,7 @@ pub mod rank;
 pub mod shade;
 pub mod site;
 pub mod sun;
+pub mod survival;
 pub mod table;
 pub mod typical;
 pub mod wires;
@@ -60,6 +62,7 @@ pub use ledger::{Assessor, YearAccount};
 pub use money::{Basis, Money};
 pub use prices::Prices;
 pub use site::Site;
+pub use survival::Survival;
 
 /// What can go wrong reading a site, prices or costs, or assessing a species.
 #[derive(Debug, thiserror::Error)]

@@ -14,15 +14,14 @@
 //! of the same ozone precursor when a power plant emits it (the R package treeco does the same;
 //! OpenTreeMap leaves BVOCs unpriced and says it is unsure).
 //!
-//! Aesthetics and property value have no built-in price. i-Tree Streets prices a tree's yearly
-//! gain in leaf area from the region's median home sale price (0.88% of it for a large
-//! front-yard tree, Anderson and Cordell 1988) and a street-tree reduction factor; the built-in
-//! tables carry neither, so the price is the user's (`leaf_gain_per_m2`) or it is reported as
-//! not computed.
+//! Aesthetics and property value are priced per m² of leaf area gained in a year from the
+//! region's median home price (`street::aesthetics`, McPherson 2007's method); a prices file
+//! gives its own `median_home_price` (and `location_factor`) or `leaf_gain_per_m2`.
 //!
 //! Costs are in `costs.rs`.
 
 use super::StreetError;
+use super::aesthetics;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -52,8 +51,8 @@ pub struct Prices {
     pub so2_per_kg: Option<f64>,
     /// VOCs not emitted (and biogenic VOCs emitted, as a cost), $/kg.
     pub voc_per_kg: Option<f64>,
-    /// Aesthetics and property value: a square metre of leaf area gained in a year, $/m².
-    /// Never built in (see the module's notes).
+    /// Aesthetics and property value: a square metre of leaf area gained in a year, $/m²
+    /// (`street::aesthetics`).
     pub leaf_gain_per_m2: Option<f64>,
 }
 
@@ -208,11 +207,15 @@ impl Prices {
         let (reference, why) = super::itree::reference_region(region)?;
         let t = ITREE.iter().find(|t| t.region == reference)?;
         let per_kg = |i: usize| Some(t.lb[i] * LB_PER_KG);
+        let home = aesthetics::home_price(region);
         Some(Prices {
             source: format!(
                 "i-Tree Streets regional defaults for {reference} (regional Community Tree \
-                 Guide, USDA Forest Service), as shipped in OpenTreeMap otm-core ITREE_REGIONS{}",
-                why.map(|w| format!("; {w}")).unwrap_or_default()
+                 Guide, USDA Forest Service), as shipped in OpenTreeMap otm-core \
+                 ITREE_REGIONS{}{}",
+                why.map(|w| format!("; {w}")).unwrap_or_default(),
+                home.map(|h| format!("; {}", h.describe()))
+                    .unwrap_or_default()
             ),
             // The guides span 1999-2010; i-Tree does not say which year's dollars each is.
             year: 0,
@@ -225,7 +228,8 @@ impl Prices {
             pm10_per_kg: per_kg(3),
             so2_per_kg: per_kg(4),
             voc_per_kg: per_kg(5),
-            leaf_gain_per_m2: None,
+            leaf_gain_per_m2: home
+                .map(|h| aesthetics::price_per_m2(h.price, aesthetics::STREET_LOCATION_FACTOR)),
         })
     }
 
@@ -247,10 +251,42 @@ impl Prices {
             pm10_per_kg: f64,
             so2_per_kg: f64,
             voc_per_kg: f64,
-            // The one optional key: without it aesthetics are reported as not computed.
+            // Aesthetics, optional: a price per m² of leaf gained, or a median home price (and
+            // a location factor); without either they are reported as not computed.
             leaf_gain_per_m2: Option<f64>,
+            median_home_price: Option<f64>,
+            location_factor: Option<f64>,
         }
         let f: File = parse(&text, &file)?;
+        if let Some(p) = f.median_home_price
+            && !(p.is_finite() && p > 0.0 && p <= 1e8)
+        {
+            return Err(value(
+                &file,
+                "median_home_price",
+                p,
+                "dollars, over 0 and at most 1e8",
+            ));
+        }
+        if let Some(c) = f.location_factor {
+            if !(0.0..=1.0).contains(&c) {
+                return Err(value(&file, "location_factor", c, "a factor, 0 to 1"));
+            }
+            if f.median_home_price.is_none() {
+                return Err(StreetError::Syntax {
+                    file: file.clone(),
+                    message: "location_factor needs median_home_price".into(),
+                });
+            }
+        }
+        if f.median_home_price.is_some() && f.leaf_gain_per_m2.is_some() {
+            return Err(StreetError::Syntax {
+                file: file.clone(),
+                message: "give aesthetics either as leaf_gain_per_m2 or as median_home_price, \
+                          not both"
+                    .into(),
+            });
+        }
         for (key, v) in [
             ("electricity_per_kwh", f.electricity_per_kwh),
             ("natural_gas_per_kbtu", f.natural_gas_per_kbtu),
@@ -279,7 +315,13 @@ impl Prices {
             pm10_per_kg: Some(f.pm10_per_kg),
             so2_per_kg: Some(f.so2_per_kg),
             voc_per_kg: Some(f.voc_per_kg),
-            leaf_gain_per_m2: f.leaf_gain_per_m2,
+            leaf_gain_per_m2: f.leaf_gain_per_m2.or(f.median_home_price.map(|p| {
+                aesthetics::price_per_m2(
+                    p,
+                    f.location_factor
+                        .unwrap_or(aesthetics::STREET_LOCATION_FACTOR),
+                )
+            })),
         })
     }
 }
@@ -335,7 +377,9 @@ mod tests {
         assert_eq!(p.electricity_per_kwh, Some(0.1166));
         // 12.79 $/lb of NOx (Modesto's guide) is 28.20 $/kg.
         assert!((p.nox_per_kg.unwrap() - 28.197).abs() < 1e-2);
-        assert_eq!(p.leaf_gain_per_m2, None);
+        // 0.88% of California's $211,500 over 675 m².
+        assert!((p.leaf_gain_per_m2.unwrap() - 2.7573).abs() < 1e-3);
+        assert!(p.source.contains("211500") && p.source.contains("McPherson 2007"));
         let sacramento = Prices::builtin("SacVal").unwrap();
         assert_eq!(sacramento.electricity_per_kwh, Some(0.1166));
         assert!(
@@ -373,5 +417,37 @@ mod tests {
         );
         std::fs::write(&path, format!("source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\n{AIR}leaf_gain_per_m2 = 0.5\n")).unwrap();
         assert_eq!(Prices::load(&path).unwrap().leaf_gain_per_m2, Some(0.5));
+        // Or from a home price, with a location factor; bad ones named.
+        let base = format!(
+            "source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nstormwater_per_m3 = 2.0\nco2_per_kg = 0.05\n{AIR}"
+        );
+        std::fs::write(
+            &path,
+            format!("{base}median_home_price = 337500.0\nlocation_factor = 0.5\n"),
+        )
+        .unwrap();
+        let p = Prices::load(&path).unwrap().leaf_gain_per_m2.unwrap();
+        assert!((p - 2.2).abs() < 1e-9, "{p}");
+        for (bad, key) in [
+            ("median_home_price = -5.0\n", "median_home_price"),
+            ("median_home_price = inf\n", "median_home_price"),
+            (
+                "median_home_price = 300000.0\nlocation_factor = 1.5\n",
+                "location_factor",
+            ),
+            (
+                "median_home_price = 300000.0\nlocation_factor = nan\n",
+                "location_factor",
+            ),
+            ("location_factor = 0.5\n", "location_factor"),
+            (
+                "median_home_price = 300000.0\nleaf_gain_per_m2 = 2.0\n",
+                "median_home_price",
+            ),
+        ] {
+            std::fs::write(&path, format!("{base}{bad}")).unwrap();
+            let e = Prices::load(&path).unwrap_err().to_string();
+            assert!(e.contains("prices.toml") && e.contains(key), "{bad}: {e}");
+        }
     }
 }

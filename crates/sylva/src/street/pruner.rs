@@ -3,11 +3,12 @@
 //! ([`Grower::cut`]), a young tree is trained ([`Grower::train`]), and the year's record says
 //! what was cut, what it cost, and which conflicts it resolved.
 //!
-//! Cost of a crew's visit: the price of the tree's DBH class where itemised costs
-//! (`--costs`) give one; otherwise a programme's average price per tree pruned, labelled as
-//! such ([`PROGRAMME_PRICE`]). A year's line clearance (the utility's crew) and the city's
-//! raising, building clearance and training (its own crew) are a visit each, charged when
-//! the crew finds something to cut.
+//! Cost of a crew's visit: sized by the tree, at its DBH class's price in the run's cost table
+//! (`--costs`, or the built-in `data/street/costs.toml`, whose visit price rises with DBH);
+//! where the run's costs are a programme's average, the built-in table prices the visits and
+//! the average drops its pruning share. A year's line clearance (the utility's crew, which
+//! the utility pays: [`PruningYear::line_cost`]) and the city's raising, building clearance
+//! and training (its own crew) are a visit each, charged when the crew finds something to cut.
 
 use super::conflicts::{Conflict, Kind, Zones, conflicts};
 use super::costs::Costs;
@@ -15,15 +16,6 @@ use super::pruning::{Regime, due};
 use super::site::Site;
 use crate::Skeleton;
 use crate::growth::{CutKind, CutMark, Cuts, Grower};
-
-/// A programme's average price of pruning one street tree, $ (2022): Piedmont, California's
-/// street tree pruning contract of fiscal year 2021-22, $145,370 for 811 trees pruned and 3
-/// removed (City of Piedmont, "Street Tree Pruning on Your Street?", 2 May 2022). Not sized by
-/// the tree: used where no itemised costs give a price by DBH class.
-pub const PROGRAMME_PRICE: f64 = 145_370.0 / 814.0;
-/// Where [`PROGRAMME_PRICE`] comes from.
-pub const PROGRAMME_SOURCE: &str = "a programme's average per tree pruned, not sized by the \
-    tree: Piedmont, California's street tree pruning contract, 2022 ($145,370 for 814 trees)";
 
 /// Most of a tree's height that crown raising may clear of branches: the street's clear heights
 /// are reached over the years, as the tree grows, never by stripping a young tree's crown.
@@ -79,8 +71,13 @@ pub struct PruningYear {
     pub cuts: Cuts,
     /// Crews' visits that cut something (the utility's, the city's).
     pub visits: u32,
-    /// Their cost, $.
+    /// Their cost, $: the utility's line clearance and the city's crews together.
     pub cost: f64,
+    /// The part of `cost` the utility pays: its line clearance, which no city budget carries
+    /// (utilities clear their own lines and treat it as their own function: USDA Forest
+    /// Service, Northeastern Area, Urban & Community Forestry technical guide, "Utility
+    /// arboriculture").
+    pub line_cost: f64,
     /// Conflicts of the kinds cleared this year that were there before the cuts.
     pub before: Vec<Kind>,
     /// Of those and any other, the kinds the tree still has after the cuts though a cycle
@@ -135,6 +132,7 @@ impl PruningYear {
         earlier.cuts.merge(later.cuts);
         earlier.visits += later.visits;
         earlier.cost += later.cost;
+        earlier.line_cost += later.line_cost;
         earlier.unresolved = later.unresolved;
         earlier
     }
@@ -174,26 +172,19 @@ impl Pruner {
         &self.regime
     }
 
-    /// Price of one crew's visit to a tree of `dbh_cm`, $, and its source.
-    pub fn visit_price(&self, dbh_cm: f64) -> (f64, &str) {
-        match &self.costs {
-            Some(Costs::Itemised(c)) => {
-                let class = (c.pruning.iter())
-                    .find(|p| dbh_cm <= p.up_to_dbh_cm)
-                    .or(c.pruning.last());
-                match class {
-                    Some(p) => (p.price, c.source.as_str()),
-                    None => (PROGRAMME_PRICE, PROGRAMME_SOURCE),
-                }
+    /// Price of one crew's visit to a tree of `dbh_cm`, $, and the table it comes from: the
+    /// run's itemised costs, else the built-in sized table.
+    pub fn visit_price(&self, dbh_cm: f64) -> (f64, String) {
+        let own = (self.costs.as_ref()).and_then(|c| Some((c.pruning_visit(dbh_cm)?, c)));
+        let builtin;
+        let (visit, table) = match own {
+            Some(found) => found,
+            None => {
+                builtin = Costs::builtin("").expect("a built-in table");
+                (builtin.pruning_visit(dbh_cm).expect("it prunes"), &builtin)
             }
-            _ => (PROGRAMME_PRICE, PROGRAMME_SOURCE),
-        }
-    }
-
-    /// Whether this regime replaces itemised costs' yearly pruning line: the cycles it cuts
-    /// are that pruning, charged when they fall.
-    pub fn replaces_itemised_pruning(&self) -> bool {
-        matches!(self.costs, Some(Costs::Itemised(_)))
+        };
+        (visit.0, table.source().to_string())
     }
 
     /// Grows `grower` on to `age` a year at a time, carrying out every cycle that falls due
@@ -275,7 +266,8 @@ impl Pruner {
         let mut cuts = grower.cut(&|p, order| zones.kind_of(p, Some(order)).is_some());
         let cleared = !cuts.marks.is_empty();
         let mut visits = 0;
-        if before.iter().any(|&k| Reason::of(k) == Some(Reason::Line)) && cleared {
+        let line = before.iter().any(|&k| Reason::of(k) == Some(Reason::Line)) && cleared;
+        if line {
             visits += 1;
         }
         let city = before.iter().any(|&k| Reason::of(k) != Some(Reason::Line)) && cleared;
@@ -288,12 +280,13 @@ impl Pruner {
         if city || trained {
             visits += 1;
         }
-        let cost = visits as f64 * self.visit_price(dbh).0;
+        let price = self.visit_price(dbh).0;
         let year = PruningYear {
             reasons,
             cuts,
             visits,
-            cost,
+            cost: visits as f64 * price,
+            line_cost: if line { price } else { 0.0 },
             before,
             unresolved: Vec::new(),
         };
@@ -305,7 +298,8 @@ impl Pruner {
 mod tests {
     use super::*;
     use crate::growth::Database;
-    use crate::street::rank::{Pruning, run};
+    use crate::street::costs::YearCosts;
+    use crate::street::rank::{Pruning, Study, run};
 
     fn narrow() -> Site {
         let text = std::fs::read_to_string(concat!(
@@ -340,29 +334,47 @@ mod tests {
         assert!(year.count(CutKind::Removal) + year.count(CutKind::Reduction) > 0);
         assert!(year.leaf_m2() > 0.0 && year.wood_m3() > 0.0);
         assert_eq!(year.visits, 1);
-        assert!((year.cost - PROGRAMME_PRICE).abs() < 1e-9);
+        // One line-clearance visit, priced by the tree's DBH, and the utility's to pay.
+        let dbh = grower.targets(12.0).dbh;
+        assert!((year.cost - pruner.visit_price(dbh).0).abs() < 1e-9);
+        assert!(
+            (year.cost - 3.90 * dbh).abs() < 1e-9,
+            "{} at {dbh} cm",
+            year.cost
+        );
+        assert_eq!(year.line_cost, year.cost);
     }
 
     #[test]
     fn a_run_prunes_by_the_regime_unless_told_not_to() {
         let site = narrow();
         let m = Database::builtin().find("InlVal", "PLAC").unwrap();
-        let costs = Costs::builtin("InlVal");
-        let pruned = run(
-            &m,
-            9.0,
-            0,
-            Some(&site),
-            None,
-            costs.as_ref(),
-            Pruning::Regime,
-        );
-        let grown = run(&m, 9.0, 0, Some(&site), None, costs.as_ref(), Pruning::Off);
+        let study = |pruning| Study {
+            site: Some(site.clone()),
+            pruning,
+            ..Study::new(9.0)
+        };
+        let pruned = run(&m, &study(Pruning::Regime));
+        let grown = run(&m, &study(Pruning::Off));
         assert!(grown.accounts.iter().all(|a| a.pruning.is_none()));
         let total = pruned.pruning().expect("pruned");
         assert!(total.cycles >= 2 && total.cost > 0.0, "{total:?}");
-        // The cycles' cost is in the accounts; the leaf area taken shows in the crown.
-        assert!((pruned.costs() - grown.costs() - total.cost).abs() < 1e-6);
+        // The cycles' cost is in the accounts, in place of the table's own pruning (no cut is
+        // paid for twice); the leaf area taken shows in the crown.
+        let per_tree = |r: &crate::street::rank::Ranked, f: &dyn Fn(&YearCosts) -> f64| -> f64 {
+            r.accounts
+                .iter()
+                .map(|a| a.costs.map_or(0.0, |c| f(&c)))
+                .sum()
+        };
+        assert_eq!(per_tree(&pruned, &|c| c.pruning), 0.0);
+        assert!(per_tree(&grown, &|c| c.pruning) > 0.0);
+        let cycles = per_tree(&pruned, &|c| c.cycles + c.utility);
+        assert!(
+            (cycles - total.cost).abs() < 1e-6,
+            "{cycles} {}",
+            total.cost
+        );
         let leaf = |r: &crate::street::rank::Ranked| r.accounts.last().unwrap().surfaces.0;
         assert!(
             leaf(&pruned) < leaf(&grown),
@@ -372,15 +384,7 @@ mod tests {
         );
         // Compared, the benefits lost are the uncut tree's less the cut one's, year by year.
         use crate::street::Basis;
-        let compared = run(
-            &m,
-            9.0,
-            0,
-            Some(&site),
-            None,
-            costs.as_ref(),
-            Pruning::Compare,
-        );
+        let compared = run(&m, &study(Pruning::Compare));
         let lost = compared.benefits_lost.clone().expect("compared");
         assert_eq!(lost.len(), compared.accounts.len());
         let sum: f64 = lost.iter().sum();

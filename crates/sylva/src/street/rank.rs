@@ -2,12 +2,13 @@
 //! and costs summed over the years, and the first year it runs into the street.
 
 use super::conflicts::{Conflict, Kind};
-use super::costs::Costs;
+use super::costs::{Costs, YearCosts};
 use super::ledger::{Assessor, YearAccount};
 use super::money::Basis;
 use super::prices::Prices;
 use super::pruner::{Pruner, PruningYear};
 use super::site::Site;
+use super::survival::Survival;
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
 use rayon::prelude::*;
@@ -29,22 +30,80 @@ pub struct Ranked {
 }
 
 impl Ranked {
-    /// Benefits over the years, dollars (undiscounted).
+    /// Benefits over the years per tree planted, dollars (undiscounted): each year's for a
+    /// living tree, weighted by the share of the trees planted standing through it.
     pub fn benefits(&self, basis: Basis) -> f64 {
-        self.accounts.iter().map(|a| a.money(basis).total()).sum()
-    }
-
-    /// Costs over the years, dollars.
-    pub fn costs(&self) -> f64 {
         self.accounts
             .iter()
-            .map(|a| a.costs.map_or(0.0, |c| c.total()))
+            .map(|a| a.planted_benefits(basis))
             .sum()
     }
 
-    /// Benefits less costs.
+    /// Costs over the years per tree planted, dollars.
+    pub fn costs(&self) -> f64 {
+        self.accounts.iter().map(|a| a.planted_costs()).sum()
+    }
+
+    /// Benefits less costs per tree planted.
     pub fn net(&self, basis: Basis) -> f64 {
         self.benefits(basis) - self.costs()
+    }
+
+    /// Benefits over the years per tree planted in each of i-Tree's categories, dollars (none
+    /// where a category is never computed).
+    pub fn by_category(&self, basis: Basis) -> Vec<(&'static str, Option<f64>)> {
+        let mut out: Vec<(&'static str, Option<f64>)> = Vec::new();
+        for a in &self.accounts {
+            for (i, (name, v)) in a.money(basis).categories().into_iter().enumerate() {
+                if out.len() <= i {
+                    out.push((name, None));
+                }
+                if let Some(v) = v {
+                    out[i].1 = Some(out[i].1.unwrap_or(0.0) + a.cohort.alive * v);
+                }
+            }
+        }
+        out
+    }
+
+    /// Costs over the years per tree planted, item by item, dollars: the city's items, the
+    /// site's pruning cycles, and the utility's line clearance (none where the run has no
+    /// costs).
+    pub fn costs_by_item(&self) -> Vec<(&'static str, Option<f64>)> {
+        let items = |c: &YearCosts| {
+            [
+                ("planting", c.planting),
+                ("pruning", c.pruning),
+                ("pruning_cycles", c.cycles),
+                ("removal", c.removal),
+                ("sidewalk_repair", c.sidewalk),
+                ("cleanup", c.cleanup),
+                ("pest_liability_administration", c.other),
+                ("programme_average", c.average),
+                ("line_clearance_utility", c.utility),
+            ]
+        };
+        let mut out: Vec<(&'static str, Option<f64>)> = items(&YearCosts::default())
+            .map(|(n, _)| (n, None))
+            .to_vec();
+        for a in &self.accounts {
+            let Some(c) = &a.costs else { continue };
+            for (i, (name, v)) in items(c).into_iter().enumerate() {
+                // Planting is paid for every tree planted, the rest for the living.
+                let weight = if name == "planting" {
+                    1.0
+                } else {
+                    a.cohort.alive
+                };
+                out[i].1 = Some(out[i].1.unwrap_or(0.0) + weight * v);
+            }
+        }
+        out
+    }
+
+    /// The share of the trees planted alive at the end of the run.
+    pub fn alive_at_end(&self) -> f64 {
+        self.accounts.last().map_or(1.0, |a| a.cohort.alive_at_end)
     }
 
     /// The last age grown.
@@ -148,24 +207,54 @@ pub enum Pruning {
     Off,
 }
 
-/// Grows every species yearly to `years` on the same site, in parallel, and returns them by
-/// net benefit on `basis`, best first. `done` is called as each species finishes.
-#[allow(clippy::too_many_arguments)]
+/// What a run of street trees is asked: how long, which seed, on which site, at which prices
+/// and costs, with which survival, and how the site's pruning regime is treated. `None`s are
+/// the built-in defaults (no site: typical position only).
+#[derive(Clone, Debug)]
+pub struct Study {
+    /// Years each tree is grown (or as long as its data reach).
+    pub years: f64,
+    /// The growth's seed.
+    pub seed: u64,
+    /// The planting site.
+    pub site: Option<Site>,
+    /// Prices (default: the region's built-in ones).
+    pub prices: Option<Prices>,
+    /// Costs (default: the built-in sized table).
+    pub costs: Option<Costs>,
+    /// Survival (default: the region's built-in).
+    pub survival: Option<Survival>,
+    /// How the site's pruning regime is treated.
+    pub pruning: Pruning,
+}
+
+impl Study {
+    /// A run of `years` on typical position, with every default.
+    pub fn new(years: f64) -> Study {
+        Study {
+            years,
+            seed: 0,
+            site: None,
+            prices: None,
+            costs: None,
+            survival: None,
+            pruning: Pruning::Regime,
+        }
+    }
+}
+
+/// Grows every species yearly as `study` asks, in parallel, and returns them by net benefit
+/// per tree planted on `basis`, best first. `done` is called as each species finishes.
 pub fn rank(
     species: Vec<Measured>,
-    years: f64,
-    seed: u64,
-    site: Option<&Site>,
-    prices: Option<&Prices>,
-    costs: Option<&Costs>,
-    pruning: Pruning,
+    study: &Study,
     basis: Basis,
     done: &(dyn Fn(&Measured) + Sync),
 ) -> Vec<Ranked> {
     let mut out: Vec<Ranked> = species
         .into_par_iter()
         .map(|m| {
-            let r = run(&m, years, seed, site, prices, costs, pruning);
+            let r = run(&m, study);
             done(&m);
             r
         })
@@ -174,22 +263,19 @@ pub fn rank(
     out
 }
 
-/// One species grown and accounted yearly, pruned as `pruning` says where there is a site.
-pub fn run(
-    m: &Measured,
-    years: f64,
-    seed: u64,
-    site: Option<&Site>,
-    prices: Option<&Prices>,
-    costs: Option<&Costs>,
-    pruning: Pruning,
-) -> Ranked {
-    if pruning == Pruning::Compare {
+/// One species grown and accounted yearly, pruned as `study.pruning` says where there is a
+/// site.
+pub fn run(m: &Measured, study: &Study) -> Ranked {
+    if study.pruning == Pruning::Compare {
+        let with = |pruning| Study {
+            pruning,
+            ..study.clone()
+        };
         let (mut cut, uncut) = rayon::join(
-            || run(m, years, seed, site, prices, costs, Pruning::Regime),
-            || run(m, years, seed, site, prices, costs, Pruning::Off),
+            || run(m, &with(Pruning::Regime)),
+            || run(m, &with(Pruning::Off)),
         );
-        let total = |a: &YearAccount| a.money(Basis::Site).total();
+        let total = |a: &YearAccount| a.planted_benefits(Basis::Site);
         cut.benefits_lost = cut.pruned.then(|| {
             (cut.accounts.iter().zip(&uncut.accounts))
                 .map(|(c, u)| total(u) - total(c))
@@ -197,14 +283,26 @@ pub fn run(
         });
         return cut;
     }
-    let mut assessor = Assessor::new(m, site.cloned(), prices.cloned(), costs.cloned());
-    let mut cohort = Cohort::new(vec![m.clone()], seed);
-    let pruner = match (site, pruning) {
-        (Some(site), Pruning::Regime) => Pruner::new(site, costs),
+    let site = study.site.as_ref();
+    let mut assessor = Assessor::new(
+        m,
+        study.site.clone(),
+        study.prices.clone(),
+        study.costs.clone(),
+    );
+    if let Some(s) = &study.survival {
+        assessor = assessor.with_survival(s.clone());
+    }
+    let mut cohort = Cohort::new(vec![m.clone()], study.seed);
+    let pruner = match (site, study.pruning) {
+        (Some(site), Pruning::Regime) => Pruner::new(site, study.costs.as_ref()),
         _ => None,
     };
+    if pruner.is_some() {
+        assessor.charge_cycles();
+    }
     let mut accounts = Vec::new();
-    for age in ages(m, years) {
+    for age in ages(m, study.years) {
         let cycle =
             (pruner.as_ref()).and_then(|p| p.advance(&mut cohort.growers[0], age, |_, _, _, _| {}));
         let skeleton = cohort.advance_to(age).remove(0);
@@ -213,8 +311,8 @@ pub fn run(
             .map(|r| r.model)
             .unwrap_or_default();
         let mut account = assessor.year(age, &dims, &skeleton);
-        if let Some(p) = &pruner {
-            account.record_pruning(cycle, p.replaces_itemised_pruning());
+        if pruner.is_some() {
+            account.record_pruning(cycle, 1.0);
         }
         accounts.push(account);
     }

@@ -129,11 +129,26 @@ const COLUMNS: &[Column] = &[
     ("cost_cleanup_usd", |a| cell(a.costs.map(|c| c.cleanup), 2)),
     ("cost_average_usd", |a| cell(a.costs.map(|c| c.average), 2)),
     ("cost_cycles_usd", |a| cell(a.costs.map(|c| c.cycles), 2)),
+    ("cost_other_usd", |a| cell(a.costs.map(|c| c.other), 2)),
+    ("cost_line_clearance_utility_usd", |a| {
+        cell(a.costs.map(|c| c.utility), 2)
+    }),
     ("net_usd", |a| format!("{:.2}", a.net(Basis::Site))),
     ("typical_net_usd", |a| {
         a.typical
             .as_ref()
             .map_or(String::new(), |_| format!("{:.2}", a.net(Basis::Typical)))
+    }),
+    // Per tree planted: the living tree's figures weighted by the share standing.
+    ("alive_share", |a| format!("{:.4}", a.cohort.alive)),
+    ("died_share", |a| format!("{:.4}", a.cohort.died)),
+    ("planted_net_usd", |a| {
+        format!("{:.2}", a.planted_net(Basis::Site))
+    }),
+    ("typical_planted_net_usd", |a| {
+        a.typical.as_ref().map_or(String::new(), |_| {
+            format!("{:.2}", a.planted_net(Basis::Typical))
+        })
     }),
     ("conflicts", |a| conflicts_cell(&a.conflicts)),
     // This year's pruning, empty where no cycle fell due (or the tree was not pruned).
@@ -278,6 +293,7 @@ pub fn json(a: &YearAccount) -> serde_json::Value {
             "leaf_gain_m2": round(Some(m.leaf_gain_m2), 10.0),
             "value_usd": money_json(&t.money),
             "net_usd": (a.net(Basis::Typical) * 100.0).round() / 100.0,
+            "planted_net_usd": (a.planted_net(Basis::Typical) * 100.0).round() / 100.0,
         })
     });
     serde_json::json!({
@@ -305,9 +321,14 @@ pub fn json(a: &YearAccount) -> serde_json::Value {
             "cleanup": (c.cleanup * 100.0).round() / 100.0,
             "average": (c.average * 100.0).round() / 100.0,
             "cycles": (c.cycles * 100.0).round() / 100.0,
+            "pest_liability_administration": (c.other * 100.0).round() / 100.0,
+            "line_clearance_utility": (c.utility * 100.0).round() / 100.0,
         })),
         "pruning": a.pruning.as_ref().map(pruning_json),
         "net_usd": (a.net(Basis::Site) * 100.0).round() / 100.0,
+        "alive_share": (a.cohort.alive * 1e4).round() / 1e4,
+        "died_share": (a.cohort.died * 1e4).round() / 1e4,
+        "planted_net_usd": (a.planted_net(Basis::Site) * 100.0).round() / 100.0,
         "typical": typical,
         "conflicts": a.conflicts.iter().map(|c| serde_json::json!({
             "kind": c.kind.name(),
@@ -350,10 +371,25 @@ mod tests {
         let rows: Vec<_> = reader.records().map(|r| r.unwrap()).collect();
         assert_eq!(rows.len(), 2);
         let col = |name: &str| header.iter().position(|h| h == name).unwrap();
-        // No façade: energy cells are empty, not zero; Modesto's average cost is charged.
+        // No façade: energy cells are empty, not zero; the built-in sized costs are charged:
+        // a visit at $3.90 a cm of DBH every 4 years, 8 from 15 cm; no programme average.
         assert_eq!(&rows[0][col("cooling_kwh")], "");
-        assert_eq!(&rows[0][col("cost_pruning_usd")], "0.00");
-        assert_eq!(&rows[0][col("cost_average_usd")], "28.77");
+        let pruning: f64 = rows[0][col("cost_pruning_usd")].parse().unwrap();
+        let dbh = accounts[0].dbh_cm;
+        let cycle = if dbh <= 15.0 { 4.0 } else { 8.0 };
+        assert!(
+            (pruning - 3.90 * dbh / cycle).abs() < 0.006,
+            "{pruning} at {dbh} cm"
+        );
+        assert_eq!(&rows[0][col("cost_average_usd")], "0.00");
+        // Per tree planted: 5% die a year while establishing.
+        let alive: f64 = rows[0][col("alive_share")].parse().unwrap();
+        let later = crate::street::Survival::builtin("InlVal").later;
+        let five = 0.95f64.powi(5);
+        assert!(
+            (alive - 0.5 * (five + five * later)).abs() < 1e-4,
+            "{alive}"
+        );
         let stored: f64 = rows[1][col("co2_stored_kg")].parse().unwrap();
         assert!((stored - accounts[1].co2_stored_kg.unwrap()).abs() < 0.1);
         // The low wire is hit by the leader.
@@ -362,18 +398,22 @@ mod tests {
             "{:?}",
             &rows[1]
         );
-        // Typical position: the plane's own Modesto row, worth more than what the grown tree
-        // earns without a façade (no energy), and its net written.
+        // Typical position: the plane's own Modesto row, with energy where the grown tree
+        // without a façade has none, and its net written.
         assert_eq!(&rows[1][col("typical_row")], "PLAC");
         let t = &accounts[1];
-        assert!(t.money(Basis::Typical).total() > t.money(Basis::Site).total());
+        assert!(
+            t.money(Basis::Typical).cooling.is_some() && t.money(Basis::Site).cooling.is_none()
+        );
         let typical: f64 = rows[1][col("typical_net_usd")].parse().unwrap();
         assert!((typical - t.net(Basis::Typical)).abs() < 0.006, "{typical}");
         let j = json(&accounts[1]);
         assert!(j["cooling_kwh"].is_null());
         assert_eq!(j["typical"]["row"], "PLAC");
         assert!(j["typical"]["value_usd"]["air_quality"].as_f64().unwrap() > 0.0);
-        assert!(j["typical"]["value_usd"]["aesthetics"].is_null());
+        // Aesthetics priced from California's median home value (McPherson 2007's method).
+        assert!(j["typical"]["value_usd"]["aesthetics"].as_f64().unwrap() > 0.0);
+        assert!(j["value_usd"]["aesthetics"].as_f64().unwrap() > 0.0);
         assert_eq!(j["conflicts"][0]["kind"], "wire");
     }
 }

@@ -316,9 +316,63 @@ mod tests {
         assert!((heating + 46.2 * 0.0125278).abs() < 1e-9, "{heating}");
         assert!(t.money.total() > 30.0, "{:?}", t.money);
         assert!(!t.held);
-        // Aesthetics: the leaf gain is read, its price is not built in.
+        // Aesthetics: the leaf gain priced per m² from California's median home value.
         assert!((t.amounts.leaf_gain_m2 - 11.6).abs() < 1e-9);
-        assert_eq!(t.money.aesthetics, None);
+        let aesthetics = t.money.aesthetics.unwrap();
+        assert!((aesthetics - 11.6 * 0.0088 * 211_500.0 / 675.0).abs() < 1e-9);
+    }
+
+    /// i-Tree's `property_value` table, which Streets prices aesthetics from, is the yearly
+    /// gain in leaf area: its `lsa` table's rise per cm of DBH times how fast the trunk grows
+    /// there (the Urban Tree Database's age-DBH curve for the same species and region).
+    #[test]
+    fn property_value_is_the_yearly_gain_of_the_lsa_table() {
+        use crate::growth::Database;
+        use crate::street::itree::{DBH_CLASSES_CM, Factor, region};
+        let db = Database::builtin();
+        for name in ["InlVal", "NoEast", "Piedmt"] {
+            let tables = region(name).unwrap();
+            let mut ratios = Vec::new();
+            for s in db.growable(name) {
+                let m = db.find(name, &s.code).unwrap();
+                let Some(row) = tables.row_for(&m.species.code) else {
+                    continue;
+                };
+                if row != m.species.code {
+                    continue;
+                }
+                for i in 1..8 {
+                    let (a, x, b) = (
+                        DBH_CLASSES_CM[i - 1],
+                        DBH_CLASSES_CM[i],
+                        DBH_CLASSES_CM[i + 1],
+                    );
+                    let v = |f: Factor, d: f64| tables.value(f, &row, d).map(|l| l.value);
+                    let (Some(la), Some(lb), Some(gain)) = (
+                        v(Factor::Lsa, a),
+                        v(Factor::Lsa, b),
+                        v(Factor::PropertyValue, x),
+                    ) else {
+                        continue;
+                    };
+                    // Only where the measured curve reaches the class.
+                    let age = m.age_at_dbh(x);
+                    if age <= m.ages.0 + 1.0 || age >= m.ages.1 - 1.0 || gain <= 0.0 {
+                        continue;
+                    }
+                    let growth = m.dbh(age + 0.5) - m.dbh(age - 0.5);
+                    ratios.push(gain / ((lb - la) / (b - a) * growth));
+                }
+            }
+            ratios.sort_by(f64::total_cmp);
+            let median = ratios[ratios.len() / 2];
+            assert!(ratios.len() > 20, "{name}: {}", ratios.len());
+            assert!(
+                (0.8..1.25).contains(&median),
+                "{name}: median {median} of {}",
+                ratios.len()
+            );
+        }
     }
 
     #[test]
