@@ -43,7 +43,8 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
     assert_eq!(lines.len(), 4, "{csv}");
     assert!(lines[0].starts_with("age,height_model_m,height_measured_m"));
     assert!(lines[0].contains("pipe_exponent,live_branches,shed_branches,co2_stored_kg"));
-    assert!(lines[0].contains(",net_usd,typical_net_usd,conflicts,pruning,"));
+    assert!(lines[0].contains(",net_usd,typical_net_usd,alive_share,died_share,planted_net_usd,"));
+    assert!(lines[0].contains(",typical_planted_net_usd,conflicts,pruning,"));
     assert!(lines[0].ends_with(",pruning_resolved,pruning_unresolved"));
     let columns = lines[0].split(',').count();
     // Modelled height within 5% of the equation at every age written; the form's columns

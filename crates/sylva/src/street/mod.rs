@@ -47,6 +47,7 @@ pub mod picture;
 pub mod prices;
 pub mod pruner;
 pub mod pruning;
+pub mod published;
 pub mod rank;
 pub mod shade;
 pub mod site;
