@@ -14,6 +14,7 @@ pub mod plan;
 pub mod prototypes;
 pub mod published;
 pub mod report;
+mod report_html;
 pub mod run;
 pub mod tasks;
 pub mod tiles;

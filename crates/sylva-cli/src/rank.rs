@@ -98,6 +98,7 @@ pub fn run(args: &RankArgs) -> Result<()> {
                     "net_usd": (r.net(basis) * 100.0).round() / 100.0,
                     "per_tree_planted": true,
                     "alive_at_end": (r.alive_at_end() * 1e4).round() / 1e4,
+                    "survival": r.survival,
                     "costs_by_item_usd": rounded(&r.costs_by_item()),
                     "typical": {
                         "benefits_usd": (r.benefits(Basis::Typical) * 100.0).round() / 100.0,
@@ -119,8 +120,8 @@ pub fn run(args: &RankArgs) -> Result<()> {
     }
     let place = &ranked[0].species.region;
     println!(
-        "{} species of {} ({}), grown yearly to {} years{}; dollars summed over the years, \
-         undiscounted; ranked by the net at {}",
+        "{} species of {} ({}), grown yearly to {} years{}; dollars per tree planted summed \
+         over the years, undiscounted ({:.0}% alive at the end: {}); ranked by the net at {}",
         ranked.len(),
         place.name,
         place.city,
@@ -130,6 +131,8 @@ pub fn run(args: &RankArgs) -> Result<()> {
             .as_ref()
             .map(|p| format!(" on {}", p.display()))
             .unwrap_or_default(),
+        100.0 * ranked[0].alive_at_end(),
+        ranked[0].survival,
         basis.name()
     );
     println!(

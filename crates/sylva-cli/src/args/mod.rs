@@ -533,8 +533,8 @@ pub struct StreetArgs {
 
     /// Prices of the benefits (source, year, electricity_per_kwh, natural_gas_per_kbtu,
     /// stormwater_per_m3, co2_per_kg, ozone_per_kg, nox_per_kg, pm10_per_kg, so2_per_kg,
-    /// voc_per_kg; optionally leaf_gain_per_m2 for aesthetics) instead of i-Tree's regional
-    /// defaults.
+    /// voc_per_kg; optionally median_home_price and location_factor, or leaf_gain_per_m2, for
+    /// aesthetics) instead of i-Tree's regional defaults and the region's median home price.
     #[arg(long, value_name = "PRICES.toml")]
     pub prices: Option<PathBuf>,
 

@@ -204,8 +204,8 @@ impl Assessor {
         if prices.as_ref().and_then(|p| p.leaf_gain_per_m2).is_none() {
             missing.push(
                 "aesthetics and property value: the leaf area gained is counted (m²) but not \
-                 priced: i-Tree Streets prices it from the region's median home sale price, \
-                 which its tables do not carry (give --prices with leaf_gain_per_m2)"
+                 priced: no median home price for the region (give --prices with \
+                 median_home_price or leaf_gain_per_m2)"
                     .into(),
             );
         }

@@ -27,6 +27,8 @@ pub struct Ranked {
     /// With [`Pruning::Compare`], each year's benefits on the site that pruning cost: the same
     /// tree never cut less the cut one, dollars, in the order of `accounts`.
     pub benefits_lost: Option<Vec<f64>>,
+    /// The survival its years are weighted by, in words.
+    pub survival: String,
 }
 
 impl Ranked {
@@ -322,5 +324,6 @@ pub fn run(m: &Measured, study: &Study) -> Ranked {
         missing: assessor.missing().to_vec(),
         pruned: pruner.is_some(),
         benefits_lost: None,
+        survival: assessor.survival().source.clone(),
     }
 }

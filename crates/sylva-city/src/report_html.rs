@@ -1,0 +1,195 @@
+//! The city's report as a page of HTML tables (`CityReport::html`).
+
+use crate::benefits::CATEGORIES;
+use crate::published::Comparison;
+use crate::report::CityReport;
+use std::fmt::Write as _;
+
+impl CityReport {
+    /// As a page of HTML tables.
+    pub fn html(&self) -> String {
+        let esc = |s: &str| {
+            s.replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;")
+        };
+        let money = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("${v:.0}"));
+        let mut h = String::from(
+            "<!doctype html><meta charset=\"utf-8\"><title>Sylva: the city's trees</title>\
+             <style>body{font:14px system-ui,sans-serif;margin:2em}table{border-collapse:\
+             collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}\
+             td:first-child,th:first-child{text-align:left}td+td{white-space:nowrap}.flag{color:#a33}\
+             </style>\n",
+        );
+        let _ = writeln!(h, "<h1>The city's trees</h1><p>{} trees.</p>", self.trees);
+        for f in &self.flags {
+            let _ = writeln!(h, "<p class=\"flag\">{}</p>", esc(f));
+        }
+        h.push_str(
+            "<h2>Composition, size and benefits by species</h2><table><tr><th>Species</th>\
+             <th>Trees</th><th>Share</th><th>Importance</th><th>Leaf area m²</th>\
+             <th>DBH classes, cm (&lt;7.6 … ≥106.7): relative age as i-Tree Streets shows it</th>\
+             <th>Estimated age (years: &lt;10 · 10–20 · 20–40 · 40–60 · ≥60)</th>\
+             <th>Mean age</th><th>At the data's oldest</th><th>Sylva $/yr (four categories; \
+             energy not computed)</th><th>i-Tree typical $/yr</th></tr>\n",
+        );
+        for s in &self.species {
+            let classes: Vec<String> = s.dbh_classes.iter().map(|n| n.to_string()).collect();
+            let ages: Vec<String> = s.age_classes.iter().map(|n| n.to_string()).collect();
+            let _ = writeln!(
+                h,
+                "<tr><td>{} <i>{}</i> ({})</td><td>{}</td><td>{:.1}%</td><td>{:.1}</td>\
+                 <td>{:.0}</td><td>{}</td><td>{}</td><td>{:.0}</td><td>{}</td><td>{}</td>\
+                 <td>{}</td></tr>",
+                esc(&s.common),
+                esc(&s.scientific),
+                esc(&s.code),
+                s.trees,
+                100.0 * s.share,
+                s.importance,
+                s.leaf_area_m2,
+                classes.join(" · "),
+                ages.join(" · "),
+                s.mean_age_years,
+                s.at_oldest_measured,
+                money(s.benefits_usd),
+                money(s.typical_total_usd)
+            );
+        }
+        h.push_str("</table>\n");
+        self.categories_html(&mut h);
+        shares_html(&mut h, "Genera", "Genus", &self.genera, true, &esc);
+        shares_html(&mut h, "Families", "Family", &self.families, false, &esc);
+        h.push_str(
+            "<h2>The city over the years</h2><table><tr><th>Years on</th><th>Trees</th>\
+             <th>Canopy m²</th><th>Leaf area m²</th><th>Sylva $/yr</th><th>i-Tree typical $/yr</th>\
+             <th>Expected standing</th><th>Sylva $/yr, expected</th></tr>\n",
+        );
+        for e in &self.epochs {
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.0}</td><td>${:.0}</td><td>${:.0}</td>\
+                 <td>{:.1}%</td><td>${:.0}</td></tr>",
+                e.years,
+                e.trees,
+                e.canopy_m2,
+                e.leaf_area_m2,
+                e.benefits_usd,
+                e.typical_total_usd,
+                100.0 * e.expected_alive_share,
+                e.expected_benefits_usd
+            );
+        }
+        h.push_str("</table>\n");
+        if let Some(c) = &self.published {
+            comparison_html(&mut h, c, &esc);
+        }
+        h.push_str("<h2>Models</h2><ul>\n");
+        for m in &self.models {
+            let _ = writeln!(h, "<li>{}</li>", esc(m));
+        }
+        h.push_str("</ul><h2>Not computed</h2><ul>\n");
+        for m in &self.not_computed {
+            let _ = writeln!(h, "<li>{}</li>", esc(m));
+        }
+        h.push_str("</ul>\n");
+        h
+    }
+}
+
+impl CityReport {
+    /// Benefits per tree at the first epoch by category, Sylva's own beside i-Tree's typical
+    /// position: every category present, a missing one said to be not computed.
+    fn categories_html(&self, h: &mut String) {
+        h.push_str(
+            "<h2>Benefits per tree by category</h2><table><tr><th>$ a tree a year</th>\
+             <th>Sylva (the grown crowns)</th><th>i-Tree typical position</th></tr>\n",
+        );
+        let money = |v: Option<f64>| {
+            v.map_or("not computed (an inventory has no façades)".into(), |v| {
+                format!("${v:.2}")
+            })
+        };
+        for (k, c) in CATEGORIES.iter().enumerate() {
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+                c.replace('_', " "),
+                money(self.own_per_tree_usd[k]),
+                money(self.typical_per_tree_usd[k])
+            );
+        }
+        let sum = |v: &[Option<f64>]| v.iter().flatten().sum::<f64>();
+        let _ = writeln!(
+            h,
+            "<tr><td>Sylva: the four computed; i-Tree: all five</td><td>${:.2}</td><td>${:.2}</td></tr></table>",
+            sum(&self.own_per_tree_usd),
+            sum(&self.typical_per_tree_usd)
+        );
+    }
+}
+
+/// A table of names (genera in italics) with their trees and share of the city's.
+fn shares_html(
+    h: &mut String,
+    title: &str,
+    heading: &str,
+    rows: &[(String, usize, f64)],
+    italic: bool,
+    esc: &dyn Fn(&str) -> String,
+) {
+    let _ = writeln!(
+        h,
+        "<h2>{title}</h2><table><tr><th>{heading}</th><th>Trees</th><th>Share</th></tr>"
+    );
+    for (name, n, share) in rows {
+        let name = if italic {
+            format!("<i>{}</i>", esc(name))
+        } else {
+            esc(name)
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{name}</td><td>{n}</td><td>{:.1}%</td></tr>",
+            100.0 * share
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+/// The section that sets this city's benefits per tree beside a published city's.
+fn comparison_html(h: &mut String, c: &Comparison, esc: &dyn Fn(&str) -> String) {
+    let p = &c.published;
+    let _ = writeln!(
+        h,
+        "<h2 id=\"published\">Benefits per tree beside {}'s</h2><p>This city at the first \
+         epoch (i-Tree Streets' typical position at each tree's DBH) beside {}'s {} trees as \
+         published: {}.</p><table><tr><th>$ a tree a year</th><th>This city</th><th>{} {}</th>\
+         <th>Ratio</th></tr>",
+        esc(&p.city),
+        esc(&p.city),
+        p.trees,
+        esc(p.source.trim_end_matches('.')),
+        esc(&p.city),
+        p.year
+    );
+    let money = |v: Option<f64>| v.map_or("not computed".to_string(), |v| format!("${v:.2}"));
+    for (category, ours, theirs) in &c.rows {
+        let ratio = match (ours, theirs) {
+            (Some(a), Some(b)) if *b > 0.0 => format!("{:.2}", a / b),
+            _ => "–".into(),
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{ratio}</td></tr>",
+            category.replace('_', " "),
+            money(*ours),
+            money(*theirs)
+        );
+    }
+    h.push_str("</table><p>Why they differ:</p><ul>\n");
+    for d in &c.differences {
+        let _ = writeln!(h, "<li>{}</li>", esc(d));
+    }
+    h.push_str("</ul>\n");
+}
