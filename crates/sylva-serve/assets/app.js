@@ -296,7 +296,7 @@ function drawNumbers() {
   const f = (v, d = 1) => (v == null ? '–' : Number(v).toFixed(d));
   const typical = state.basis === 'typical';
   const head = ['Species', 'Height m', 'DBH cm', 'Crown m', 'Leaf area m²', 'CO₂ stored kg',
-    'CO₂ taken up kg/yr', 'Rain held m³', 'Cooling kWh', 'Air quality $/yr', 'Net $/yr', 'Per tree planted $/yr', 'In the way'];
+    'CO₂ taken up kg/yr', 'Rain held m³', 'Cooling kWh', 'Air quality $/yr', 'Net $/yr', 'Planted $/yr', 'In the way'];
   const lines = state.chosen.map((code, i) => {
     const s = state.species.find((x) => x.code === code);
     const r = row(code);
@@ -322,7 +322,7 @@ function drawNumbers() {
       `<td>${f(flows[0])}</td><td>${f(flows[1], 2)}</td>` +
       `<td>${f(flows[2], 0)}</td><td>${f(st.value_usd.air_quality, 0)}</td>` +
       `<td>${f(st.net_usd, 0)}</td>` +
-      `<td>${f(st.planted_net_usd, 0)} <small>(${f(100 * st.alive_share, 0)}% alive)</small></td>` +
+      `<td>${f(st.planted_net_usd, 0)}<br><small>${f(100 * st.alive_share, 0)}% alive</small></td>` +
       `<td>${conflicts}</td></tr>`;
   });
   const basis = typical
@@ -330,7 +330,7 @@ function drawNumbers() {
     : 'Benefits of the grown tree on this site.';
   $('table').innerHTML = `<tr>${head.map((h) => `<th>${h}</th>`).join('')}</tr>${lines.join('')}` +
     `<tr><td colspan="13" class="note">Grown tree, with the measured equation in brackets. ${basis} ` +
-    'Net $/yr is a living tree\'s; per tree planted it is weighted by the share of the trees planted still standing ' +
+    'Net $/yr is a living tree\'s; planted $/yr is per tree planted, weighted by the share of the trees planted still standing ' +
     '(5% die a year while establishing, then fewer, to the tree guides\' share alive at 40 years).</td></tr>';
   const items = state.chosen.map((code, i) => {
     const s = state.species.find((x) => x.code === code);
