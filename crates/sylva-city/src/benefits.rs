@@ -2,7 +2,8 @@
 //! CO2 stored from its own DBH (Jenkins et al. 2003's biomass groups), CO2 taken up this year
 //! from the DBH its species' measured growth gives it a year earlier, rain held back by its
 //! crown (the grown tree of its class, its leaf and bark areas and crown projection scaled by
-//! the square of the tree's scale to it), and the region's built-in prices of the two. No
+//! the square of the tree's scale to it), air quality (i-Tree's uptake per m² of leaf on that
+//! leaf area) and aesthetics (its yearly leaf gain), at the region's built-in prices. No
 //! energy figures from the crown: an inventory has no façades. Beside them, the typical
 //! position's account (`sylva::street::typical`): i-Tree Streets' figures for the species at
 //! the tree's own inventory DBH, in its categories, at the region's prices, as i-Tree Streets
@@ -78,12 +79,12 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
     let rain = climate(&key.region)
         .and_then(|c| c.rain)
         .map(|r| interception_m3(&r, (leaf + bark) * s * s, projection * s * s));
-    let prices = Prices::builtin(&key.region);
+    let prices = Prices::builtin_shared(&key.region);
     let valued = |amount: Option<f64>, per: Option<f64>| amount.zip(per).map(|(a, b)| a * b);
-    let carbon = valued(sequestered, prices.as_ref().and_then(|p| p.co2_per_kg));
-    let water = valued(rain, prices.as_ref().and_then(|p| p.stormwater_per_m3));
+    let carbon = valued(sequestered, prices.and_then(|p| p.co2_per_kg));
+    let water = valued(rain, prices.and_then(|p| p.stormwater_per_m3));
     let f = |x: Option<f64>| x.map_or(NO_DATA, |v| v as f32);
-    let typical = Reference::of(m).ok().map(|r| r.at(dbh, prices.as_ref()));
+    let typical = Reference::of(m).ok().map(|r| r.at(dbh, prices));
     let sum = |a: Option<f64>, b: Option<f64>| match (a, b) {
         (None, None) => None,
         (a, b) => Some(a.unwrap_or(0.0) + b.unwrap_or(0.0)),
@@ -100,7 +101,7 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
     // measured yearly rise in leaf area, at the region's price per m².
     let gain = (m.leaf_area(age) > 0.0)
         .then(|| own_leaf * (1.0 - m.leaf_area(age - 1.0) / m.leaf_area(age)).max(0.0));
-    let aesthetics = valued(gain, prices.as_ref().and_then(|p| p.leaf_gain_per_m2));
+    let aesthetics = valued(gain, prices.and_then(|p| p.leaf_gain_per_m2));
     let own = [None, carbon, water, air, aesthetics];
     let money = own.iter().fold(None, |a, &v| sum(a, v));
     let typical_usd = typical.as_ref().map_or([NO_DATA; 5], |t| {

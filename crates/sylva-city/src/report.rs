@@ -299,6 +299,8 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         })
         .collect();
     let years0 = first.map_or(0, |e| e.years);
+    // Each region's survival, made once rather than for every tree.
+    let mut survivals: HashMap<&str, Survival> = HashMap::new();
     let epochs = plan
         .epochs
         .iter()
@@ -323,7 +325,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 row.benefits_usd += tree.benefits.unwrap_or(0.0);
                 row.typical_total_usd += tree.typical_total.unwrap_or(0.0);
                 let standing = planted.get(&t.row).map_or(1.0, |&(age, region)| {
-                    let s = Survival::builtin(region);
+                    let s = (survivals.entry(region)).or_insert_with(|| Survival::builtin(region));
                     s.alive_after(age + later) / s.alive_after(age)
                 });
                 row.expected_alive_share += standing;

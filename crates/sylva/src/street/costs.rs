@@ -161,15 +161,16 @@ const BUILTIN: &str = include_str!("../../data/street/costs.toml");
 impl Costs {
     /// The built-in costs, the same table for every region (see the module's notes).
     pub fn builtin(_region: &str) -> Option<Costs> {
+        Some(Costs::sized().clone())
+    }
+
+    /// The built-in sized table, parsed once.
+    pub fn sized() -> &'static Costs {
         static TABLE: std::sync::OnceLock<Costs> = std::sync::OnceLock::new();
-        Some(
-            TABLE
-                .get_or_init(|| {
-                    Costs::parse(BUILTIN, "data/street/costs.toml")
-                        .expect("the built-in cost table is checked by a test")
-                })
-                .clone(),
-        )
+        TABLE.get_or_init(|| {
+            Costs::parse(BUILTIN, "data/street/costs.toml")
+                .expect("the built-in cost table is checked by a test")
+        })
     }
 
     /// Modesto's programme average, half of it pruning.

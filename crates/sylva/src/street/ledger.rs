@@ -134,7 +134,9 @@ pub struct Assessor {
     reference: Option<Reference>,
     factors: Option<EmissionFactors>,
     last: Option<(f64, f64)>,
-    last_leaf: Option<(f64, f64)>,
+    /// The most leaf area the crown has held so far, m².
+    most_leaf: f64,
+    /// The age of the last account, years.
     last_age: Option<f64>,
     survival: Survival,
     cycles_charged: bool,
@@ -176,9 +178,8 @@ impl Assessor {
             _ => {}
         }
         match &costs {
-            None => missing.push(format!(
-                "costs: none are built in for {region} (give --costs costs.toml)"
-            )),
+            // Every region has the built-in sized table.
+            None => {}
             Some(Costs::Average(a)) => missing.push(format!(
                 "itemised costs: each year is charged {}: ${:.2} a tree, not sized by the tree",
                 a.source, a.per_tree_per_year
@@ -220,7 +221,7 @@ impl Assessor {
             factors: reference.as_ref().map(|r| EmissionFactors::of(r.region())),
             reference,
             last: None,
-            last_leaf: None,
+            most_leaf: 0.0,
             last_age: None,
             survival: Survival::builtin(region),
             cycles_charged: false,
@@ -356,13 +357,12 @@ impl Assessor {
         };
         // The leaf area gained over the most the crown has held: leaf regrown after a cut
         // only restores what it had, and is not a gain again (aesthetics price the gain).
-        let leaf_gain = match self.last_leaf {
-            Some((a, most)) if age > a => ((crown.leaf_area - most) / (age - a)).max(0.0),
+        let leaf_gain = match self.last_age {
+            Some(a) if age > a => ((crown.leaf_area - self.most_leaf) / (age - a)).max(0.0),
             // The first year of a run: the mean gain since planting.
             _ => crown.leaf_area / age.max(1.0),
         };
-        let most = self.last_leaf.map_or(0.0, |l| l.1).max(crown.leaf_area);
-        self.last_leaf = Some((age, most));
+        self.most_leaf = self.most_leaf.max(crown.leaf_area);
         // Energy saved on the façade, as i-Tree counts it: kWh, and kBtu of gas (negative).
         let saved = energy.map(|e| (e.electricity_kwh(), e.natural_gas_kbtu()));
         let avoided = saved

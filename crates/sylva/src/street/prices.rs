@@ -233,6 +233,21 @@ impl Prices {
         })
     }
 
+    /// [`Prices::builtin`], made once per region and shared: for callers that price many
+    /// trees (a city's inventory).
+    pub fn builtin_shared(region: &str) -> Option<&'static Prices> {
+        static ALL: std::sync::OnceLock<Vec<(&'static str, Prices)>> = std::sync::OnceLock::new();
+        ALL.get_or_init(|| {
+            (super::itree::regions().keys().copied())
+                .chain(["SacVal"])
+                .filter_map(|r| Some((r, Prices::builtin(r)?)))
+                .collect()
+        })
+        .iter()
+        .find(|(r, _)| *r == region)
+        .map(|(_, p)| p)
+    }
+
     /// Reads a prices file: every price, its source and year.
     pub fn load(path: &Path) -> Result<Prices, StreetError> {
         let file = path.display().to_string();

@@ -172,19 +172,13 @@ impl Pruner {
         &self.regime
     }
 
-    /// Price of one crew's visit to a tree of `dbh_cm`, $, and the table it comes from: the
-    /// run's itemised costs, else the built-in sized table.
-    pub fn visit_price(&self, dbh_cm: f64) -> (f64, String) {
-        let own = (self.costs.as_ref()).and_then(|c| Some((c.pruning_visit(dbh_cm)?, c)));
-        let builtin;
-        let (visit, table) = match own {
-            Some(found) => found,
-            None => {
-                builtin = Costs::builtin("").expect("a built-in table");
-                (builtin.pruning_visit(dbh_cm).expect("it prunes"), &builtin)
-            }
-        };
-        (visit.0, table.source().to_string())
+    /// Price of one crew's visit to a tree of `dbh_cm`, $: the run's itemised costs' price,
+    /// else the built-in sized table's.
+    pub fn visit_price(&self, dbh_cm: f64) -> f64 {
+        (self.costs.as_ref())
+            .and_then(|c| c.pruning_visit(dbh_cm))
+            .or_else(|| Costs::sized().pruning_visit(dbh_cm))
+            .map_or(0.0, |(price, _cycle)| price)
     }
 
     /// Grows `grower` on to `age` a year at a time, carrying out every cycle that falls due
@@ -280,7 +274,7 @@ impl Pruner {
         if city || trained {
             visits += 1;
         }
-        let price = self.visit_price(dbh).0;
+        let price = self.visit_price(dbh);
         let year = PruningYear {
             reasons,
             cuts,
@@ -336,7 +330,7 @@ mod tests {
         assert_eq!(year.visits, 1);
         // One line-clearance visit, priced by the tree's DBH, and the utility's to pay.
         let dbh = grower.targets(12.0).dbh;
-        assert!((year.cost - pruner.visit_price(dbh).0).abs() < 1e-9);
+        assert!((year.cost - pruner.visit_price(dbh)).abs() < 1e-9);
         assert!(
             (year.cost - 3.90 * dbh).abs() < 1e-9,
             "{} at {dbh} cm",
