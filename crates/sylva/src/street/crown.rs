@@ -37,6 +37,9 @@ const CELLS_ACROSS: f64 = 24.0;
 const MIN_CELL: f64 = 0.15;
 /// Most cells along one axis (a 150 m crown at 0.5 m); larger crowns take larger cells.
 const MAX_CELLS: usize = 300;
+/// Bits of fraction in a ray's fixed-point walk through the grid ([`Crown::optical_depth`]).
+const FIXED_BITS: u32 = 32;
+const FIXED_ONE: f64 = (1u64 << FIXED_BITS) as f64;
 /// Leaf projection coefficient for randomly (spherically) oriented leaves: the share of leaf
 /// area a beam sees per unit path (Ross 1981, "The Radiation Regime and Architecture of Plant
 /// Stands"; Monsi & Saeki 1953's Beer-Lambert law for canopies).
@@ -69,11 +72,14 @@ pub struct Crown {
     origin: DVec3,
     cell: f64,
     dims: [usize; 3],
-    /// Leaf area per cell volume, m²/m³.
-    density: Vec<f32>,
-    /// Wood silhouette (diameter x length) per cell volume, m²/m³, within the leaves' box;
-    /// empty unless [`Crown::with_wood`] added it.
-    wood: Vec<f32>,
+    /// Extinction coefficient of each cell in leaf, per m of path: `G` x leaf area per cell
+    /// volume (m²/m³), plus `G_WOOD` x wood silhouette per cell volume once
+    /// [`Crown::with_wood`] has added it. One array per season, summed as a ray crosses it,
+    /// because the rays through it are most of an account's time (`sylva bench --street`).
+    in_leaf: Vec<f32>,
+    /// Bare, wood only: `G_WOOD` x wood silhouette (diameter x length) per cell volume, within
+    /// the leaves' box; empty unless [`Crown::with_wood`] added it.
+    bare: Vec<f32>,
 }
 
 /// How much of a beam a crown stops over its outline seen along the beam.
@@ -116,8 +122,8 @@ impl Crown {
                 origin: DVec3::ZERO,
                 cell: CELL,
                 dims: [0; 3],
-                density: Vec::new(),
-                wood: Vec::new(),
+                in_leaf: Vec::new(),
+                bare: Vec::new(),
             };
         }
         let span = (hi - lo).as_dvec3();
@@ -129,12 +135,14 @@ impl Crown {
         let origin = lo.as_dvec3();
         let mut area = vec![0.0f64; dims[0] * dims[1] * dims[2]];
         let mut covered = vec![false; dims[0] * dims[1]];
+        // Axis by axis rather than `[0, 1, 2].map`, which was not inlined; and truncation
+        // rather than `floor` (a call into libm on baseline x86-64), the same for the
+        // non-negative offsets from the box's lowest leaf, and 0 for anything below it.
+        let index = |v: f32, k: usize| (((v as f64 - origin[k]) / cell) as usize).min(dims[k] - 1);
         for (c, a) in leaves {
-            let i = [0, 1, 2].map(|k| {
-                (((c[k] as f64 - origin[k]) / cell).floor().max(0.0) as usize).min(dims[k] - 1)
-            });
-            area[(i[2] * dims[1] + i[1]) * dims[0] + i[0]] += a;
-            covered[i[1] * dims[0] + i[0]] = true;
+            let (x, y, z) = (index(c.x, 0), index(c.y, 1), index(c.z, 2));
+            area[(z * dims[1] + y) * dims[0] + x] += a;
+            covered[y * dims[0] + x] = true;
         }
         let volume = cell * cell * cell;
         Crown {
@@ -144,18 +152,19 @@ impl Crown {
             origin,
             cell,
             dims,
-            density: area.iter().map(|a| (a / volume) as f32).collect(),
-            wood: Vec::new(),
+            in_leaf: area.iter().map(|a| (G * a / volume) as f32).collect(),
+            bare: Vec::new(),
         }
     }
 
     /// The crown with its wood as well: every stem segment's silhouette spread along it in
     /// steps of half a cell, inside the leaves' box (the trunk below the crown is not crown).
     pub fn with_wood(mut self, skeleton: &Skeleton) -> Crown {
-        if self.density.is_empty() {
+        if self.in_leaf.is_empty() {
             return self;
         }
-        let mut wood = vec![0.0f64; self.density.len()];
+        let mut wood = vec![0.0f64; self.in_leaf.len()];
+        let inv = 1.0 / self.cell;
         let size = DVec3::new(
             self.dims[0] as f64,
             self.dims[1] as f64,
@@ -168,18 +177,21 @@ impl Crown {
                 let len = a.distance(b);
                 let silhouette = (w[0].radius + w[1].radius) as f64 * len;
                 let n = (len / (self.cell * 0.5)).ceil().max(1.0);
+                let share = silhouette / n;
                 for j in 0..n as usize {
                     let p = a.lerp(b, (j as f64 + 0.5) / n) - self.origin;
-                    if (0..3).any(|k| p[k] < 0.0 || p[k] >= size[k]) {
+                    if p.cmplt(DVec3::ZERO).any() || p.cmpge(size).any() {
                         continue;
                     }
-                    let i = [0, 1, 2].map(|k| ((p[k] / self.cell) as usize).min(self.dims[k] - 1));
-                    wood[(i[2] * self.dims[1] + i[1]) * self.dims[0] + i[0]] += silhouette / n;
+                    wood[self.cell_of(p * inv)] += share;
                 }
             }
         }
         let volume = self.cell * self.cell * self.cell;
-        self.wood = wood.iter().map(|a| (a / volume) as f32).collect();
+        self.bare = wood.iter().map(|a| (G_WOOD * a / volume) as f32).collect();
+        for (k, b) in self.in_leaf.iter_mut().zip(&self.bare) {
+            *k += b;
+        }
         self
     }
 
@@ -190,13 +202,27 @@ impl Crown {
         let Some((t0, n, step)) = self.span(from, dir) else {
             return 0.0;
         };
-        let (mut leaf, mut wood) = (0.0f64, 0.0f64);
-        for j in 0..n {
-            let c = self.cell_at(from + dir * (t0 + (j as f64 + 0.5) * step));
-            leaf += self.density[c] as f64;
-            wood += self.wood.get(c).copied().unwrap_or(0.0) as f64;
+        let grid = if leaves { &self.in_leaf } else { &self.bare };
+        if grid.is_empty() {
+            return 0.0;
         }
-        (if leaves { G * leaf } else { 0.0 } + G_WOOD * wood) * step
+        // The walk in cell units, in fixed point (32 bits of fraction): each step adds the
+        // stride and a shift gives the cell, with no float-to-integer conversion in the loop.
+        // The first point is the first step's middle.
+        let inv = 1.0 / self.cell;
+        let start = (from + dir * (t0 + 0.5 * step) - self.origin) * inv;
+        let stride = dir * (step * inv);
+        let fixed = |v: DVec3| v.to_array().map(|c| (c * FIXED_ONE) as i64);
+        let (mut at, by) = (fixed(start), fixed(stride));
+        let top = self.dims.map(|d| d as i64 - 1);
+        let [nx, ny, _] = self.dims;
+        let mut sum = 0.0f64;
+        for _ in 0..n {
+            let cell = |k: usize| (at[k] >> FIXED_BITS).clamp(0, top[k]) as usize;
+            sum += grid[(cell(2) * ny + cell(1)) * nx + cell(0)] as f64;
+            at = [at[0] + by[0], at[1] + by[1], at[2] + by[2]];
+        }
+        sum * step
     }
 
     /// The share of a parallel beam along unit `dir` that the crown stops over its outline:
@@ -205,7 +231,7 @@ impl Crown {
     /// outline is measured between its outermost drawn pixels. `leaves: false` is the crown in
     /// winter, wood only ([`Crown::with_wood`]).
     pub fn beam(&self, dir: DVec3, leaves: bool) -> BeamStop {
-        if self.density.is_empty() {
+        if self.in_leaf.is_empty() {
             return BeamStop::default();
         }
         let dir = dir.normalize();
@@ -254,7 +280,7 @@ impl Crown {
     /// The part of the ray from `from` along unit `dir` inside the grid's box: where it enters,
     /// how many steps of at most 0.75 cell, and their length; `None` if it misses.
     fn span(&self, from: DVec3, dir: DVec3) -> Option<(f64, usize, f64)> {
-        if self.density.is_empty() {
+        if self.in_leaf.is_empty() {
             return None;
         }
         let size = DVec3::new(
@@ -282,11 +308,11 @@ impl Crown {
         Some((t0, n as usize, (t1 - t0) / n))
     }
 
-    /// The grid cell holding point `p` (clamped to the grid).
-    fn cell_at(&self, p: DVec3) -> usize {
-        let p = p - self.origin;
-        let i = [0, 1, 2].map(|k| ((p[k] / self.cell).max(0.0) as usize).min(self.dims[k] - 1));
-        (i[2] * self.dims[1] + i[1]) * self.dims[0] + i[0]
+    /// The grid cell at `q` in cell units from the grid's origin (clamped to the grid).
+    fn cell_of(&self, q: DVec3) -> usize {
+        let index = |v: f64, dim: usize| (v.max(0.0) as usize).min(dim - 1);
+        let [nx, ny, nz] = self.dims;
+        (index(q.z, nz) * ny + index(q.y, ny)) * nx + index(q.x, nx)
     }
 
     /// Share of a beam from `from` along unit `dir` that passes the crown in leaf
@@ -304,7 +330,7 @@ impl Crown {
 
     /// Whether the crown's wood is on its grid ([`Crown::with_wood`]).
     pub fn has_wood(&self) -> bool {
-        !self.wood.is_empty()
+        !self.bare.is_empty()
     }
 }
 
