@@ -18,8 +18,8 @@
 //!
 //! The median price is each region's from `data/street/home-prices.csv`: the guides' own
 //! figures were not reachable, so the most local published figure stands in (the reference
-//! city's, else its state's or Census region's Census 2000 median value), and the prices'
-//! source says which.
+//! city's or its county's sale price, else its state's or Census region's Census 2000 median
+//! value), and the prices' source says which.
 
 use std::sync::OnceLock;
 
@@ -41,7 +41,7 @@ pub struct HomePrice {
     pub price: f64,
     /// The year of the figure.
     pub year: u32,
-    /// How local it is: `city`, `state` or `census-region`.
+    /// How local it is: `city`, `county`, `state` or `census-region`.
     pub basis: String,
 }
 
@@ -70,6 +70,7 @@ impl HomePrice {
             self.year,
             match self.basis.as_str() {
                 "city" => "",
+                "county" => ", the reference city's county",
                 _ => ", nearest published figure to the reference city",
             },
             STREET_LOCATION_FACTOR,
@@ -108,11 +109,14 @@ mod tests {
         for region in regions().keys().copied().chain(["SacVal"]) {
             let h = home_price(region).unwrap_or_else(|| panic!("{region}"));
             assert!(h.price > 50_000.0 && h.price < 1e6, "{h:?}");
-            assert!(["city", "state", "census-region"].contains(&h.basis.as_str()));
+            assert!(["city", "county", "state", "census-region"].contains(&h.basis.as_str()));
         }
         // McPherson 2007's worked example: Fort Collins, $212,000, about $2.76 a m².
         let fc = home_price("NMtnPr").unwrap();
         assert!((price_per_m2(fc.price, 1.0) - 2.764).abs() < 1e-3);
         assert!(home_price("Modesto").is_none());
+        // Modesto's county's own sale price, not California's Census value.
+        let modesto = home_price("InlVal").unwrap();
+        assert_eq!((modesto.price, modesto.basis.as_str()), (140_000.0, "county"));
     }
 }

@@ -392,9 +392,9 @@ mod tests {
         assert_eq!(p.electricity_per_kwh, Some(0.1166));
         // 12.79 $/lb of NOx (Modesto's guide) is 28.20 $/kg.
         assert!((p.nox_per_kg.unwrap() - 28.197).abs() < 1e-2);
-        // 0.88% of California's $211,500 over 675 m².
-        assert!((p.leaf_gain_per_m2.unwrap() - 2.7573).abs() < 1e-3);
-        assert!(p.source.contains("211500") && p.source.contains("McPherson 2007"));
+        // 0.88% of Stanislaus County's $140,000 over 675 m².
+        assert!((p.leaf_gain_per_m2.unwrap() - 1.8252).abs() < 1e-3);
+        assert!(p.source.contains("140000") && p.source.contains("McPherson 2007"));
         let sacramento = Prices::builtin("SacVal").unwrap();
         assert_eq!(sacramento.electricity_per_kwh, Some(0.1166));
         assert!(

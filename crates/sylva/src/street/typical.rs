@@ -316,10 +316,10 @@ mod tests {
         assert!((heating + 46.2 * 0.0125278).abs() < 1e-9, "{heating}");
         assert!(t.money.total() > 30.0, "{:?}", t.money);
         assert!(!t.held);
-        // Aesthetics: the leaf gain priced per m² from California's median home value.
+        // Aesthetics: the leaf gain priced per m² from Stanislaus County's median sale price.
         assert!((t.amounts.leaf_gain_m2 - 11.6).abs() < 1e-9);
         let aesthetics = t.money.aesthetics.unwrap();
-        assert!((aesthetics - 11.6 * 0.0088 * 211_500.0 / 675.0).abs() < 1e-9);
+        assert!((aesthetics - 11.6 * 0.0088 * 140_000.0 / 675.0).abs() < 1e-9);
     }
 
     /// i-Tree's `property_value` table, which Streets prices aesthetics from, is the yearly
