@@ -142,12 +142,10 @@ pub fn compare(published: Published, typical_per_tree: [Option<f64>; 5]) -> Comp
             published.city, published.trees, published.year
         ),
         format!(
-            "aesthetics: the yearly leaf-area gain priced by i-Tree Streets' method; {}; {}'s \
-             own median sale price was not reachable, and the published category also holds \
-             'other' benefits",
+            "aesthetics: the yearly leaf-area gain priced by i-Tree Streets' method; {}; the \
+             published category also holds 'other' benefits",
             sylva::street::aesthetics::home_price(&published.region)
                 .map_or("no home price".into(), |h| h.describe()),
-            published.city
         ),
         "energy: i-Tree Streets prices each tree at its species' usual distances and directions \
          from buildings (typical position); the published figure was modelled for the city's \

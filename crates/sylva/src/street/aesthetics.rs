@@ -117,6 +117,9 @@ mod tests {
         assert!(home_price("Modesto").is_none());
         // Modesto's county's own sale price, not California's Census value.
         let modesto = home_price("InlVal").unwrap();
-        assert_eq!((modesto.price, modesto.basis.as_str()), (140_000.0, "county"));
+        assert_eq!(
+            (modesto.price, modesto.basis.as_str()),
+            (140_000.0, "county")
+        );
     }
 }
