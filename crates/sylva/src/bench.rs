@@ -433,3 +433,42 @@ pub fn pruning_times(
     }
     Ok((pruned, grown))
 }
+
+/// The species whose branching `sylva bench --twigs` measures: the Modesto seven (region
+/// InlVal, the seeds' data) and three of NoEast, the red maple and red oak of the published
+/// twig counts ("Tree branches as populations of twigs": red maple and scarlet oak) and the
+/// sugar maple of the published bifurcation ratios (Steingraeber et al. 1979).
+pub const TWIG_SPECIES: [(&str, &str); 10] = [
+    ("InlVal", "PLAC"),
+    ("InlVal", "ACSA1"),
+    ("InlVal", "FRVE_G"),
+    ("InlVal", "KOPA"),
+    ("InlVal", "MAGR"),
+    ("InlVal", "PICH"),
+    ("InlVal", "CESI4"),
+    ("NoEast", "ACRU"),
+    ("NoEast", "QURU"),
+    ("NoEast", "ACSA2"),
+];
+
+/// Grows `code` of `region` (seed 0, no site) and measures its branching at each of `ages`
+/// (ages past the data's last are left out).
+pub fn branching_at(
+    region: &str,
+    code: &str,
+    ages: &[f64],
+) -> Result<Vec<(f64, crate::growth::twigs::Branching)>, GrowthError> {
+    let measured = Database::builtin().find(region, code)?;
+    let last = measured.ages.1;
+    let mut grower = Grower::new(measured, GrowthOptions::default());
+    let dt = 1.0 / GrowthOptions::default().steps_per_year as f64;
+    let mut out = Vec::new();
+    for &age in ages.iter().filter(|&&a| a <= last) {
+        while grower.age() < age - 1e-9 {
+            grower.step_once(dt);
+        }
+        let skeleton = grower.skeleton();
+        out.push((age, crate::growth::twigs::measure_branching(&skeleton)));
+    }
+    Ok(out)
+}

@@ -492,6 +492,11 @@ pub struct BenchArgs {
     /// growth.
     #[arg(long)]
     pub street: bool,
+    /// Also measure how the crowns branch (twig lengths, Horton-Strahler orders and
+    /// bifurcation ratio) of the Modesto seven and three NoEast species at 10, 20 and 30
+    /// years, beside the published figures.
+    #[arg(long)]
+    pub twigs: bool,
 
     /// Also grow this many unique trees of the appendix species in parallel (stored for
     /// range, then released) and report trees per second.

@@ -92,6 +92,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.street {
         growth::bench_street()?;
     }
+    if args.twigs {
+        growth::bench_twigs()?;
+    }
     if let Some(n) = args.city {
         city::bench_city(n)?;
     }

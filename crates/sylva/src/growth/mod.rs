@@ -16,6 +16,7 @@ mod palm_ages;
 pub mod report;
 pub mod season;
 pub mod sweep;
+pub mod twigs;
 
 pub use database::{DBH_CLASS_EDGES_CM, Database, Quantity, Region, SpeciesEntry};
 pub use equations::{Equation, Form};
