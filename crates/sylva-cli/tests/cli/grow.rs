@@ -42,7 +42,9 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 4, "{csv}");
     assert!(lines[0].starts_with("age,height_model_m,height_measured_m"));
-    assert!(lines[0].contains("pipe_exponent,live_branches,shed_branches,co2_stored_kg"));
+    assert!(
+        lines[0].contains("pipe_exponent,live_branches,shed_branches,live_segments,co2_stored_kg")
+    );
     assert!(lines[0].contains(",net_usd,typical_net_usd,alive_share,died_share,planted_net_usd,"));
     assert!(lines[0].contains(",typical_planted_net_usd,conflicts,pruning,"));
     assert!(lines[0].ends_with(",pruning_resolved,pruning_unresolved"));

@@ -92,6 +92,7 @@ pub fn record_json(m: &Measured, r: &AgeRecord) -> serde_json::Value {
         "pipe_exponent": f.pipe_exponent.map(|n| round(n, 1e2)),
         "live_branches": r.branches.0,
         "shed_branches": r.branches.1,
+        "live_segments": r.segments,
     })
 }
 
@@ -108,6 +109,9 @@ pub struct AgeRecord {
     pub form: FormMeasures,
     /// Branches alive, and shed since the tree was planted.
     pub branches: (usize, usize),
+    /// Segments of the live branches (issue W sets a cut tree's per m² of leaf beside its
+    /// uncut twin's).
+    pub segments: usize,
 }
 
 /// Street trees of several species grown through the same ages from one seed.
@@ -155,6 +159,7 @@ impl Cohort {
                 measured: g.targets(age),
                 form: measure_form(&skeleton, base, model.height, model.crown_diameter),
                 branches: g.branch_counts(),
+                segments: g.segment_count(),
             });
             skeletons.push(skeleton);
         }
@@ -207,7 +212,7 @@ pub fn csv(history: &[AgeRecord]) -> String {
         "age,height_model_m,height_measured_m,crown_height_model_m,crown_height_measured_m,\
          crown_diameter_model_m,crown_diameter_measured_m,dbh_model_cm,dbh_measured_cm,\
          leaf_area_model_m2,leaf_area_measured_m2,inner_leaf_share,leaders,\
-         scaffold_angle_deg,pipe_exponent,live_branches,shed_branches\n",
+         scaffold_angle_deg,pipe_exponent,live_branches,shed_branches,live_segments\n",
     );
     let cell = |v: Option<f64>, digits: usize| v.map_or(String::new(), |v| format!("{v:.digits$}"));
     for g in history {
@@ -215,7 +220,7 @@ pub fn csv(history: &[AgeRecord]) -> String {
         // Writing into a String cannot fail.
         let _ = writeln!(
             s,
-            "{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.2},{:.2},{:.1},{:.1},{:.3},{},{},{},{},{}",
+            "{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.2},{:.2},{:.1},{:.1},{:.3},{},{},{},{},{},{}",
             g.age,
             m.height,
             t.height,
@@ -232,7 +237,8 @@ pub fn csv(history: &[AgeRecord]) -> String {
             cell(f.scaffold_angle, 1),
             cell(f.pipe_exponent, 2),
             g.branches.0,
-            g.branches.1
+            g.branches.1,
+            g.segments
         );
     }
     s
@@ -331,10 +337,14 @@ mod tests {
         let text = csv(&cohort.history[0]);
         let mut rows = csv::Reader::from_reader(text.as_bytes());
         let header = rows.headers().unwrap().clone();
-        assert_eq!(header.len(), 17);
+        assert_eq!(header.len(), 18);
         let row = rows.records().next().unwrap().unwrap();
-        assert_eq!(row.len(), 17);
+        assert_eq!(row.len(), 18);
         let live: usize = row[15].parse().unwrap();
         assert_eq!(live, r.branches.0);
+        // Every live branch has at least one segment.
+        assert_eq!(&header[17], "live_segments");
+        let segments: usize = row[17].parse().unwrap();
+        assert!(segments == r.segments && segments >= live, "{r:?}");
     }
 }

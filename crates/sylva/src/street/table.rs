@@ -367,7 +367,7 @@ mod tests {
         let text = join_csv(&csv(&cohort.history[0]), &accounts);
         let mut reader = csv::Reader::from_reader(text.as_bytes());
         let header = reader.headers().unwrap().clone();
-        assert_eq!(header.len(), 17 + COLUMNS.len());
+        assert_eq!(header.len(), 18 + COLUMNS.len());
         let rows: Vec<_> = reader.records().map(|r| r.unwrap()).collect();
         assert_eq!(rows.len(), 2);
         let col = |name: &str| header.iter().position(|h| h == name).unwrap();
