@@ -86,7 +86,6 @@ pub fn bench_street() -> Result<()> {
 
 /// How the grown crowns branch, beside the published twig and bifurcation figures (issue W).
 pub fn bench_twigs() -> Result<()> {
-    use sylva::growth::twigs::TWIG_CLASSES_CM;
     println!();
     println!(
         "branching at 10, 20 and 30 years (seed 0, no site): twigs (each axis beyond its last \
@@ -99,12 +98,6 @@ pub fn bench_twigs() -> Result<()> {
     );
     for (region, code) in sylva::bench::TWIG_SPECIES {
         for (age, b) in sylva::bench::branching_at(region, code, &[10.0, 20.0, 30.0])? {
-            let long: usize = (TWIG_CLASSES_CM.iter().zip(&b.twig_classes))
-                .filter(|(edge, _)| **edge > 10.0)
-                .map(|(_, n)| n)
-                .sum::<usize>()
-                + b.twig_classes[TWIG_CLASSES_CM.len()];
-            let share = |n: usize| n as f64 / b.twigs.max(1) as f64;
             println!(
                 "{:<14} {:>4} {:>7} {:>9.1} {:>6.2} {:>6.2} {:>6}  {:?}",
                 format!("{region} {code}"),
@@ -112,7 +105,7 @@ pub fn bench_twigs() -> Result<()> {
                 b.twigs,
                 b.median_twig_cm.unwrap_or(f64::NAN),
                 b.share_under(4.0),
-                share(long),
+                b.share_from(10.0),
                 b.bifurcation_ratio
                     .map_or("-".into(), |r| format!("{r:.2}")),
                 b.streams

@@ -49,6 +49,14 @@ impl Branching {
             .sum();
         n as f64 / self.twigs as f64
     }
+
+    /// Share of the twigs `cm` long or longer (a class edge of [`TWIG_CLASSES_CM`]).
+    pub fn share_from(&self, cm: f64) -> f64 {
+        if self.twigs == 0 {
+            return 0.0;
+        }
+        1.0 - self.share_under(cm)
+    }
 }
 
 /// Measures a skeleton's twigs and Strahler orders.
@@ -195,6 +203,7 @@ mod tests {
         assert_eq!(b.twig_classes[7], 2, "{b:?}");
         assert_eq!(b.twig_classes[8], 1, "{b:?}");
         assert!((b.share_under(4.0) - 4.0 / 7.0).abs() < 1e-12);
+        assert!((b.share_from(10.0) - 3.0 / 7.0).abs() < 1e-12);
         assert!((b.median_twig_cm.unwrap() - 3.0).abs() < 1e-4);
     }
 
