@@ -235,6 +235,10 @@ pub struct Skeleton {
     pub sections: Vec<CrossSection>,
     /// Leaves in creation order.
     pub leaves: Vec<Leaf>,
+    /// How many of the last stems are short twigs (a grown tree's, `growth`): a crown in leaf
+    /// hides each under its own leaves, so they are meshed only where the skeleton has no
+    /// leaves (a bare crown), though they are always there to be measured and to cast shade.
+    pub short_twigs: u32,
 }
 
 /// Counts and sizes of a skeleton.
@@ -251,6 +255,23 @@ pub struct SkeletonStats {
 }
 
 impl Skeleton {
+    /// The stems of the crown's frame: all but the short twigs (measures of a crown's form
+    /// and size read these).
+    pub fn frame_stems(&self) -> &[Stem] {
+        let twigs = (self.short_twigs as usize).min(self.stems.len());
+        &self.stems[..self.stems.len() - twigs]
+    }
+
+    /// The stems a mesh draws: all of them on a bare crown, all but the short twigs under a
+    /// crown's leaves.
+    pub fn meshed_stems(&self) -> &[Stem] {
+        if self.leaves.is_empty() {
+            &self.stems
+        } else {
+            self.frame_stems()
+        }
+    }
+
     /// Multiplies every length (positions, radii, stem lengths and offsets, leaf sizes) by
     /// `s`: the same tree at another size.
     pub fn scale(&mut self, s: f32) {

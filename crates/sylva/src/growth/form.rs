@@ -27,13 +27,26 @@ pub struct FormMeasures {
 
 /// Measures the form of a skeleton whose first stem is the trunk, standing at the origin, with
 /// its crown from `crown_base` to `top` metres and `crown_diameter` metres across (as
-/// [`super::measure()`] finds them).
+/// [`super::measure()`] finds them). The form is the crown's frame: a grown tree's short twigs
+/// (its [`Skeleton::short_twigs`]) are no leaders, scaffolds or forks of the pipe model.
 pub fn measure_form(
     skeleton: &Skeleton,
     crown_base: f64,
     top: f64,
     crown_diameter: f64,
 ) -> FormMeasures {
+    let frame;
+    let skeleton = if skeleton.short_twigs == 0 {
+        skeleton
+    } else {
+        frame = Skeleton {
+            stems: skeleton.frame_stems().to_vec(),
+            sections: skeleton.sections.clone(),
+            leaves: skeleton.leaves.clone(),
+            short_twigs: 0,
+        };
+        &frame
+    };
     FormMeasures {
         inner_leaf_share: inner_leaf_share(skeleton, crown_diameter as f32 / 2.0),
         leaders: leaders(skeleton, crown_base as f32, top as f32),

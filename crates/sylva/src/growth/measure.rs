@@ -34,12 +34,13 @@ impl Dimensions {
     }
 }
 
-/// Measures a skeleton whose first stem is the trunk, standing at the origin.
+/// Measures a skeleton whose first stem is the trunk, standing at the origin: its crown's
+/// frame and leaves (a grown tree's short twigs lie within them, under its leaves).
 pub fn measure(skeleton: &Skeleton) -> Dimensions {
     let mut top = f32::NEG_INFINITY;
     let mut bottom = f32::INFINITY;
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for stem in &skeleton.stems {
+    for stem in skeleton.frame_stems() {
         let crown = stem.level > 0;
         for c in &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize] {
             top = top.max(c.position.z);

@@ -269,6 +269,7 @@ pub fn dressed_skeleton(skeleton: &Skeleton, state: LeafState) -> Cow<'_, Skelet
             stems: skeleton.stems.clone(),
             sections: skeleton.sections.clone(),
             leaves,
+            short_twigs: skeleton.short_twigs,
         })
     };
     match state {
@@ -440,8 +441,17 @@ mod tests {
         assert!(summer.leaves.triangle_count() > 1000);
         assert_eq!(winter.leaves.triangle_count(), 0);
         assert!(winter.flowers.indices.is_empty());
-        // The bark is the same wood, with its bands of lenticels as shades on every vertex.
-        assert_eq!(winter.bark, summer.bark);
+        // The bark is the same wood, with its bands of lenticels as shades on every vertex,
+        // and the short twigs the leaves hid after it.
+        assert!(skeleton.short_twigs > 100, "{}", skeleton.short_twigs);
+        let n = summer.bark.vertex_count();
+        assert!(winter.bark.vertex_count() > n);
+        assert_eq!(winter.bark.positions[..n], summer.bark.positions[..]);
+        assert_eq!(winter.bark.shades[..n], summer.bark.shades[..]);
+        assert_eq!(
+            winter.bark.indices[..summer.bark.indices.len()],
+            summer.bark.indices[..]
+        );
         assert_eq!(winter.bark.shades.len(), winter.bark.vertex_count());
         assert!(winter.bark.shades.iter().any(|&s| s < 0.6));
         // Kwanzan cherry flowers in April, among unfolding leaves 0.6 of their size.

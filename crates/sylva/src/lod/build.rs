@@ -20,9 +20,7 @@ struct Ring {
 /// Stores `skeleton` for range rendering, its rings as `options` meshes them.
 pub(super) fn build(skeleton: &Skeleton, options: &MeshOptions) -> LodTree {
     let stems = || {
-        skeleton
-            .stems
-            .iter()
+        (skeleton.meshed_stems().iter())
             .map(|s| &skeleton.sections[s.sections.start as usize..s.sections.end as usize])
             .filter(|sections| sections.len() >= 2)
     };
@@ -43,7 +41,7 @@ pub(super) fn build(skeleton: &Skeleton, options: &MeshOptions) -> LodTree {
     // Runs in the order their first item was made, items in creation order within a run.
     let mut runs: Vec<(Ring, Vec<super::packed::Segment>)> = Vec::new();
     let mut sums = [(0.0f64, 0.0f64, 0usize); 3];
-    for stem in &skeleton.stems {
+    for stem in skeleton.meshed_stems() {
         let sections = &skeleton.sections[stem.sections.start as usize..stem.sections.end as usize];
         if sections.len() < 2 {
             continue;

@@ -36,7 +36,7 @@ fn circle(n: usize, out: &mut Vec<(f32, f32)>) {
 
 /// Vertices and indices that [`mesh_stems`] will write.
 pub(super) fn count(skeleton: &Skeleton, options: &MeshOptions) -> (usize, usize) {
-    skeleton.stems.iter().fold((0, 0), |(v, i), stem| {
+    skeleton.meshed_stems().iter().fold((0, 0), |(v, i), stem| {
         let (sv, si) = stem_size(skeleton, stem, options);
         (v + sv, i + si)
     })
@@ -136,7 +136,7 @@ fn tip_is_point(sections: &[CrossSection]) -> bool {
 
 pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) {
     if !mesh_stems_apart(skeleton, options, mesh) {
-        mesh_run(skeleton, &skeleton.stems, options, mesh);
+        mesh_run(skeleton, skeleton.meshed_stems(), options, mesh);
     }
 }
 
@@ -150,11 +150,12 @@ fn mesh_stems_apart(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh)
     }
     let mut runs: Vec<(&[Stem], (usize, usize))> = Vec::new();
     let (mut start, mut size, mut total) = (0, (0, 0), 0);
-    for (k, stem) in skeleton.stems.iter().enumerate() {
+    let stems = skeleton.meshed_stems();
+    for (k, stem) in stems.iter().enumerate() {
         let (v, i) = stem_size(skeleton, stem, options);
         size = (size.0 + v, size.1 + i);
-        if size.0 >= RUN_VERTICES || k + 1 == skeleton.stems.len() {
-            runs.push((&skeleton.stems[start..=k], size));
+        if size.0 >= RUN_VERTICES || k + 1 == stems.len() {
+            runs.push((&stems[start..=k], size));
             total += size.0;
             (start, size) = (k + 1, (0, 0));
         }
@@ -359,6 +360,7 @@ mod tests {
             }],
             sections: vec![sec(0.0, 0.5), sec(1.0, 0.25), sec(2.0, 0.0)],
             leaves: vec![],
+            short_twigs: 0,
         }
     }
 

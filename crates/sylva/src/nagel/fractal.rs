@@ -347,6 +347,7 @@ impl Fractal {
             stems: Vec::with_capacity(n),
             sections: Vec::with_capacity(2 * n),
             leaves: Vec::new(),
+            short_twigs: 0,
         };
         self.stream(&mut |s: &FractalSegment| {
             let axis = s.end - s.start;

@@ -301,6 +301,16 @@ pub fn conflicts(skeleton: &Skeleton, site: &Site) -> Vec<Conflict> {
     conflicts_with(skeleton, &leaves_of(skeleton), site)
 }
 
+/// Leaf area outside every zone the site keeps clear, m², of the leaves listed by
+/// [`leaves_of`]: what a cut tree can keep, set beside its uncut twin's (issue W).
+pub fn leaf_outside_zones(leaves: &[(Vec3, f64)], site: &Site) -> f64 {
+    let zones = Zones::new(site);
+    (leaves.iter())
+        .filter(|(at, _)| zones.kind_of(*at, None).is_none())
+        .map(|(_, area)| area)
+        .sum()
+}
+
 /// [`conflicts`] with the leaves already listed by [`leaves_of`].
 pub fn conflicts_with(skeleton: &Skeleton, leaves: &[(Vec3, f64)], site: &Site) -> Vec<Conflict> {
     let zones = Zones::new(site);

@@ -18,7 +18,7 @@ use super::StreetError;
 use super::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
 use super::climate::{Climate, climate, interception_m3};
 use super::climate_effect::climate_effect;
-use super::conflicts::{Conflict, conflicts_with};
+use super::conflicts::{Conflict, conflicts_with, leaf_outside_zones};
 use super::costs::{Costs, YearCosts};
 use super::crown::{Crown, leaves_of};
 use super::money::{Basis, Money};
@@ -64,6 +64,8 @@ pub struct YearAccount {
     pub costs: Option<YearCosts>,
     /// Conflicts with the site this year (after this year's pruning, where there was one).
     pub conflicts: Vec<Conflict>,
+    /// Leaf area outside every zone the site keeps clear, m² (none without a site).
+    pub leaf_outside_zones_m2: Option<f64>,
     /// This year's pruning, where a cycle fell due and the tree was grown with the site's
     /// regime ([`super::pruner`]).
     pub pruning: Option<super::pruner::PruningYear>,
@@ -314,12 +316,14 @@ impl Assessor {
                 (crown, energy)
             },
             || {
-                self.site
-                    .as_ref()
+                let conflicts = (self.site.as_ref())
                     .map(|s| conflicts_with(skeleton, &leaves, s))
-                    .unwrap_or_default()
+                    .unwrap_or_default();
+                let outside = (self.site.as_ref()).map(|s| leaf_outside_zones(&leaves, s));
+                (conflicts, outside)
             },
         );
+        let (conflicts, leaf_outside_zones_m2) = conflicts;
         let dbh = dims.dbh;
         let stored = self.group.map(|g| co2_stored_kg(g, dbh));
         let sequestered = stored.map(|now| {
@@ -434,6 +438,7 @@ impl Assessor {
             }),
             pruning: None,
             conflicts,
+            leaf_outside_zones_m2,
             cohort,
         }
     }

@@ -26,6 +26,14 @@ use crate::growth::{CutKind, CutMark, Cuts, Grower};
 /// its leaves to one raising.
 pub const RAISED_SHARE: f64 = 0.4;
 
+/// Most of the foliage the city's routine pruning (crown raising, building clearance,
+/// training) takes at one visit: ANSI A300-1995, 5.3.1, "not more than one-fourth of the
+/// foliage" of a mature tree in a growing season (read in a transcription of the standard;
+/// later editions leave the dose to the specification). Line clearance is the utility's and
+/// takes what the clearance needs, however much that is; what the dose leaves in a zone is
+/// cut at the next visits ([`Cuts::deferred`]).
+pub const ROUTINE_DOSE: f64 = 0.25;
+
 /// Why the street cut a tree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Reason {
@@ -256,18 +264,35 @@ impl Pruner {
         let street = &mut site.street;
         street.roadway_clearance = street.roadway_clearance.min(RAISED_SHARE * top);
         street.sidewalk_clearance = street.sidewalk_clearance.min(RAISED_SHARE * top);
-        let zones = Zones::new(&site).only(|k| Reason::of(k).is_some_and(|r| reasons.contains(&r)));
-        let mut cuts = grower.cut(&|p, order| zones.kind_of(p, Some(order)).is_some());
-        let cleared = !cuts.marks.is_empty();
+        // The utility's crew clears its lines of whatever the clearance needs; the city's
+        // crew then raises the crown, clears the building and trains the young tree, taking
+        // no more than a quarter of the foliage it finds.
+        let due = |line: bool| {
+            Zones::new(&site).only(|k| {
+                Reason::of(k).is_some_and(|r| reasons.contains(&r) && (r == Reason::Line) == line)
+            })
+        };
+        let line_zones = due(true);
+        let mut cuts = grower.cut(&|p, order| line_zones.kind_of(p, Some(order)).is_some());
+        let line =
+            before.iter().any(|&k| Reason::of(k) == Some(Reason::Line)) && !cuts.marks.is_empty();
+        let city_zones = due(false);
+        let most = ROUTINE_DOSE * grower.leaf_carried() as f64;
+        let city_cuts = grower.cut_within(
+            &|p, order| city_zones.kind_of(p, Some(order)).is_some(),
+            most,
+        );
+        let city = before.iter().any(|&k| Reason::of(k) != Some(Reason::Line))
+            && !city_cuts.marks.is_empty();
+        let left = most - city_cuts.leaf_area;
+        cuts.merge(city_cuts);
         let mut visits = 0;
-        let line = before.iter().any(|&k| Reason::of(k) == Some(Reason::Line)) && cleared;
         if line {
             visits += 1;
         }
-        let city = before.iter().any(|&k| Reason::of(k) != Some(Reason::Line)) && cleared;
         let mut trained = false;
         if reasons.contains(&Reason::Structural) {
-            let t = grower.train();
+            let t = grower.train_within(left.max(0.0));
             trained = !t.marks.is_empty();
             cuts.merge(t);
         }
@@ -395,8 +420,17 @@ mod tests {
         let mut grower = Grower::new(plane, crate::growth::GrowthOptions::default());
         grower.advance_to(5.0);
         let pruner = Pruner::new(&site, None).unwrap();
+        let carried = grower.leaf_carried() as f64;
         let (year, standing) = pruner.year(&mut grower, 5.0).expect("raising falls at 5");
         assert!(year.reasons.contains(&Reason::Raise));
+        // The city's visit takes at most a quarter of the foliage (there is no line
+        // clearance this year), and leaves what it could not take for a later visit.
+        assert!(!year.reasons.contains(&Reason::Line));
+        assert!(
+            year.leaf_m2() <= ROUTINE_DOSE * carried + 1e-6 && year.leaf_m2() > 0.0,
+            "{} of {carried} m²",
+            year.leaf_m2()
+        );
         let top = standing
             .sections
             .iter()
@@ -407,11 +441,28 @@ mod tests {
             clear < site.street.roadway_clearance as f32,
             "a young tree: {top} m"
         );
-        // Nothing over the roadway below the raised height, but wood is left above it that
-        // the street's full clearance would take.
+        // Nothing over the roadway below the raised height once the deferred cuts are made
+        // at the next visits, but wood is left above it that the street's full clearance
+        // would take.
+        let mut visits = 0;
+        let mut year = year;
+        while year.cuts.deferred > 0 && visits < 6 {
+            grower.advance_to(6.0 + visits as f64);
+            let before = grower.leaf_carried() as f64;
+            let site = pruner.site.clone();
+            let zones = Zones::new(&site).only(|k| Reason::of(k) == Some(Reason::Raise));
+            let cuts = grower.cut_within(
+                &|p, order| zones.kind_of(p, Some(order)).is_some() && p.z < clear,
+                ROUTINE_DOSE * before,
+            );
+            assert!(cuts.leaf_area <= ROUTINE_DOSE * before + 1e-6);
+            year.cuts = cuts;
+            visits += 1;
+        }
+        assert_eq!(year.cuts.deferred, 0, "cleared over {visits} more visits");
         let after = grower.skeleton();
         let over_road = |z: std::ops::Range<f32>| {
-            after.stems.iter().filter(|s| s.level > 0).any(|s| {
+            after.frame_stems().iter().filter(|s| s.level > 0).any(|s| {
                 after.sections[s.sections.start as usize..s.sections.end as usize]
                     .iter()
                     .any(|c| {

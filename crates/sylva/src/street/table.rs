@@ -209,6 +209,7 @@ pub fn pruning_json(p: &PruningYear) -> serde_json::Value {
         "leaf_removed_m2": round(p.leaf_m2(), 10.0),
         "visits": p.visits,
         "cost_usd": round(p.cost, 100.0),
+        "deferred_cuts": p.cuts.deferred,
         "resolved": kinds(&p.resolved()),
         "unresolved": kinds(&p.unresolved),
     })
@@ -330,6 +331,7 @@ pub fn json(a: &YearAccount) -> serde_json::Value {
         "died_share": (a.cohort.died * 1e4).round() / 1e4,
         "planted_net_usd": (a.planted_net(Basis::Site) * 100.0).round() / 100.0,
         "typical": typical,
+        "leaf_outside_zones_m2": round(a.leaf_outside_zones_m2, 10.0),
         "conflicts": a.conflicts.iter().map(|c| serde_json::json!({
             "kind": c.kind.name(),
             "part": c.part.name(),

@@ -42,6 +42,8 @@ pub(super) struct Bud {
     /// The direction a shoot from it sets out in.
     pub direction: Vec3,
     pub born: f64,
+    /// Released by a cut (`sprouts.rs`): it may break whatever its shoot's other buds do.
+    pub sprout: bool,
 }
 
 /// A shoot to be made this year.
@@ -64,6 +66,7 @@ impl Grower {
         if !sylleptic {
             self.make_room();
             self.shade_deaths();
+            self.grow_short_shoots(next.crown_base() as f32);
         }
         let space = self.space(&next, self.spread as f32 * MARKER_MARGIN);
         self.prune_buds(next.crown_base() as f32);
@@ -142,7 +145,9 @@ impl Grower {
             let site = terminals.len() + k;
             let n = v[site].min(MAX_METAMERS);
             let order = self.branches[bud.branch as usize].order + 1;
-            if n < 1.0 || order > MAX_ORDER {
+            // A sprout on wood of the highest order still breaks (`start_branch` keeps it
+            // there): a cut grows back from whatever wood it leaves.
+            if n < 1.0 || (order > MAX_ORDER && !bud.sprout) {
                 continue;
             }
             if sylleptic && (order > 1 || age - bud.born > 0.5 + 1e-6) {
@@ -391,7 +396,9 @@ impl Grower {
     /// Honda hands their share to the axis and the buds that do break.
     fn hold_dormant(&self, q: &mut [f32]) {
         let mut order: Vec<usize> = (0..self.buds.len())
-            .filter(|&k| self.branches[self.buds[k].branch as usize].order != 0)
+            .filter(|&k| {
+                !self.buds[k].sprout && self.branches[self.buds[k].branch as usize].order != 0
+            })
             .collect();
         order.sort_by(|&a, &b| {
             self.buds[a]
@@ -495,7 +502,7 @@ impl Grower {
                 let trunk = self.branches[b.branch as usize].order == 0;
                 self.branches[b.branch as usize].alive
                     && (if trunk {
-                        b.branch != 0 || !forked || self.bud_position(b).z >= fork
+                        b.branch != 0 || !forked || b.sprout || self.bud_position(b).z >= fork
                     } else {
                         age - b.born <= BUD_YEARS
                     })
@@ -540,7 +547,7 @@ impl Grower {
                 .sum();
             before + seg.length * bud.at
         };
-        let order = self.branches[parent].order + 1;
+        let order = (self.branches[parent].order + 1).min(MAX_ORDER);
         let anchor = if order == 1 {
             start.z
         } else {
@@ -591,82 +598,29 @@ impl Grower {
             let azimuth = self.branches[b].next_azimuth;
             self.branches[b].next_azimuth = (azimuth + DIVERGENCE) % 360.0;
             let tilt = (angle + self.rng.var(5.0) as f32).to_radians();
-            let axis = seg.direction;
-            let side = Quat::from_axis_angle(axis, azimuth.to_radians())
-                * axis.any_orthogonal_vector().normalize();
-            let mut direction =
-                (Quat::from_axis_angle(axis.cross(side).normalize(), tilt) * axis).normalize();
-            if direction.z < -0.34 {
-                direction = Vec3::new(direction.x, direction.y, -0.34).normalize();
-            }
+            let direction = leaning_out(seg.direction, azimuth, tilt);
             self.buds.push(Bud {
                 branch: b as u32,
                 segment,
                 at: (k as f32 + 0.5 + 0.3 * self.rng.var(1.0) as f32) / n as f32,
                 direction,
                 born: self.age,
+                sprout: false,
             });
         }
     }
+}
 
-    /// Deep shade for years on end kills a side branch: the interior thins out.
-    fn shade_deaths(&mut self) {
-        for b in 1..self.branches.len() {
-            if !self.branches[b].alive || self.branches[b].order < 2 {
-                continue;
-            }
-            let dark = self.light.light_at(self.apex_segment(b).end()) < 0.05;
-            let br = &mut self.branches[b];
-            br.shaded_years = if dark { br.shaded_years + 1 } else { 0 };
-            if br.shaded_years >= 3 {
-                self.kill(b);
-            }
-        }
-    }
-
-    /// Near the segment budget, the darkest side branches die, so the crown keeps renewing
-    /// itself at its lit surface instead of freezing when the budget is spent: the interior
-    /// turnover of a real crown, hastened.
-    pub(super) fn make_room(&mut self) {
-        let max = self.options.max_segments;
-        let live = self.segment_count();
-        if live * 20 < max * 17 {
-            return;
-        }
-        let goal = max * 4 / 5;
-        let mut dark: Vec<(f32, usize)> = self
-            .branches
-            .iter()
-            .enumerate()
-            .filter(|(_, b)| b.alive && b.order >= 2)
-            .map(|(i, _)| (self.light.light_at(self.apex_segment(i).end()), i))
-            .collect();
-        dark.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut left = live;
-        for (_, b) in dark {
-            if left <= goal {
-                break;
-            }
-            if self.branches[b].alive {
-                left -= self.kill(b);
-            }
-        }
-    }
-
-    /// Marks a branch and everything on it dead.
-    /// Returns how many live segments died.
-    pub(super) fn kill(&mut self, b: usize) -> usize {
-        let mut stack = vec![b];
-        let mut segments = 0;
-        while let Some(b) = stack.pop() {
-            if !self.branches[b].alive {
-                continue;
-            }
-            self.branches[b].alive = false;
-            segments += self.branches[b].segments.len();
-            stack.extend(self.branches[b].children.iter().map(|&c| c as usize));
-        }
-        segments
+/// The direction of a shoot leaving an axis along `axis`: turned `azimuth` degrees about it
+/// and tilted `tilt` radians off it, never steeper than 20 degrees below the horizontal.
+pub(super) fn leaning_out(axis: Vec3, azimuth: f32, tilt: f32) -> Vec3 {
+    let side = Quat::from_axis_angle(axis, azimuth.to_radians())
+        * axis.any_orthogonal_vector().normalize();
+    let direction = (Quat::from_axis_angle(axis.cross(side).normalize(), tilt) * axis).normalize();
+    if direction.z < -0.34 {
+        Vec3::new(direction.x, direction.y, -0.34).normalize()
+    } else {
+        direction
     }
 }
 

@@ -8,8 +8,8 @@
 //! could not be cleared.
 //!
 //! The tree then grows back by its own rules. The cut opens space and light that the buds
-//! below it now see; latent buds just below a cut of a stem at least 2 cm across break (the
-//! sprouts a cut releases); a stem cut back to a lateral grows on from the lateral; and the
+//! below it now see; latent buds just below a cut break, more below a larger cut, (the
+//! sprouts a cut releases, `sprouts.rs`); a stem cut back to a lateral grows on from the lateral; and the
 //! leaf area the cut took comes back as the tree grows back the young shoots it lost
 //! ([`Regrowth`]). While it does, the leader climbs back no faster than a vigorous shoot
 //! grows (`buds.rs`, `hold_height`).
@@ -24,9 +24,6 @@ const SAMPLE: f32 = 0.1;
 /// cut: ANSI A300 (Part 1) 2017, the reduction cut's definition (a lateral "large enough to
 /// assume apical dominance", typically at least one third of the stem's diameter).
 const LATERAL_SHARE: f32 = 1.0 / 3.0;
-/// Least radius of a cut stem whose latent buds break below the cut, m (Sylva's choice: a
-/// twig's cut leaves nothing to sprout from that its own buds do not already give).
-const SPROUTING_RADIUS: f32 = 0.01;
 /// Most a trained young tree's lateral may be across, as a share of the trunk's where it
 /// leaves it: thicker, it competes with the leader and is subordinated (Gilman, "An
 /// Illustrated Guide to Pruning", 3rd ed. 2012: branches kept under half the trunk's
@@ -65,6 +62,9 @@ pub struct Cuts {
     /// Wood the cuts could not clear: a trunk or stem with no lateral to be cut back to below
     /// the zone.
     pub left_in_zone: bool,
+    /// Cuts left for a later visit because they would have taken more foliage than one visit
+    /// may ([`Grower::cut_within`]).
+    pub deferred: usize,
 }
 
 impl Cuts {
@@ -87,6 +87,7 @@ impl Cuts {
         self.wood_volume += other.wood_volume;
         self.leaf_area += other.leaf_area;
         self.left_in_zone |= other.left_in_zone;
+        self.deferred += other.deferred;
     }
 }
 
@@ -110,6 +111,14 @@ impl Grower {
     /// reduction cuts to the highest lateral below the zone otherwise. The tree is then ready
     /// to be drawn and to grow on.
     pub fn cut(&mut self, zone: &(dyn Fn(Vec3, u8) -> bool + Sync)) -> Cuts {
+        self.cut_within(zone, f64::INFINITY)
+    }
+
+    /// Like [`Grower::cut`], but taking at most `most_leaf` m² of leaf: a cut that would take
+    /// the visit past it is left for a later visit ([`Cuts::deferred`]), and smaller cuts
+    /// further out on the same branch are made instead where they fit. Routine pruning takes
+    /// no more than a quarter of a tree's foliage at one visit (`street::pruner`).
+    pub fn cut_within(&mut self, zone: &(dyn Fn(Vec3, u8) -> bool + Sync), most_leaf: f64) -> Cuts {
         let inside = self.in_zone(zone);
         let mut cuts = Cuts::default();
         let (before, missing) = (self.young_shoot(), self.missing_share());
@@ -122,10 +131,19 @@ impl Grower {
             match segs.iter().position(|&s| inside[s as usize]) {
                 None => {}
                 Some(k) => match self.lateral_below(b, &segs, k) {
+                    Some((j, c)) if cuts.leaf_area + self.reduction_takes(b, j, c) > most_leaf => {
+                        cuts.deferred += 1;
+                    }
                     Some((j, c)) => self.reduce(b, j, c, &mut cuts),
                     None if self.branches[b].order > 0 => {
-                        self.remove(b, &mut cuts);
-                        continue;
+                        let mut takes = Cuts::default();
+                        self.take(b, &mut takes);
+                        if cuts.leaf_area + takes.leaf_area > most_leaf {
+                            cuts.deferred += 1;
+                        } else {
+                            self.remove(b, &mut cuts);
+                            continue;
+                        }
                     }
                     None => cuts.left_in_zone = true,
                 },
@@ -142,6 +160,12 @@ impl Grower {
     /// leader and is subordinated: cut back by half its length to a lateral of its own, or
     /// removed where it has none. A multi-stem tree's stems are its form, not competitors.
     pub fn train(&mut self) -> Cuts {
+        self.train_within(f64::INFINITY)
+    }
+
+    /// Like [`Grower::train`], taking at most `most_leaf` m² of leaf (see
+    /// [`Grower::cut_within`]).
+    pub fn train_within(&mut self, most_leaf: f64) -> Cuts {
         let mut cuts = Cuts::default();
         if self.habit.stems > 1
             || self.habit.form == TreeForm::Palm
@@ -176,7 +200,20 @@ impl Grower {
                     run > 0.5 * total
                 })
                 .unwrap_or(segs.len() - 1);
-            match (k > 0).then(|| self.lateral_below(c, &segs, k)).flatten() {
+            let takes = |g: &Grower, cut: Option<(usize, usize)>| match cut {
+                Some((j, lateral)) => g.reduction_takes(c, j, lateral),
+                None => {
+                    let mut takes = Cuts::default();
+                    g.take(c, &mut takes);
+                    takes.leaf_area
+                }
+            };
+            let cut = (k > 0).then(|| self.lateral_below(c, &segs, k)).flatten();
+            if cuts.leaf_area + takes(self, cut) > most_leaf {
+                cuts.deferred += 1;
+                continue;
+            }
+            match cut {
                 Some((j, lateral)) => self.reduce(c, j, lateral, &mut cuts),
                 None => self.remove(c, &mut cuts),
             }
@@ -256,10 +293,10 @@ impl Grower {
         });
         self.take(b, cuts);
         self.kill(b);
-        if let Some((p, from)) = self.branches[b].parent
-            && radius >= SPROUTING_RADIUS
-        {
-            self.set_buds(p as usize, from);
+        if let Some((p, from)) = self.branches[b].parent {
+            let at =
+                (self.segments[first as usize].start).distance(self.segments[from as usize].start);
+            self.set_sprouts(p as usize, from, at, radius, CutKind::Removal);
         }
     }
 
@@ -349,9 +386,44 @@ impl Grower {
         for bud in self.buds.iter_mut().filter(|bud| bud.segment == sj) {
             bud.at = (bud.at * seg.length / keep.max(1e-6)).min(1.0);
         }
-        if stem >= SPROUTING_RADIUS {
-            self.set_buds(b, sj);
+        self.set_sprouts(b, sj, keep, stem, CutKind::Reduction);
+    }
+
+    /// The leaf area [`Grower::reduce`] would take cutting branch `b` back to its child `c`
+    /// on its segment `j`, m²: the leaves past the collar, and those of the children beyond.
+    fn reduction_takes(&self, b: usize, j: usize, c: usize) -> f64 {
+        let segs = &self.branches[b].segments;
+        let sj = segs[j];
+        let seg = &self.segments[sj as usize];
+        let union = self.segments[self.branches[c].segments[0] as usize].start;
+        let keep = (union.distance(seg.start) + self.radius_of(self.branches[c].segments[0]))
+            .min(seg.length);
+        let mut taken = Cuts::default();
+        for &s in &segs[j + 1..] {
+            taken.leaf_area += self.leaves_on.get(s as usize).copied().unwrap_or(0) as f64
+                * self.leaf_area_drawn() as f64;
         }
+        for &ch in &self.branches[b].children {
+            let child = &self.branches[ch as usize];
+            let beyond = match child.parent {
+                Some((_, from)) if segs[j + 1..].contains(&from) => true,
+                Some((_, from)) if from == sj => {
+                    self.segments[child.segments[0] as usize]
+                        .start
+                        .distance(seg.start)
+                        > keep
+                }
+                _ => false,
+            };
+            if beyond {
+                self.take(ch as usize, &mut taken);
+            }
+        }
+        let share = 1.0 - keep / seg.length.max(1e-6);
+        taken.leaf_area
+            + (self.leaves_on.get(sj as usize).copied().unwrap_or(0) as f32
+                * share
+                * self.leaf_area_drawn()) as f64
     }
 
     /// Adds the wood and leaves of branch `b` and everything on it (alive) to `cuts`.
@@ -424,7 +496,7 @@ impl Grower {
     }
 
     /// Leaf area the tree carries now, m².
-    fn leaf_carried(&self) -> f32 {
+    pub fn leaf_carried(&self) -> f32 {
         self.leaves_on.iter().map(|&n| n as f32).sum::<f32>() * self.leaf_area_drawn()
     }
 

@@ -15,7 +15,9 @@
 //! `buds.rs` (buds and shoots at the end of a year), `colonise.rs` (the buds' environment),
 //! `allocate.rs` (Borchert-Honda), `wood.rs` (elongation and thickening), `fit.rs` (shedding
 //! and fitting the crown to the measured targets), `leaves.rs` (leaf area and light),
-//! `cuts.rs` (the street's pruning cuts and the regrowth after them) and `skeleton.rs` (the
+//! `turnover.rs` (branches shaded to death, and room made near the budget), `cuts.rs` (the
+//! street's pruning cuts and the regrowth after them), `sprouts.rs` (the latent buds a cut
+//! releases), `short_shoots.rs` (the short twigs on the long shoots) and `skeleton.rs` (the
 //! tree as a Skeleton).
 
 use super::habit::{Envelope, Habit, TreeForm, habit_of};
@@ -34,9 +36,12 @@ mod cuts;
 mod fit;
 mod leaves;
 mod palm;
+mod short_shoots;
 mod skeleton;
+mod sprouts;
 #[cfg(test)]
 mod tests;
+mod turnover;
 mod wood;
 
 pub use cuts::{CutKind, CutMark, Cuts};
@@ -282,6 +287,11 @@ pub struct Grower {
     lobes: [f32; 3],
     /// Lateral buds waiting.
     buds: Vec<buds::Bud>,
+    /// How readily the species sprouts from old wood below a cut (`sprouts.rs`): 1 for a
+    /// broadleaf, 0 for a pine.
+    sprouting: f32,
+    /// Short twigs on the long shoots (`short_shoots.rs`).
+    short_shoots: Vec<short_shoots::ShortShoot>,
     /// Leaf blade length and width, m, and area of one leaf, m².
     leaf_size: (f32, f32),
     leaf_shape: LeafShape,
@@ -378,6 +388,11 @@ impl Grower {
                 [0; 3].map(|_| (r.unit() * std::f64::consts::TAU) as f32)
             },
             buds: Vec::new(),
+            sprouting: sprouts::sprouting(
+                &measured.species.scientific,
+                &measured.species.tree_type,
+            ),
+            short_shoots: Vec::new(),
             leaf_size,
             leaf_shape,
             leaf_vertex_cap,

@@ -45,6 +45,7 @@ impl Grower {
         sk.stems.clear();
         sk.sections.clear();
         sk.leaves.clear();
+        sk.short_twigs = 0;
         // Which branches are drawn, and as which stems, is known before any is traced; so
         // the wood and the leaves (each branch's from its own random stream) are laid out at
         // once, into the skeleton's separate lists.
@@ -53,9 +54,10 @@ impl Grower {
             stems,
             sections,
             leaves,
+            short_twigs,
         } = sk;
         rayon::join(
-            || self.wood_into(&stem_of, stems, sections),
+            || *short_twigs = self.wood_into(&stem_of, stems, sections),
             || self.leaves_into(&leafy, leaves),
         );
         if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
@@ -87,8 +89,14 @@ impl Grower {
         (stem_of, drawn)
     }
 
-    /// The stems and sections of the branches `stem_of` draws.
-    fn wood_into(&self, stem_of: &[u32], stems: &mut Vec<Stem>, sections: &mut Vec<CrossSection>) {
+    /// The stems and sections of the branches `stem_of` draws, then of their short twigs;
+    /// returns how many short twigs.
+    fn wood_into(
+        &self,
+        stem_of: &[u32],
+        stems: &mut Vec<Stem>,
+        sections: &mut Vec<CrossSection>,
+    ) -> u32 {
         let mut segs: Vec<(u32, &Segment)> = Vec::new();
         // (position, direction, distance along the stem, radius)
         let mut points: Vec<(Vec3, Vec3, f32, f32)> = Vec::new();
@@ -98,6 +106,8 @@ impl Grower {
         let (mut children, mut profile, mut at) = (Vec::new(), Vec::new(), Vec::new());
         // Where each branch leaves its parent, m along the parent's stem.
         let mut offsets = vec![0.0f32; self.branches.len()];
+        // Where each long shoot starts along its branch's stem, m (for its short twigs).
+        let mut shoot_starts = vec![0.0f32; self.segments.len()];
         // Where DBH is read (breast height, or caliper height on a tree too short for it).
         let dbh_at = self.dbh_read_at();
         for (b, branch) in self.branches.iter().enumerate() {
@@ -148,6 +158,7 @@ impl Grower {
                 for j in &junctions[lo..hi] {
                     offsets[j.3 as usize] = run + j.1.min(s.length);
                 }
+                shoot_starts[id as usize] = run;
                 self.radii_along(id, &children, &mut profile);
                 // The trunk also every half metre and where DBH is read, so it is read from a
                 // section.
@@ -207,6 +218,9 @@ impl Grower {
                 lobe_depth: 0.0,
             });
         }
+        let branches = stems.len();
+        self.short_shoots_into(stem_of, &shoot_starts, stems, sections);
+        (stems.len() - branches) as u32
     }
 
     /// The leaves of `leafy` (live branches and their stems) into `out`, in branch order.

@@ -238,10 +238,17 @@ fn shed_and_self_pruned_branches_stay_shed() {
     let (live, _) = g.branch_counts();
     let skeleton = g.skeleton();
     assert!(
-        skeleton.stems.len() <= live + 1,
+        skeleton.frame_stems().len() <= live + 1,
         "{} stems drawn from {live} live branches and the trunk",
-        skeleton.stems.len()
+        skeleton.frame_stems().len()
     );
+    // Each short twig stands on a live branch's stem, on wood still thin enough to bear it.
+    assert_eq!(skeleton.short_twigs as usize, g.short_shoot_count());
+    let frame = skeleton.frame_stems().len();
+    for twig in &skeleton.stems[frame..] {
+        let parent = twig.parent.expect("a twig has a parent").0 as usize;
+        assert!(parent < frame && twig.length < 0.2, "{twig:?}");
+    }
 }
 
 #[test]
@@ -410,4 +417,57 @@ fn a_cut_clears_its_zone_at_unions_and_the_tree_grows_back() {
     // It follows its DBH equation still.
     let t = g.targets_now();
     assert!((regrown.dbh / t.dbh - 1.0).abs() < 0.1, "{regrown:?} {t:?}");
+}
+
+#[test]
+fn most_of_a_crowns_twigs_are_short_and_each_bears_leaves() {
+    // The published crowns: most twigs 1-4 cm, numbers falling steeply through 6-10 cm
+    // ("Tree branches as populations of twigs"). Before short twigs the grown plane's median
+    // twig was 1.6-2.8 m and under 1% were shorter than 4 cm.
+    let g = grown("InlVal", "PLAC", 12.0);
+    let skeleton = g.skeleton();
+    let b = crate::growth::twigs::measure_branching(&skeleton);
+    assert!(b.share_under(4.0) > 0.4, "{b:?}");
+    assert!(b.median_twig_cm.unwrap() < 6.0, "{b:?}");
+    assert!(b.share_from(10.0) < 0.15, "{b:?}");
+    // No more short twigs than the leaves they bear, and none in the dark.
+    let leaves: usize = g.leaves_on.iter().map(|&n| n as usize).sum();
+    let twigs = g.short_shoot_count();
+    assert!(
+        twigs > 1000 && twigs <= leaves + leaves / 2,
+        "{twigs} twigs, {leaves} leaves"
+    );
+    // The growth is the same without them: they draw their own random streams and take no
+    // part in the light (the same tree's frame, grown again, is the same).
+    let again = grown("InlVal", "PLAC", 12.0).skeleton();
+    assert!(again == skeleton);
+}
+
+#[test]
+fn a_cut_plane_sprouts_below_its_cuts_and_a_pine_does_not() {
+    // A slab through the middle of the crown, cleared as a wire's zone would be.
+    let cut_and_count = |code: &str| {
+        let mut g = grown("InlVal", code, 12.0);
+        let h = g.targets_now().height as f32;
+        let before = g.buds.iter().filter(|b| b.sprout).count();
+        let cuts = g.cut(&|p, order| order > 0 && p.z > 0.55 * h && p.z < 0.75 * h);
+        let sprouts = g.buds.iter().filter(|b| b.sprout).count() - before;
+        (cuts, sprouts, g)
+    };
+    let (cuts, sprouts, mut plane) = cut_and_count("PLAC");
+    // Every cut through a stem 2 cm across or more releases sprouts, the larger several.
+    let large = cuts.marks.iter().filter(|m| m.radius >= 0.01).count();
+    let largest = cuts.largest_diameter();
+    assert!(
+        large > 10 && largest > 0.06,
+        "{large} cuts, the largest {largest} m"
+    );
+    assert!(sprouts > large / 2, "{sprouts} sprouts from {large} cuts");
+    // They break the next year, all of them that see light, and grow as branches.
+    let branches = plane.branches.len();
+    plane.advance_to(plane.age() + 1.0);
+    assert!(plane.branches.len() > branches + sprouts / 4);
+    let (cuts, sprouts, _) = cut_and_count("PITH");
+    assert!(!cuts.marks.is_empty());
+    assert_eq!(sprouts, 0, "a pine has no latent buds on its old wood");
 }
