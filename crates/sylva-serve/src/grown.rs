@@ -155,6 +155,11 @@ pub fn grow_all(
         if let Some((s, _)) = &pruner {
             accounts[*s].record_pruning(cycle, 1.0);
         }
+        // The page draws crowns in leaf, which hide the short twigs: each age keeps its frame
+        // and leaves, and the memory the twigs would take goes to more growths held (the
+        // accounts above read the whole tree, twigs' wood included).
+        let mut skeleton = skeleton;
+        skeleton.drop_short_twigs();
         let lod = LodTree::build(&kites(&skeleton), &web_mesh);
         let mut entry = AgeEntry {
             record,

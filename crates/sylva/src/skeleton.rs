@@ -262,6 +262,19 @@ impl Skeleton {
         &self.stems[..self.stems.len() - twigs]
     }
 
+    /// Drops the short twigs (and their sections, which follow every other stem's): the
+    /// crown's frame and leaves, for what draws only crowns in leaf.
+    pub fn drop_short_twigs(&mut self) {
+        let frame = self.frame_stems().len();
+        let sections = (self.stems[..frame].iter())
+            .map(|s| s.sections.end as usize)
+            .max()
+            .unwrap_or(0);
+        self.stems.truncate(frame);
+        self.sections.truncate(sections);
+        self.short_twigs = 0;
+    }
+
     /// The stems a mesh draws: all of them on a bare crown, all but the short twigs under a
     /// crown's leaves.
     pub fn meshed_stems(&self) -> &[Stem] {

@@ -39,12 +39,9 @@ pub fn measure_form(
     let skeleton = if skeleton.short_twigs == 0 {
         skeleton
     } else {
-        frame = Skeleton {
-            stems: skeleton.frame_stems().to_vec(),
-            sections: skeleton.sections.clone(),
-            leaves: skeleton.leaves.clone(),
-            short_twigs: 0,
-        };
+        let mut without = skeleton.clone();
+        without.drop_short_twigs();
+        frame = without;
         &frame
     };
     FormMeasures {

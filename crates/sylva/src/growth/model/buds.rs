@@ -29,6 +29,10 @@ const FORK_ZONE: f32 = 1.0;
 /// few strong laterals instead of a broom of weak ones (issue G2: fewer, stronger laterals).
 /// Sylva's choice; the trunk's buds (and a multi-stem tree's stems'), its scaffolds, are not limited.
 const LATERALS_PER_SHOOT: usize = 2;
+/// Longest shoot regrowth after a cut makes in a year, m: the most yearly length growth
+/// measured on pruned street trees, in the first year after pruning (about 1.5 m in green ash,
+/// Norway and silver maple: Follett et al. 2016, Arboric. Urban For. 42(3):133-145).
+const LONGEST_REGROWTH: f32 = 1.5;
 /// Share of the season in which a shoot elongates.
 pub(super) const GROWING_SEASON: f64 = 0.5;
 
@@ -183,8 +187,12 @@ impl Grower {
                 branch.anchor
             };
             // The trunk and stems are never shed, nor are shoots from them cut at the floor
-            // here (`prune_buds` has already dropped their buds below it).
-            branch.order == 0 || (anchor >= floor && !self.sheds_below(b, floor))
+            // here (`prune_buds` has already dropped their buds below it). On a tree the
+            // street has cut, limbs leaving the trunk below the crown base carry the crown
+            // around the cleared zone (`sheds_below`), and grow on: held to their anchors,
+            // a plane under a wire made a tenth of its twin's shoots.
+            let anchored = self.regrowth.is_some() || anchor >= floor;
+            branch.order == 0 || (anchored && !self.sheds_below(b, floor))
         });
         // Shoots low in the crown sag as far as the crown must reach down.
         let sag = self.fit_sag(&plans, &next);
@@ -198,6 +206,17 @@ impl Grower {
         let reach = self.space(&next, scale);
         for p in &mut plans {
             p.length = within(&reach, p.start, p.direction, p.length * stretch);
+            // Regrowth after a cut is vigorous, but no shoot of it grows longer in a year
+            // than the longest measured on pruned street trees.
+            let sprung = if p.lateral {
+                let bud = &self.buds[p.from];
+                bud.sprout || self.branches[bud.branch as usize].sprung
+            } else {
+                self.branches[p.from].sprung
+            };
+            if sprung {
+                p.length = p.length.min(LONGEST_REGROWTH);
+            }
         }
         plans.retain(|p| p.length > 0.02);
         if !sylleptic {
@@ -397,7 +416,8 @@ impl Grower {
     fn hold_dormant(&self, q: &mut [f32]) {
         let mut order: Vec<usize> = (0..self.buds.len())
             .filter(|&k| {
-                !self.buds[k].sprout && self.branches[self.buds[k].branch as usize].order != 0
+                let branch = &self.branches[self.buds[k].branch as usize];
+                !self.buds[k].sprout && branch.order != 0 && !branch.sprung
             })
             .collect();
         order.sort_by(|&a, &b| {
@@ -567,6 +587,7 @@ impl Grower {
             anchor,
             shaded_years: 0,
             headed: false,
+            sprung: bud.sprout || self.branches[parent].sprung,
         });
         self.segments.push(Segment {
             branch: id,

@@ -356,6 +356,7 @@ impl Grower {
             anchor: branch.anchor,
             shaded_years: 0,
             headed: false,
+            sprung: false,
         });
         // The stub of segment `j` past the collar goes too.
         let share = 1.0 - keep / seg.length.max(1e-6);

@@ -197,6 +197,9 @@ struct Branch {
     /// Cut back to a lateral (`cuts.rs`): it has no apex left to grow on, and the lateral
     /// carries it on.
     headed: bool,
+    /// Grown from a sprout a cut released, or on such a branch (`sprouts.rs`): its buds all
+    /// may break, as regrowth after a cut branches.
+    sprung: bool,
 }
 
 /// One annual segment.
@@ -433,6 +436,7 @@ impl Grower {
             anchor: 0.0,
             shaded_years: 0,
             headed: false,
+            sprung: false,
         });
         g.segments.push(Segment {
             branch: 0,
@@ -481,6 +485,7 @@ impl Grower {
                 anchor: 0.0,
                 shaded_years: 0,
                 headed: false,
+                sprung: false,
             });
             self.segments.push(Segment {
                 branch: id,

@@ -17,9 +17,9 @@
 //! They draw their own random streams, keyed by their long shoot, and take no part in the
 //! growth's light or pipe model: the growth is the same with them or without, and a crown of
 //! them is drawn and measured (the street's shade model counts their wood from the Skeleton).
-//! Their wood in the growth's light would be a rounding error: a 3 mm twig 3 cm long shows
-//! 0.07 cm² of silhouette, and a 30-year plane's 40,000 of them under 0.3 m² against its
-//! 370 m² of leaf.
+//! Their wood would weigh little in the growth's light: a 30-year plane's 27,000 short twigs
+//! show 3.7 m² of silhouette (diameter x length x pi/4) against its 364 m² of leaf, a
+//! pistache's 15,000 1.1 m² against 250 m² (measured on the grown trees of seed 0).
 
 use super::*;
 

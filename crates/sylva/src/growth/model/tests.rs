@@ -441,6 +441,20 @@ fn most_of_a_crowns_twigs_are_short_and_each_bears_leaves() {
     // part in the light (the same tree's frame, grown again, is the same).
     let again = grown("InlVal", "PLAC", 12.0).skeleton();
     assert!(again == skeleton);
+    // In leaf they are hidden: the crown meshes the same with them or without them; bare,
+    // they are drawn.
+    let mut frame = skeleton.clone();
+    frame.drop_short_twigs();
+    assert_eq!(frame.stems.len(), skeleton.frame_stems().len());
+    assert!(frame.sections.len() < skeleton.sections.len());
+    let options = crate::mesh::MeshOptions::default();
+    let mesh = |s: &Skeleton| crate::mesh::mesh_tree(s, &options).bark;
+    assert!(mesh(&frame) == mesh(&skeleton));
+    let bare = |s: &Skeleton| Skeleton {
+        leaves: Vec::new(),
+        ..s.clone()
+    };
+    assert!(mesh(&bare(&skeleton)).vertex_count() > mesh(&bare(&frame)).vertex_count());
 }
 
 #[test]
