@@ -164,7 +164,13 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
                 .map(|l| leaf_centre(l).z)
                 .fold((f32::MAX, f32::MIN), |(lo, hi), z| (lo.min(z), hi.max(z)));
             let (leaf, leaf_png) = coverage::measure(renderer, &mesh, 0.0, px, true, crown)?;
-            let (bare, bare_png) = coverage::measure(renderer, &mesh, 0.0, px, false, crown)?;
+            // Bare, the crown shows the short twigs its leaves hid (`Skeleton::short_twigs`).
+            let leafless = Skeleton {
+                leaves: Vec::new(),
+                ..skeleton.clone()
+            };
+            let (bare_mesh, _) = dressed_mesh(&leafless, m, Some(Month::SUMMER), &report::MESH);
+            let (bare, bare_png) = coverage::measure(renderer, &bare_mesh, 0.0, px, false, crown)?;
             if let Some(dir) = &args.pictures {
                 for (what, png) in [("leaf", leaf_png), ("bare", bare_png)] {
                     let name = format!("{}-{}-{age}-{what}.png", m.region.code, m.species.code);
