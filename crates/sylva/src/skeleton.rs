@@ -272,6 +272,9 @@ impl Skeleton {
             .unwrap_or(0);
         self.stems.truncate(frame);
         self.sections.truncate(sections);
+        // What is kept for long (the page's growths) must not hold the twigs' memory.
+        self.stems.shrink_to_fit();
+        self.sections.shrink_to_fit();
         self.short_twigs = 0;
     }
 
