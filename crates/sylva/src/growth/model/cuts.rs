@@ -306,10 +306,7 @@ impl Grower {
     fn reduce(&mut self, b: usize, j: usize, c: usize, cuts: &mut Cuts) {
         let sj = self.branches[b].segments[j];
         let seg = self.segments[sj as usize];
-        let union = self.segments[self.branches[c].segments[0] as usize].start;
-        // The cut leaves a collar as wide as the lateral beyond the union.
-        let keep = (union.distance(seg.start) + self.radius_of(self.branches[c].segments[0]))
-            .min(seg.length);
+        let (keep, gone) = self.cut_back(b, j, c);
         let stem = self.radius_of(self.branches[b].segments[j + 1]);
         cuts.marks.push(CutMark {
             at: seg.start + seg.direction * keep,
@@ -318,22 +315,10 @@ impl Grower {
         });
         // What goes: the segments past `j`, and the children beyond the cut.
         let moved: Vec<u32> = self.branches[b].segments[j + 1..].to_vec();
-        let beyond = |g: &Grower, child: u32| {
-            let ch = &g.branches[child as usize];
-            match ch.parent {
-                Some((_, from)) if moved.contains(&from) => true,
-                Some((_, from)) if from == sj => {
-                    let start = g.segments[ch.segments[0] as usize].start;
-                    start.distance(seg.start) > keep
-                }
-                _ => false,
-            }
-        };
-        let (gone, kept): (Vec<u32>, Vec<u32>) = self.branches[b]
-            .children
-            .clone()
-            .into_iter()
-            .partition(|&ch| beyond(self, ch));
+        let kept: Vec<u32> = (self.branches[b].children.iter())
+            .copied()
+            .filter(|ch| !gone.contains(ch))
+            .collect();
         let dead = self.branches.len() as u32;
         for &s in &moved {
             self.segments[s as usize].branch = dead;
@@ -390,41 +375,52 @@ impl Grower {
         self.set_sprouts(b, sj, keep, stem, CutKind::Reduction);
     }
 
-    /// The leaf area [`Grower::reduce`] would take cutting branch `b` back to its child `c`
-    /// on its segment `j`, m²: the leaves past the collar, and those of the children beyond.
-    fn reduction_takes(&self, b: usize, j: usize, c: usize) -> f64 {
+    /// Where cutting branch `b` back to its child `c` on its segment `j` leaves its collar
+    /// (m along segment `j`, as wide as the lateral beyond the union), and the children that
+    /// go with what lies beyond it.
+    fn cut_back(&self, b: usize, j: usize, c: usize) -> (f32, Vec<u32>) {
         let segs = &self.branches[b].segments;
         let sj = segs[j];
         let seg = &self.segments[sj as usize];
         let union = self.segments[self.branches[c].segments[0] as usize].start;
         let keep = (union.distance(seg.start) + self.radius_of(self.branches[c].segments[0]))
             .min(seg.length);
+        let gone = (self.branches[b].children.iter())
+            .copied()
+            .filter(|&ch| {
+                let child = &self.branches[ch as usize];
+                match child.parent {
+                    Some((_, from)) if segs[j + 1..].contains(&from) => true,
+                    Some((_, from)) if from == sj => {
+                        let start = self.segments[child.segments[0] as usize].start;
+                        start.distance(seg.start) > keep
+                    }
+                    _ => false,
+                }
+            })
+            .collect();
+        (keep, gone)
+    }
+
+    /// The leaf area [`Grower::reduce`] would take cutting branch `b` back to its child `c`
+    /// on its segment `j`, m²: the leaves past the collar, and those of the children beyond.
+    fn reduction_takes(&self, b: usize, j: usize, c: usize) -> f64 {
+        let segs = &self.branches[b].segments;
+        let seg = &self.segments[segs[j] as usize];
+        let (keep, gone) = self.cut_back(b, j, c);
+        let each = self.leaf_area_drawn();
         let mut taken = Cuts::default();
         for &s in &segs[j + 1..] {
-            taken.leaf_area += self.leaves_on.get(s as usize).copied().unwrap_or(0) as f64
-                * self.leaf_area_drawn() as f64;
+            taken.leaf_area +=
+                self.leaves_on.get(s as usize).copied().unwrap_or(0) as f64 * each as f64;
         }
-        for &ch in &self.branches[b].children {
-            let child = &self.branches[ch as usize];
-            let beyond = match child.parent {
-                Some((_, from)) if segs[j + 1..].contains(&from) => true,
-                Some((_, from)) if from == sj => {
-                    self.segments[child.segments[0] as usize]
-                        .start
-                        .distance(seg.start)
-                        > keep
-                }
-                _ => false,
-            };
-            if beyond {
-                self.take(ch as usize, &mut taken);
-            }
+        for &ch in &gone {
+            self.take(ch as usize, &mut taken);
         }
         let share = 1.0 - keep / seg.length.max(1e-6);
         taken.leaf_area
-            + (self.leaves_on.get(sj as usize).copied().unwrap_or(0) as f32
-                * share
-                * self.leaf_area_drawn()) as f64
+            + (self.leaves_on.get(segs[j] as usize).copied().unwrap_or(0) as f32 * share * each)
+                as f64
     }
 
     /// Adds the wood and leaves of branch `b` and everything on it (alive) to `cuts`.
