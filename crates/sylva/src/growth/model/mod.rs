@@ -26,10 +26,12 @@ use super::measured::Measured;
 use crate::growth::foliage;
 use crate::rng::{Random, StreamKey};
 use crate::skeleton::{CrossSection, Leaf, LeafShape, Skeleton, Stem, StemId};
+use bends::Bends;
 use glam::{Quat, Vec3};
 use std::f32::consts::PI;
 
 mod allocate;
+mod bends;
 mod buds;
 mod colonise;
 mod cuts;

@@ -181,7 +181,7 @@ impl Grower {
     pub(super) fn short_shoots_into(
         &self,
         stem_of: &[u32],
-        shoot_starts: &[f32],
+        (shoot_starts, bends): (&[f32], &Bends),
         stems: &mut Vec<Stem>,
         sections: &mut Vec<CrossSection>,
     ) {
@@ -192,7 +192,8 @@ impl Grower {
                 continue;
             }
             let length = self.short_shoot_length(t);
-            let base = s.start + s.direction * t.along;
+            // On the drawn wood: where its stretch's kink has set it (`bends.rs`).
+            let base = s.start + s.direction * t.along + bends.offset(t.segment, t.along);
             // A current-year twig's radius: the pipe model's tip, never thicker than half
             // the wood it stands on.
             let radius = self

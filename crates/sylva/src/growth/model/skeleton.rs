@@ -50,6 +50,7 @@ impl Grower {
         // the wood and the leaves (each branch's from its own random stream) are laid out at
         // once, into the skeleton's separate lists.
         let (stem_of, leafy) = self.drawn_branches();
+        let bends = self.bends(&stem_of);
         let Skeleton {
             stems,
             sections,
@@ -57,7 +58,7 @@ impl Grower {
             short_twigs,
         } = sk;
         rayon::join(
-            || *short_twigs = self.wood_into(&stem_of, stems, sections),
+            || *short_twigs = self.wood_into(&stem_of, &bends, stems, sections),
             || self.leaves_into(&leafy, leaves),
         );
         if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
@@ -89,11 +90,12 @@ impl Grower {
         (stem_of, drawn)
     }
 
-    /// The stems and sections of the branches `stem_of` draws, then of their short twigs;
-    /// returns how many short twigs.
+    /// The stems and sections of the branches `stem_of` draws, kinked by `bends`, then of
+    /// their short twigs; returns how many short twigs.
     fn wood_into(
         &self,
         stem_of: &[u32],
+        bends: &Bends,
         stems: &mut Vec<Stem>,
         sections: &mut Vec<CrossSection>,
     ) -> u32 {
@@ -180,11 +182,13 @@ impl Grower {
                         }
                     }
                 }
+                // A limb's kinks between its nodes (`bends.rs`).
+                bends.kinks(id, &mut at);
                 at.sort_by(f32::total_cmp);
                 at.dedup_by(|a, b| (*a - *b).abs() < 1e-4);
                 for &along in &at {
                     let k = profile.partition_point(|p| p.0 <= along + 1e-5).max(1);
-                    let p = s.start + s.direction * along;
+                    let p = s.start + s.direction * along + bends.offset(id, along);
                     let r = profile[k - 1].1 * flare_at(p.z, flare_top);
                     points.push((p, s.direction, run + along, r));
                 }
@@ -219,7 +223,7 @@ impl Grower {
             });
         }
         let branches = stems.len();
-        self.short_shoots_into(stem_of, &shoot_starts, stems, sections);
+        self.short_shoots_into(stem_of, (&shoot_starts, bends), stems, sections);
         (stems.len() - branches) as u32
     }
 

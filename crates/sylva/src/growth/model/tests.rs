@@ -485,3 +485,65 @@ fn a_cut_plane_sprouts_below_its_cuts_and_a_pine_does_not() {
     assert!(!cuts.marks.is_empty());
     assert_eq!(sprouts, 0, "a pine has no latent buds on its old wood");
 }
+
+#[test]
+fn limbs_are_drawn_kinked_between_their_nodes_and_branches_leave_the_drawn_wood() {
+    let g = grown("InlVal", "PLAC", 12.0);
+    let sk = g.skeleton();
+    let frame = sk.frame_stems();
+    let points = |stem: &Stem| -> Vec<Vec3> {
+        sk.sections[stem.sections.start as usize..stem.sections.end as usize]
+            .iter()
+            .map(|s| s.position)
+            .collect()
+    };
+    // Every side branch, and every short twig, leaves its parent's drawn wood: the kinks fall
+    // between the nodes, and a twig moves with its stretch.
+    let mut worst = 0.0f32;
+    for stem in &sk.stems {
+        let Some(parent) = stem.parent else { continue };
+        let base = sk.sections[stem.sections.start as usize].position;
+        let course = points(&sk.stems[parent.0 as usize]);
+        let gap = course
+            .windows(2)
+            .map(|w| {
+                let (a, d) = (w[0], w[1] - w[0]);
+                let t = ((base - a).dot(d) / d.length_squared().max(1e-12)).clamp(0.0, 1.0);
+                base.distance(a + d * t)
+            })
+            .fold(f32::INFINITY, f32::min);
+        worst = worst.max(gap);
+    }
+    assert!(
+        worst < 2e-3,
+        "a branch leaves {worst} m off its parent's wood"
+    );
+    // Beyond the trunk no straight run of wood is as long as the grower's long shoots: each
+    // is kinked at every stretch of 20 cm or more between its nodes.
+    let longest_shoot = g
+        .segments
+        .iter()
+        .filter(|s| g.branches[s.branch as usize].order > 0)
+        .map(|s| s.length)
+        .fold(0.0f32, f32::max);
+    let mut longest_run = 0.0f32;
+    for stem in frame.iter().filter(|s| s.level > 0) {
+        let p = points(stem);
+        let mut run = 0.0f32;
+        for k in 1..p.len() {
+            let piece = p[k] - p[k - 1];
+            let straight_on =
+                k >= 2 && piece.normalize().dot((p[k - 1] - p[k - 2]).normalize()) > 0.9998;
+            run = if straight_on {
+                run + piece.length()
+            } else {
+                piece.length()
+            };
+            longest_run = longest_run.max(run);
+        }
+    }
+    assert!(
+        longest_run < 0.6 * longest_shoot,
+        "straight for {longest_run} m; the longest shoot {longest_shoot} m"
+    );
+}
