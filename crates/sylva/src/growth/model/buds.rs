@@ -154,7 +154,7 @@ impl Grower {
             if n < 1.0 || (order > MAX_ORDER && !bud.sprout) {
                 continue;
             }
-            if sylleptic && (order > 1 || age - bud.born > 0.5 + 1e-6) {
+            if sylleptic && !self.breaks_sylleptic(bud, order, age) {
                 continue;
             }
             plans.push(Plan {
@@ -251,6 +251,20 @@ impl Grower {
             index += 1;
             keep
         });
+    }
+
+    /// Whether `bud` (of a shoot of `order`) breaks in the mid-season flush: only a bud of
+    /// this year's shoot, and only on a young tree's leader and scaffolds (so its crown keeps up
+    /// with a crown base rising fast) or on regrowth after a cut. Vigorous shoots branch in
+    /// the year they grow (sylleptic branching: Barthélémy & Caraglio 2007, Annals of Botany
+    /// 99:375), and a cut's sprouts are a tree's most vigorous shoots; so its regrowth is
+    /// branched in its first season (pruned crowns regained their volume within a year:
+    /// Lecigne et al. 2018, Urban For. Urban Green., from laser scans), not a year of whips.
+    fn breaks_sylleptic(&self, bud: &Bud, order: u8, age: f64) -> bool {
+        let this_year = age - bud.born <= 0.5 + 1e-6;
+        let young_leader = order <= 1 && self.targets_now().crown_height < SYLLEPTIC_CROWN;
+        let regrowth = bud.sprout || self.branches[bud.branch as usize].sprung;
+        this_year && (young_leader || regrowth)
     }
 
     /// The leader follows the measured height: while the tree is excurrent the trunk's apex

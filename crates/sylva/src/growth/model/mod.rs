@@ -596,7 +596,7 @@ impl Grower {
         if (before + 1e-9).floor() < (self.age + 1e-9).floor() {
             self.flush(false);
         } else if (before + 0.5 + 1e-9).floor() < (self.age + 0.5 + 1e-9).floor()
-            && self.targets_now().crown_height < SYLLEPTIC_CROWN
+            && (self.targets_now().crown_height < SYLLEPTIC_CROWN || self.regrowth.is_some())
         {
             self.flush(true);
         }
