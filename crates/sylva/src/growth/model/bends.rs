@@ -27,129 +27,100 @@ const SHORTEST_BENT: f32 = 0.2;
 /// crown reads the same at 3000 px.
 const KINK_METAMERS: f32 = 2.0;
 
-/// The bends of the drawn segments: per segment, its nodes along it (its ends and its live
-/// side branches' points) and the side its kinks lean to.
-#[derive(Default)]
+/// The bends of the drawn segments, filled in as the wood is traced (`Bends::trace`): per
+/// segment, its nodes along it (its ends, its live side branches' points and the metamers
+/// between), read again by the short twigs that stand on it.
 pub(super) struct Bends {
-    /// Per segment: the range of its nodes in `nodes` (empty: drawn straight).
+    /// Whether the tree's axes are drawn kinked at all (not a conifer's or a palm's).
+    kinked: bool,
+    /// The most metamers one stretch spans, m.
+    longest: f32,
+    /// Per segment: the range of its nodes in `nodes` (empty: drawn straight), and the side
+    /// its first kink leans to (worked out once: the twigs on it ask again).
     ranges: Vec<(u32, u32)>,
-    nodes: Vec<f32>,
     sides: Vec<Vec3>,
+    nodes: Vec<f32>,
 }
 
 impl Bends {
-    /// No bends: every segment drawn as its chord (a palm, a conifer).
-    pub(super) fn none() -> Self {
-        Self::default()
+    /// The side a segment's first kink leans to: turned about the chord by the golden angle
+    /// from segment to segment, so that neighbours lean different ways.
+    fn side(segment: u32, s: &Segment) -> Vec3 {
+        let turn = ((segment as f32 * DIVERGENCE) % 360.0).to_radians();
+        Quat::from_axis_angle(s.direction, turn) * s.direction.any_orthogonal_vector().normalize()
     }
 
-    /// The nodes of `segment`, when it is bent.
-    fn nodes_of(&self, segment: u32) -> Option<(&[f32], Vec3)> {
-        let &(lo, hi) = self.ranges.get(segment as usize)?;
-        (hi > lo).then(|| {
-            (
-                &self.nodes[lo as usize..hi as usize],
-                self.sides[segment as usize],
-            )
-        })
+    /// Lays out the nodes of segment `id` of a branch of `order`, whose live side branches
+    /// leave it at `branches` m along it (in order), and appends its kinks to `kinks`.
+    pub(super) fn trace(
+        &mut self,
+        (id, s, order): (u32, &Segment, u8),
+        branches: impl Iterator<Item = f32>,
+        kinks: &mut Vec<f32>,
+    ) {
+        if !self.kinked || order == 0 || s.length < SHORTEST_BENT {
+            return;
+        }
+        let lo = self.nodes.len() as u32;
+        let mut last = 0.0f32;
+        self.nodes.push(last);
+        let inner = branches.filter(|&a| a > 1e-4 && a < s.length - 1e-4);
+        for node in inner.chain(std::iter::once(s.length)) {
+            // A stretch longer than `KINK_METAMERS` metamers is split into equal pieces no
+            // longer than that: a shoot turns at its nodes, not only where a branch has grown
+            // from one.
+            let pieces = crate::whole::pieces((node - last) / self.longest);
+            let piece = (node - last) / pieces as f32;
+            self.nodes
+                .extend((1..pieces).map(|k| last + piece * k as f32));
+            self.nodes.push(node);
+            last = node;
+        }
+        self.ranges[id as usize] = (lo, self.nodes.len() as u32);
+        self.sides[id as usize] = Self::side(id, s);
+        let nodes = &self.nodes[lo as usize..];
+        kinks.extend(
+            nodes
+                .windows(2)
+                .filter(|w| w[1] - w[0] >= SHORTEST_BENT)
+                .map(|w| 0.5 * (w[0] + w[1])),
+        );
     }
 
-    /// How far the drawn wood at `along` m up `segment` stands off its chord.
-    pub(super) fn offset(&self, segment: u32, along: f32) -> Vec3 {
-        let Some((nodes, side)) = self.nodes_of(segment) else {
+    /// How far the drawn wood at `along` m up segment `id` stands off its chord.
+    pub(super) fn offset(&self, id: u32, along: f32) -> Vec3 {
+        let Some(&(lo, hi)) = self.ranges.get(id as usize) else {
             return Vec3::ZERO;
         };
+        if hi <= lo {
+            return Vec3::ZERO;
+        }
+        let nodes = &self.nodes[lo as usize..hi as usize];
         let i = nodes
             .partition_point(|&n| n <= along)
             .clamp(1, nodes.len() - 1);
-        let (lo, hi) = (nodes[i - 1], nodes[i]);
-        let stretch = hi - lo;
+        let (a, b) = (nodes[i - 1], nodes[i]);
+        let stretch = b - a;
         if stretch < SHORTEST_BENT {
             return Vec3::ZERO;
         }
-        let u = ((along - lo) / stretch).clamp(0.0, 1.0);
+        let u = ((along - a) / stretch).clamp(0.0, 1.0);
         let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
-        side * (sign * BEND * stretch * (1.0 - (2.0 * u - 1.0).abs()))
-    }
-
-    /// The kinks of `segment`, m along it: one halfway along each stretch long enough to bend.
-    pub(super) fn kinks(&self, segment: u32, out: &mut Vec<f32>) {
-        if let Some((nodes, _)) = self.nodes_of(segment) {
-            out.extend(
-                nodes
-                    .windows(2)
-                    .filter(|w| w[1] - w[0] >= SHORTEST_BENT)
-                    .map(|w| 0.5 * (w[0] + w[1])),
-            );
-        }
+        self.sides[id as usize] * (sign * BEND * stretch * (1.0 - (2.0 * u - 1.0).abs()))
     }
 }
 
 impl Grower {
-    /// The bends of the branches `stem_of` draws: every one but the trunk, on a tree whose
-    /// form zig-zags (`Habit::zigzag`: not a conifer's or a palm's straight axes).
-    pub(super) fn bends(&self, stem_of: &[u32]) -> Bends {
-        if self.habit.zigzag <= 0.0 {
-            return Bends::none();
-        }
-        let mut bends = Bends {
-            ranges: vec![(0, 0); self.segments.len()],
+    /// Empty bends for this tree, to be traced with its wood: kinked on a tree whose form
+    /// zig-zags (`Habit::zigzag`), not on a conifer's or a palm's straight axes.
+    pub(super) fn bends(&self) -> Bends {
+        let kinked = self.habit.zigzag > 0.0;
+        Bends {
+            kinked,
+            longest: self.metamer * KINK_METAMERS,
+            ranges: vec![(0, 0); if kinked { self.segments.len() } else { 0 }],
+            sides: vec![Vec3::ZERO; if kinked { self.segments.len() } else { 0 }],
             nodes: Vec::new(),
-            sides: vec![Vec3::ZERO; self.segments.len()],
-        };
-        // Each drawn segment's side branches, m along it, as (segment, distance) sorted: one
-        // list for the tree, not one per segment (the skeleton is drawn at every step).
-        let mut along: Vec<(u32, f32)> = Vec::new();
-        for (b, branch) in self.branches.iter().enumerate() {
-            if stem_of[b] == u32::MAX || b == 0 {
-                continue;
-            }
-            if let Some((_, from)) = branch.parent {
-                let s = &self.segments[from as usize];
-                let first = self.segments[branch.segments[0] as usize].start;
-                along.push((from, first.distance(s.start).min(s.length)));
-            }
         }
-        along.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        for (b, branch) in self.branches.iter().enumerate() {
-            if stem_of[b] == u32::MAX || branch.order == 0 {
-                continue;
-            }
-            for &id in &branch.segments {
-                let s = &self.segments[id as usize];
-                if s.length < SHORTEST_BENT {
-                    continue;
-                }
-                let from = along.partition_point(|a| a.0 < id);
-                let to = along.partition_point(|a| a.0 <= id);
-                let lo = bends.nodes.len() as u32;
-                let mut last = 0.0f32;
-                bends.nodes.push(last);
-                let inner = along[from..to]
-                    .iter()
-                    .map(|a| a.1)
-                    .filter(|&a| a > 1e-4 && a < s.length - 1e-4);
-                for node in inner.chain(std::iter::once(s.length)) {
-                    // A stretch longer than `KINK_METAMERS` metamers is split into equal
-                    // pieces no longer than that: a shoot turns at its nodes, not only where
-                    // a branch has grown from one.
-                    let pieces =
-                        crate::whole::pieces((node - last) / (self.metamer * KINK_METAMERS));
-                    let piece = (node - last) / pieces as f32;
-                    bends
-                        .nodes
-                        .extend((1..pieces).map(|k| last + piece * k as f32));
-                    bends.nodes.push(node);
-                    last = node;
-                }
-                bends.ranges[id as usize] = (lo, bends.nodes.len() as u32);
-                // The side the segment's first kink leans to, turned about the chord by the
-                // golden angle from segment to segment, so neighbours lean different ways.
-                let turn = (id as f32 * DIVERGENCE).to_radians();
-                bends.sides[id as usize] = Quat::from_axis_angle(s.direction, turn)
-                    * s.direction.any_orthogonal_vector().normalize();
-            }
-        }
-        bends
     }
 }

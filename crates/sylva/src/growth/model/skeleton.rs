@@ -50,7 +50,6 @@ impl Grower {
         // the wood and the leaves (each branch's from its own random stream) are laid out at
         // once, into the skeleton's separate lists.
         let (stem_of, leafy) = self.drawn_branches();
-        let bends = self.bends(&stem_of);
         let Skeleton {
             stems,
             sections,
@@ -58,7 +57,7 @@ impl Grower {
             short_twigs,
         } = sk;
         rayon::join(
-            || *short_twigs = self.wood_into(&stem_of, &bends, stems, sections),
+            || *short_twigs = self.wood_into(&stem_of, stems, sections),
             || self.leaves_into(&leafy, leaves),
         );
         if self.habit.form == TreeForm::Palm && !sk.stems.is_empty() {
@@ -95,7 +94,6 @@ impl Grower {
     fn wood_into(
         &self,
         stem_of: &[u32],
-        bends: &Bends,
         stems: &mut Vec<Stem>,
         sections: &mut Vec<CrossSection>,
     ) -> u32 {
@@ -110,6 +108,8 @@ impl Grower {
         let mut offsets = vec![0.0f32; self.branches.len()];
         // Where each long shoot starts along its branch's stem, m (for its short twigs).
         let mut shoot_starts = vec![0.0f32; self.segments.len()];
+        // The kinks of each segment's stretches between its nodes, traced with it.
+        let mut bends = self.bends();
         // Where DBH is read (breast height, or caliper height on a tree too short for it).
         let dbh_at = self.dbh_read_at();
         for (b, branch) in self.branches.iter().enumerate() {
@@ -183,7 +183,8 @@ impl Grower {
                     }
                 }
                 // A limb's kinks between its nodes (`bends.rs`).
-                bends.kinks(id, &mut at);
+                let branches = junctions[lo..hi].iter().map(|j| j.1.min(s.length));
+                bends.trace((id, s, branch.order), branches, &mut at);
                 at.sort_by(f32::total_cmp);
                 at.dedup_by(|a, b| (*a - *b).abs() < 1e-4);
                 for &along in &at {
@@ -223,7 +224,7 @@ impl Grower {
             });
         }
         let branches = stems.len();
-        self.short_shoots_into(stem_of, (&shoot_starts, bends), stems, sections);
+        self.short_shoots_into(stem_of, (&shoot_starts, &bends), stems, sections);
         (stems.len() - branches) as u32
     }
 
