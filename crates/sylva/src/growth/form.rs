@@ -185,11 +185,26 @@ fn fork_exponents(skeleton: &Skeleton) -> Vec<f64> {
         forks.entry(key).or_default().push(base.radius);
     }
     let mut exponents = Vec::new();
+    // The fork before each, on the same parent (or its base): a limb carries the radius it
+    // leaves that fork with up to the next (the pipe model's radius steps at the forks, and
+    // sections between them, such as a drawn limb's kinks, only taper the tube).
+    let mut last: Option<(u32, f32)> = None;
     for ((parent, z), children) in forks {
         let z = z as f32 / 10_000.0;
+        let from = match last {
+            Some((p, before)) if p == parent => before,
+            _ => f32::NEG_INFINITY,
+        };
+        last = Some((parent, z));
         let s = skeleton.sections_of(StemId(parent));
-        // A section exactly at the fork is the parent going on past it.
-        let below = s.iter().rev().find(|c| c.z < z - 1e-5).map(|c| c.radius);
+        // A section exactly at the fork is the parent going on past it. A trunk is read just
+        // below the fork: it is drawn straight, and flares towards the ground.
+        let below = if skeleton.stems[parent as usize].level == 0 {
+            s.iter().rev().find(|c| c.z < z - 1e-5)
+        } else {
+            s.iter().find(|c| c.z >= from - 1e-5 && c.z < z - 1e-5)
+        }
+        .map(|c| c.radius);
         let above = s.iter().find(|c| c.z >= z - 1e-5).map(|c| c.radius);
         let (Some(below), Some(above)) = (below, above) else {
             continue;

@@ -104,6 +104,8 @@ impl Grower {
         // Per segment, reused: its side branches (distance, radius), its radius profile and
         // the distances its sections sit at.
         let (mut children, mut profile, mut at) = (Vec::new(), Vec::new(), Vec::new());
+        // This segment's kinks, and which of the branch's points are kinks.
+        let (mut kinks, mut is_kink) = (Vec::new(), Vec::new());
         // Where each branch leaves its parent, m along the parent's stem.
         let mut offsets = vec![0.0f32; self.branches.len()];
         // Where each long shoot starts along its branch's stem, m (for its short twigs).
@@ -151,6 +153,7 @@ impl Grower {
                 0.0
             };
             points.clear();
+            is_kink.clear();
             let mut run = 0.0f32;
             for &(id, s) in &segs {
                 let lo = junctions.partition_point(|j| j.0 < id);
@@ -184,7 +187,9 @@ impl Grower {
                 }
                 // A limb's kinks between its nodes (`bends.rs`).
                 let branches = junctions[lo..hi].iter().map(|j| j.1.min(s.length));
-                bends.trace((id, s, branch.order), branches, &mut at);
+                kinks.clear();
+                bends.trace((id, s, branch.order), branches, &mut kinks);
+                at.extend(&kinks);
                 at.sort_by(f32::total_cmp);
                 at.dedup_by(|a, b| (*a - *b).abs() < 1e-4);
                 for &along in &at {
@@ -192,6 +197,7 @@ impl Grower {
                     let p = s.start + s.direction * along + bends.offset(id, along);
                     let r = profile[k - 1].1 * flare_at(p.z, flare_top);
                     points.push((p, s.direction, run + along, r));
+                    is_kink.push(kinks.contains(&along));
                 }
                 run += s.length;
             }
@@ -202,6 +208,8 @@ impl Grower {
                 self.radius_of(last_id) * 0.35
             };
             points.push((last.end(), last.direction, total, tip_radius));
+            is_kink.push(false);
+            taper_through_kinks(&mut points, &is_kink);
             for &(p, d, at, radius) in &points {
                 sections.push(CrossSection {
                     position: p,
@@ -284,6 +292,25 @@ impl Grower {
             from += room;
         }
         out.truncate(to);
+    }
+}
+
+/// A kink's radius, tapered between the sections either side of it, as the tube tapers there
+/// without it: the pipe model's radius steps down at each side branch, and a tube drawn
+/// between the steps tapers from one to the next; a kink holding the step's radius would draw
+/// half of each stretch thicker (6% more bare wood on a 30-year hackberry).
+fn taper_through_kinks(points: &mut [(Vec3, Vec3, f32, f32)], is_kink: &[bool]) {
+    let mut before = 0;
+    for i in 1..points.len() {
+        if is_kink[i] {
+            continue;
+        }
+        let (a, b) = (points[before], points[i]);
+        for p in &mut points[before + 1..i] {
+            let t = ((p.2 - a.2) / (b.2 - a.2).max(1e-9)).clamp(0.0, 1.0);
+            p.3 = a.3 + (b.3 - a.3) * t;
+        }
+        before = i;
     }
 }
 
