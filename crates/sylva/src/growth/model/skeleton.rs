@@ -89,8 +89,8 @@ impl Grower {
         (stem_of, drawn)
     }
 
-    /// The stems and sections of the branches `stem_of` draws, kinked by `bends`, then of
-    /// their short twigs; returns how many short twigs.
+    /// The stems and sections of the branches `stem_of` draws, kinked between their nodes
+    /// (`bends.rs`), then of their short twigs; returns how many short twigs.
     fn wood_into(
         &self,
         stem_of: &[u32],
@@ -194,10 +194,17 @@ impl Grower {
                 at.dedup_by(|a, b| (*a - *b).abs() < 1e-4);
                 for &along in &at {
                     let k = profile.partition_point(|p| p.0 <= along + 1e-5).max(1);
-                    let p = s.start + s.direction * along + bends.offset(id, along);
+                    // Only a kink stands off the chord: the nodes are on it.
+                    let kink = kinks.contains(&along);
+                    let bend = if kink {
+                        bends.offset(id, along)
+                    } else {
+                        Vec3::ZERO
+                    };
+                    let p = s.start + s.direction * along + bend;
                     let r = profile[k - 1].1 * flare_at(p.z, flare_top);
                     points.push((p, s.direction, run + along, r));
-                    is_kink.push(kinks.contains(&along));
+                    is_kink.push(kink);
                 }
                 run += s.length;
             }
