@@ -149,9 +149,10 @@ impl Grower {
             let site = terminals.len() + k;
             let n = v[site].min(MAX_METAMERS);
             let order = self.branches[bud.branch as usize].order + 1;
-            // A sprout on wood of the highest order still breaks (`start_branch` keeps it
-            // there): a cut grows back from whatever wood it leaves.
-            if n < 1.0 || (order > MAX_ORDER && !bud.sprout) {
+            // A sprout on wood of the highest order still breaks (`start_branch` ranks it as
+            // a scaffold): a cut grows back from whatever wood it leaves.
+            let rank = self.branches[bud.branch as usize].rank + 1;
+            if n < 1.0 || (rank > MAX_ORDER && !bud.sprout) {
                 continue;
             }
             if sylleptic && !self.breaks_sylleptic(bud, order, age) {
@@ -582,6 +583,13 @@ impl Grower {
             before + seg.length * bud.at
         };
         let order = (self.branches[parent].order + 1).min(MAX_ORDER);
+        // Traumatic reiteration: a sprout starts the architecture again (`Branch::rank`).
+        let rank = if bud.sprout {
+            sprouts::SPROUT_RANK
+        } else {
+            self.branches[parent].rank + 1
+        }
+        .min(MAX_ORDER);
         let anchor = if order == 1 {
             start.z
         } else {
@@ -591,6 +599,7 @@ impl Grower {
         self.branches[parent].children.push(id);
         self.branches.push(Branch {
             order,
+            rank,
             parent: Some((bud.branch, bud.segment)),
             segments: vec![self.segments.len() as u32],
             next_azimuth: (self.rng.unit() * 360.0) as f32,
@@ -616,10 +625,11 @@ impl Grower {
 
     /// Lateral buds at the nodes of a new shoot, one a metamer, turned about it by the
     /// divergence and leaning out by the habit's branch angle. A palm's trunk has none, and a
-    /// branch of the highest order makes none.
+    /// branch of the highest rank makes none.
     pub(super) fn set_buds(&mut self, b: usize, segment: u32) {
         let order = self.branches[b].order;
-        if order >= MAX_ORDER || (order == 0 && self.habit.form == TreeForm::Palm) {
+        let rank = self.branches[b].rank;
+        if rank >= MAX_ORDER || (order == 0 && self.habit.form == TreeForm::Palm) {
             return;
         }
         let seg = self.segments[segment as usize];

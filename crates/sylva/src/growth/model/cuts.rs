@@ -331,6 +331,7 @@ impl Grower {
         let branch = &self.branches[b];
         self.branches.push(Branch {
             order: branch.order,
+            rank: branch.rank,
             parent: Some((b as u32, sj)),
             segments: moved,
             next_azimuth: 0.0,

@@ -178,6 +178,10 @@ impl Default for GrowthOptions {
 struct Branch {
     /// 0 for the trunk and, on a multi-stem tree, the stems rising from its collar.
     order: u8,
+    /// Its place in the architecture its buds follow: its order, except on regrowth after a
+    /// cut, which repeats the tree's architecture from a scaffold's (`sprouts::SPROUT_RANK`),
+    /// so a sprout on a twig branches as a young limb does. No branch of `MAX_ORDER` sets buds.
+    rank: u8,
     /// Parent branch and the segment it grows from.
     parent: Option<(u32, u32)>,
     /// Segments, oldest first.
@@ -428,6 +432,7 @@ impl Grower {
         };
         g.branches.push(Branch {
             order: 0,
+            rank: 0,
             parent: None,
             segments: vec![0],
             next_azimuth: 0.0,
@@ -477,6 +482,7 @@ impl Grower {
             self.branches[0].children.push(id);
             self.branches.push(Branch {
                 order: 0,
+                rank: 0,
                 parent: Some((0, 0)),
                 segments: vec![self.segments.len() as u32],
                 next_azimuth: (self.rng.unit() * 360.0) as f32,

@@ -26,6 +26,11 @@ const CUT_PER_SPROUT: f32 = 0.02;
 const SPROUTING_RADIUS: f32 = 0.01;
 /// Most sprout buds one cut releases.
 const MOST_SPROUTS: f32 = 12.0;
+/// The rank (`Branch::rank`) a sprout's branch takes: a scaffold's, whatever the order of the
+/// wood it grew from. Sprouts after pruning are reiterations, shoots that repeat the tree's
+/// architecture from the start (traumatic reiteration: Barthélémy & Caraglio 2007, Ann. Bot.
+/// 99:375-407), so a sprout on a twig grows branches of branches as a young limb does.
+pub(super) const SPROUT_RANK: u8 = 1;
 /// How far below a cut its sprouts break, m (Sylva's choice: the wood just below the wound,
 /// where the latent buds the cut released sit).
 const SPROUT_REACH: f32 = 0.5;
