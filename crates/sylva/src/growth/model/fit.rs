@@ -73,13 +73,15 @@ impl Grower {
     }
 
     /// Whether a cut tree sheds branch `b` below `z`: its own axis lies below, and so does
-    /// every live branch on it, or nothing on it has grown for `STALLED_YEARS`. A low limb the
-    /// cuts headed back carries regrowth above the crown base on its side branches and
+    /// every live branch on it, or nothing on it has grown for `STALLED_YEARS`, or nothing on
+    /// it carries a leaf (this step's new shoots, not yet leafed, count as leafy). A low limb
+    /// the cuts headed back carries regrowth above the crown base on its side branches and
     /// sprouts: judged by its own axis alone, a plane's limb went at 26 with 1,205 live
-    /// segments on it. A branch that has stopped growing is dead wood, and goes as a shaded
-    /// one does (`shade_deaths`): kept, the old side branches of those limbs hung leafless
-    /// below the crown. The branch's own axis is looked at first: it is above on nearly every
-    /// call, and what grows on it then needs no walk.
+    /// segments on it. A branch that has stopped growing, or has no leaf to feed it, is dead
+    /// wood and goes as a shaded one does (`shade_deaths`): kept, the old side branches of
+    /// those limbs hung leafless below the crown, and a black pine stripped of its leaves by
+    /// line clearance kept growing bare limbs for years. The branch's own axis is looked at
+    /// first: it is above on nearly every call, and what grows on it then needs no walk.
     pub(super) fn cut_tree_sheds(&self, b: usize, z: f32) -> bool {
         let below = |b: usize| {
             self.branches[b].segments.iter().all(|&s| {
@@ -90,7 +92,7 @@ impl Grower {
         if !below(b) {
             return false;
         }
-        let (mut above, mut youngest) = (false, f64::NEG_INFINITY);
+        let (mut above, mut leafy, mut youngest) = (false, false, f64::NEG_INFINITY);
         let mut stack = vec![b];
         while let Some(c) = stack.pop() {
             let branch = &self.branches[c];
@@ -99,11 +101,14 @@ impl Grower {
             }
             above |= c != b && !below(c);
             for &s in &branch.segments {
-                youngest = youngest.max(self.segments[s as usize].born);
+                let born = self.segments[s as usize].born;
+                youngest = youngest.max(born);
+                leafy |= born >= self.age - 1e-9
+                    || self.leaves_on.get(s as usize).is_some_and(|&n| n > 0);
             }
             stack.extend(branch.children.iter().map(|&c| c as usize));
         }
-        !above || youngest < self.age - STALLED_YEARS
+        !above || !leafy || youngest < self.age - STALLED_YEARS
     }
 
     /// The crown's diameter and height now, measured as `measure` measures the skeleton: the

@@ -38,7 +38,7 @@ fn a_street_tree_grows_the_same_on_one_thread_or_three() {
     assert_eq!(bits(&one_light.light), bits(&three_light.light));
 }
 
-fn grown(region: &str, code: &str, years: f64) -> Grower {
+pub(super) fn grown(region: &str, code: &str, years: f64) -> Grower {
     let measured = Database::builtin().find(region, code).expect("built in");
     let mut grower = Grower::new(measured, GrowthOptions::default());
     let first = grower.age();
@@ -484,66 +484,6 @@ fn a_cut_plane_sprouts_below_its_cuts_and_a_pine_does_not() {
     let (cuts, sprouts, _) = cut_and_count("PITH");
     assert!(!cuts.marks.is_empty());
     assert_eq!(sprouts, 0, "a pine has no latent buds on its old wood");
-}
-
-#[test]
-fn regrowth_on_twigs_branches_as_a_young_limb_does_and_low_limbs_keep_it() {
-    // The plane's crown cleared through its middle, as a wire's zone would be, and grown on
-    // for two years.
-    let mut g = grown("InlVal", "PLAC", 12.0);
-    let h = g.targets_now().height as f32;
-    g.cut(&|p, order| order > 0 && p.z > 0.55 * h && p.z < 0.75 * h);
-    g.advance_to(g.age() + 2.0);
-    // Regrowth of the highest order: a twig's own shoots make no buds, but a sprout repeats
-    // the architecture from a scaffold's rank, so regrowth branches to the highest order
-    // and beyond it (before, none of these made a bud).
-    let highest: Vec<&Branch> = g
-        .branches
-        .iter()
-        .filter(|b| b.alive && b.sprung && b.order == 4 && b.segments.len() >= 2)
-        .collect();
-    let branched = highest.iter().filter(|b| !b.children.is_empty()).count();
-    eprintln!(
-        "{} regrowth branches of order 4, {branched} branched",
-        highest.len()
-    );
-    assert!(
-        highest.len() >= 10 && branched * 2 >= highest.len(),
-        "{branched} of {} regrowth branches of the highest order branched",
-        highest.len()
-    );
-    // A cut tree keeps a limb whose own axis is below the crown base while what grows on it
-    // reaches above; it sheds the limb once all of it is below, or once nothing on it grows.
-    let (limb, z) = (1..g.branches.len())
-        .filter(|&b| g.branches[b].alive && g.branches[b].order == 1)
-        .find_map(|b| {
-            let top = |b: usize| {
-                g.branches[b]
-                    .segments
-                    .iter()
-                    .map(|&s| {
-                        g.segments[s as usize]
-                            .start
-                            .z
-                            .max(g.segments[s as usize].end().z)
-                    })
-                    .fold(f32::NEG_INFINITY, f32::max)
-            };
-            let above = g.branches[b]
-                .children
-                .iter()
-                .map(|&c| top(c as usize))
-                .fold(f32::NEG_INFINITY, f32::max);
-            (above > top(b) + 0.5).then(|| (b, top(b) + 0.25))
-        })
-        .expect("a limb with branches reaching above it");
-    assert!(!g.cut_tree_sheds(limb, z));
-    assert!(g.cut_tree_sheds(limb, 1e3));
-    let stalled = g.age - 3.5;
-    for s in g.segments.iter_mut() {
-        s.born = s.born.min(stalled);
-    }
-    assert!(g.cut_tree_sheds(limb, z));
 }
 
 #[test]
