@@ -26,6 +26,7 @@ const MESH: MeshOptions = MeshOptions {
     sides: None,
     bark: sylva::mesh::BarkPattern::Smooth,
     young_bark: 1.0,
+    twig_copies: false,
 };
 
 /// A grown tree, meshed and written.

@@ -9,6 +9,7 @@ use sylva::export::{to_glb, write_atomically};
 use sylva::growth::report::{self, Cohort, age_label, run_ages};
 use sylva::growth::{CutKind, Grower};
 use sylva::growth::{Measured, dressed_mesh};
+use sylva::mesh::MeshOptions;
 use sylva::street::conflicts::conflicts;
 use sylva::street::picture::{pruning_picture, site_picture};
 use sylva::street::pruner::{Pruner, PruningYear};
@@ -135,7 +136,12 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             if pruner.is_some() {
                 account.record_pruning(cycles[i].take(), span);
             }
-            let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &report::MESH);
+            // A bare crown's short twigs go into the model as copies of one twig.
+            let options = MeshOptions {
+                twig_copies: true,
+                ..report::MESH
+            };
+            let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &options);
             let stem = format!("{}-age-{}{season}", m.species.code, age_label(age));
             // The site at the year each kind of conflict first happens, marked.
             let new: Vec<_> = account

@@ -90,6 +90,9 @@ fn as_placement(m: Mat4) -> Option<Placement> {
     })
 }
 
+/// sRGB colours of a mesh's bark, leaf and flower materials, where it has them.
+type Colours = [Option<[f32; 3]>; 3];
+
 /// Reads a glTF mesh's triangle primitives into a tree mesh transformed by `transform` (glTF's
 /// frame to Sylva's): primitives whose material is named `leaves` are leaves, the rest bark.
 /// Returns the mesh and its bark and leaf colours (`None` where it has no such material).
@@ -97,7 +100,7 @@ fn read_mesh(
     mesh: &gltf::Mesh,
     buffers: &[gltf::buffer::Data],
     transform: Mat4,
-) -> (TreeMesh, [Option<[f32; 3]>; 3]) {
+) -> (TreeMesh, Colours) {
     let mut out = TreeMesh::default();
     let (mut bark, mut leaves, mut flowers) = (None, None, None);
     for prim in mesh.primitives() {
@@ -207,9 +210,20 @@ fn glb_scene_of(bytes: Vec<u8>, path: &Path) -> Result<GlbScene, GlbError> {
     }
     // From a slice, whose lengths the reader checks against the data (its stream reader
     // trusts the header's length: it underflows below 12 and allocates whatever it says).
-    let gltf = gltf::Gltf::from_slice(&bytes)
-        .map_err(|e| GlbError(format!("{}: not a readable glTF file: {e}", path.display())))?;
+    let unreadable =
+        |e: gltf::Error| GlbError(format!("{}: not a readable glTF file: {e}", path.display()));
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(&bytes).map_err(unreadable)?;
     drop(bytes);
+    // The reader refuses a file that requires an extension it does not know; instanced copies
+    // (a bare crown's twigs) are read here (`instances`), so that one is taken off its list
+    // before it checks the rest of the file.
+    let mut root = document.into_json();
+    root.extensions_required.retain(|e| e != INSTANCING);
+    let gltf = gltf::Gltf {
+        document: gltf::Document::from_json(root).map_err(unreadable)?,
+        blob,
+    };
     let base = path.parent().unwrap_or(Path::new("."));
     check_external_buffers(&gltf.document, base, path)?;
     let buffers = gltf::import_buffers(&gltf.document, Some(base), gltf.blob.clone())
@@ -249,6 +263,13 @@ fn glb_scene_of(bytes: Vec<u8>, path: &Path) -> Result<GlbScene, GlbError> {
             stack.push((child, world, depth + 1));
         }
         let Some(mesh) = node.mesh() else { continue };
+        if let Some(copies) = instances(doc, &node, &buffers, path)? {
+            // Copies drawn by the GPU (a bare crown's twigs): read here as one mesh holding
+            // every copy, each placed.
+            let (m, colours) = read_copies(&mesh, &buffers, z_up * world, &copies, path)?;
+            models.push(model(m, colours, vec![Placement::ORIGIN]));
+            continue;
+        }
         let placed = z_up * world * y_up;
         match (as_placement(placed), by_mesh.get(&mesh.index())) {
             (Some(p), Some(&k)) => models[k].placements.push(p),
@@ -269,6 +290,117 @@ fn glb_scene_of(bytes: Vec<u8>, path: &Path) -> Result<GlbScene, GlbError> {
         fail!("{}: no triangles to render", path.display());
     }
     Ok(GlbScene { models })
+}
+
+/// glTF's extension for copies of a mesh drawn by the GPU.
+const INSTANCING: &str = "EXT_mesh_gpu_instancing";
+/// Most vertices a GLB's instanced copies are read into (about a gigabyte of mesh).
+const MAX_COPIED_VERTICES: usize = 30_000_000;
+
+/// The transforms of a node's copies (`EXT_mesh_gpu_instancing`: each copy's TRANSLATION,
+/// ROTATION and SCALE, glTF's frame), or `None` where the node has no such extension.
+fn instances(
+    doc: &gltf::Document,
+    node: &gltf::Node,
+    buffers: &[gltf::buffer::Data],
+    path: &Path,
+) -> Result<Option<Vec<Mat4>>, GlbError> {
+    let json = &doc.as_json().nodes[node.index()];
+    let Some(ext) = (json.extensions.as_ref()).and_then(|e| e.others.get(INSTANCING)) else {
+        return Ok(None);
+    };
+    let attribute = |name: &str| -> Result<Option<gltf::Accessor>, GlbError> {
+        let Some(index) = ext["attributes"].get(name) else {
+            return Ok(None);
+        };
+        let found = index.as_u64().and_then(|i| doc.accessors().nth(i as usize));
+        match found {
+            Some(a) if a.data_type() == gltf::accessor::DataType::F32 => Ok(Some(a)),
+            _ => fail!(
+                "{}: node {}'s EXT_mesh_gpu_instancing {name} is not an accessor of floats                  (only float copies are read)",
+                path.display(),
+                node.index()
+            ),
+        }
+    };
+    let data = |b: gltf::Buffer| buffers.get(b.index()).map(|d| &d.0[..]);
+    let read3 = |a: Option<gltf::Accessor>| -> Vec<[f32; 3]> {
+        a.and_then(|a| gltf::accessor::Iter::<[f32; 3]>::new(a, data))
+            .map_or_else(Vec::new, Iterator::collect)
+    };
+    let moves = read3(attribute("TRANSLATION")?);
+    let scales = read3(attribute("SCALE")?);
+    let turns: Vec<[f32; 4]> = attribute("ROTATION")?
+        .and_then(|a| gltf::accessor::Iter::<[f32; 4]>::new(a, data))
+        .map_or_else(Vec::new, Iterator::collect);
+    let n = moves.len().max(scales.len()).max(turns.len());
+    let fits = |len: usize| len == 0 || len == n;
+    if !(fits(moves.len()) && fits(scales.len()) && fits(turns.len())) {
+        fail!(
+            "{}: node {}'s copies have {} translations, {} rotations and {} scales (each              must be absent or as many as the copies)",
+            path.display(),
+            node.index(),
+            moves.len(),
+            turns.len(),
+            scales.len()
+        );
+    }
+    Ok(Some(
+        (0..n)
+            .map(|i| {
+                Mat4::from_scale_rotation_translation(
+                    scales.get(i).map_or(Vec3::ONE, |&s| Vec3::from(s)),
+                    turns.get(i).map_or(glam::Quat::IDENTITY, |&q| {
+                        glam::Quat::from_array(q).normalize()
+                    }),
+                    moves.get(i).map_or(Vec3::ZERO, |&t| Vec3::from(t)),
+                )
+            })
+            .collect(),
+    ))
+}
+
+/// `mesh` read once and written out at each of `copies` (glTF's frame, under `to_sylva`): one
+/// mesh of every copy. Normals go through each copy's inverse transpose, as its scale need not
+/// be uniform.
+fn read_copies(
+    mesh: &gltf::Mesh,
+    buffers: &[gltf::buffer::Data],
+    to_sylva: Mat4,
+    copies: &[Mat4],
+    path: &Path,
+) -> Result<(TreeMesh, Colours), GlbError> {
+    let (one, colours) = read_mesh(mesh, buffers, Mat4::IDENTITY);
+    if one.vertex_count().saturating_mul(copies.len()) > MAX_COPIED_VERTICES {
+        fail!(
+            "{}: {} copies of a mesh of {} vertices are more than the {MAX_COPIED_VERTICES}              vertices read from instanced copies",
+            path.display(),
+            copies.len(),
+            one.vertex_count()
+        );
+    }
+    let mut out = TreeMesh::default();
+    for (from, to) in [
+        (&one.bark, &mut out.bark),
+        (&one.leaves, &mut out.leaves),
+        (&one.flowers, &mut out.flowers),
+    ] {
+        for &copy in copies {
+            let m = to_sylva * copy;
+            let normals = glam::Mat3::from_mat4(m).inverse().transpose();
+            let base = to.positions.len() as u32;
+            for (p, n) in from.positions.iter().zip(&from.normals) {
+                to.positions
+                    .push(m.transform_point3(Vec3::from(*p)).to_array());
+                let n = (normals * Vec3::from(*n)).normalize_or(Vec3::Z);
+                to.normals.push(n.to_array());
+            }
+            to.uvs.extend_from_slice(&from.uvs);
+            to.shades.extend_from_slice(&from.shades);
+            to.indices.extend(from.indices.iter().map(|&i| i + base));
+        }
+    }
+    Ok((out, colours))
 }
 
 /// The whole file, if it is a regular file within the budget.
@@ -396,6 +528,65 @@ mod tests {
         assert!(as_placement(Mat4::from_scale(Vec3::splat(-1.0))).is_none());
         let origin = as_placement(Mat4::IDENTITY).unwrap();
         assert_eq!(origin, Placement::ORIGIN);
+    }
+
+    #[test]
+    fn instanced_twig_copies_are_read_as_every_twig_placed() {
+        use sylva::mesh::{MeshOptions, mesh_tree};
+        use sylva::skeleton::{CrossSection, Skeleton, Stem, StemId};
+        // A bare stem with two short twigs, the second a turned, larger copy of the first.
+        let ring = |p: Vec3, d: Vec3, radius| CrossSection {
+            position: p,
+            orientation: glam::Quat::from_rotation_arc(Vec3::Z, d.normalize()),
+            radius,
+            z: 0.0,
+        };
+        let stem = |level, sections: std::ops::Range<u32>| Stem {
+            level,
+            parent: (level > 0).then_some(StemId(0)),
+            clone_of: None,
+            offset: 0.0,
+            length: 1.0,
+            sections,
+            lobes: 0,
+            lobe_depth: 0.0,
+        };
+        let (a, b) = (Vec3::new(1.0, 0.3, 0.4), Vec3::new(-0.2, 1.0, -0.1));
+        let sk = Skeleton {
+            stems: vec![stem(0, 0..2), stem(3, 2..4), stem(3, 4..6)],
+            sections: vec![
+                ring(Vec3::ZERO, Vec3::Z, 0.04),
+                ring(Vec3::Z * 2.0, Vec3::Z, 0.01),
+                ring(Vec3::Z, a, 0.003),
+                ring(Vec3::Z + a.normalize() * 0.03, a, 0.00105),
+                ring(Vec3::Z * 1.5, b, 0.004),
+                ring(Vec3::Z * 1.5 + b.normalize() * 0.05, b, 0.0014),
+            ],
+            short_twigs: 2,
+            ..Default::default()
+        };
+        let direct = mesh_tree(&sk, &MeshOptions::default());
+        let options = MeshOptions {
+            twig_copies: true,
+            ..Default::default()
+        };
+        let glb = sylva::export::to_glb(&mesh_tree(&sk, &options), "t", &Default::default());
+        let scene = glb_scene_from_bytes(glb.unwrap(), "twigs.glb").unwrap();
+        let triangles: usize = scene.models.iter().map(|m| m.mesh.triangle_count()).sum();
+        assert_eq!(triangles, direct.triangle_count());
+        // The copies' vertices are where the twigs meshed one by one put theirs (Z up).
+        let copies = scene
+            .models
+            .iter()
+            .find(|m| m.mesh.bark.vertex_count() < 40)
+            .unwrap();
+        let twig_vertices = &direct.bark.positions[direct.bark.vertex_count() - 32..];
+        for (p, q) in copies.mesh.bark.positions.iter().zip(twig_vertices) {
+            assert!(
+                Vec3::from(*p).distance(Vec3::from(*q)) < 1e-5,
+                "{p:?} against {q:?}"
+            );
+        }
     }
 
     #[test]

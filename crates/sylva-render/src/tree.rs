@@ -80,7 +80,9 @@ fn bounds(data: &TreeData) -> (Vec3, Vec3) {
 impl TreeData {
     pub fn from_mesh(mesh: &TreeMesh) -> Self {
         Self {
-            bark: mesh_data(&mesh.bark),
+            // The twig copies a model file draws instanced (`MeshOptions::twig_copies`) are
+            // drawn here as the bark they stand for.
+            bark: mesh_data(&mesh.bark_with_twigs()),
             leaves: mesh_data(&mesh.leaves),
             lod: None,
         }

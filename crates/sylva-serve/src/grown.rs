@@ -206,6 +206,7 @@ pub const WEB_MESH: MeshOptions = MeshOptions {
     sides: None,
     bark: sylva::mesh::BarkPattern::Smooth,
     young_bark: 1.0,
+    twig_copies: false,
 };
 
 /// How much wider a kite is than the oval it stands for (see [`WEB_MESH`]).

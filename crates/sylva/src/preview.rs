@@ -218,6 +218,7 @@ mod tests {
             },
             leaves: Mesh::default(),
             flowers: Mesh::default(),
+            twigs: Default::default(),
         };
         let pic = render_preview(
             &mesh,

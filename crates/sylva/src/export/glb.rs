@@ -2,6 +2,7 @@
 //! flower primitive when the tree is in flower), each with its own material; positions,
 //! normals, UVs, 32-bit indices and the vertex shades (COLOR_0) in one binary chunk.
 
+use super::twigs::TwigNode;
 use super::{write_atomically_with, y_up};
 use crate::error::ExportError;
 use crate::mesh::{Mesh, TreeMesh};
@@ -352,21 +353,29 @@ pub fn glb_scene<'a>(
         .iter()
         .map(|(name, mesh, materials)| b.tree_mesh(name, mesh, materials))
         .collect();
+    // A bare crown's twigs as copies of one, drawn by a child of each of its tree's nodes.
+    let twigs = TwigNode::write_all(&mut b, meshes);
     let mut nodes = Vec::with_capacity(instances.len());
     for inst in instances {
         let identity = inst.position == [0.0; 3] && inst.turn == 0.0 && inst.scale == 1.0;
         let (s, c) = (inst.turn / 2.0).sin_cos();
         let p = inst.position;
+        let name = meshes[inst.mesh].0;
+        let children = twigs[inst.mesh]
+            .as_ref()
+            .map(|t| vec![t.node(&mut b, name)]);
         nodes.push(b.root.push(json::Node {
             mesh: Some(gltf_meshes[inst.mesh]),
-            name: Some(meshes[inst.mesh].0.into()),
+            name: Some(name.into()),
             translation: (!identity).then(|| super::y_up(p)),
             // A turn about Z (up) in the model is a turn about Y (up) in the file.
             rotation: (!identity).then_some(json::scene::UnitQuaternion([0.0, s, 0.0, c])),
             scale: (!identity).then_some([inst.scale; 3]),
+            children,
             ..Default::default()
         }));
     }
+    TwigNode::require(&mut b, &twigs);
     b.scene(nodes);
     finish(b)
 }

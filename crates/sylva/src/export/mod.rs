@@ -10,6 +10,7 @@ mod glb;
 mod instanced;
 mod obj;
 mod shelled;
+mod twigs;
 
 pub use atomic::{write_atomically, write_atomically_with};
 pub use glb::{

@@ -39,8 +39,10 @@ fn to_obj_blocks(
         name.replace(char::is_whitespace, "_")
     );
     let mut blocks = vec![head.into_bytes()];
+    // OBJ has no instancing: twig copies are written out one by one.
+    let bark = mesh.bark_with_twigs();
     for (group, part) in [
-        ("bark", &mesh.bark),
+        ("bark", &*bark),
         ("leaves", &mesh.leaves),
         ("flowers", &mesh.flowers),
     ] {

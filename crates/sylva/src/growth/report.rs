@@ -33,6 +33,7 @@ pub const MESH: MeshOptions = MeshOptions {
     sides: None,
     bark: crate::mesh::BarkPattern::Smooth,
     young_bark: 1.0,
+    twig_copies: false,
 };
 
 /// The ages of a run: `from` to `to` every `step` years, by default the ages the species'

@@ -8,12 +8,16 @@ mod compound;
 mod leaves;
 mod leaves_apart;
 mod stems;
+mod twigs;
 
 pub use bark::{BarkPattern, young_bark_shade};
 pub use compound::{NEEDLE_SPRAY_LENGTH, natural_aspect};
 pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
 pub(crate) use stems::ring_frame;
 pub use stems::ring_vertices;
+#[cfg(test)]
+pub(crate) use twigs::tests as twigs_tests;
+pub use twigs::{TwigCopies, TwigCopy};
 
 use crate::skeleton::Skeleton;
 
@@ -87,17 +91,38 @@ pub struct TreeMesh {
     /// Showy flowers in their season (drawn double-sided, in a material of their own); empty
     /// for most trees and seasons.
     pub flowers: Mesh,
+    /// A bare crown's short twigs as copies of one twig, where the options asked for them
+    /// ([`MeshOptions::twig_copies`]); empty otherwise, the twigs then in `bark`. Bark
+    /// material.
+    pub twigs: TwigCopies,
 }
 
 impl TreeMesh {
-    /// Vertices of every part.
+    /// Vertices of every part, each twig copy's counted.
     pub fn vertex_count(&self) -> usize {
-        self.bark.vertex_count() + self.leaves.vertex_count() + self.flowers.vertex_count()
+        self.bark.vertex_count()
+            + self.leaves.vertex_count()
+            + self.flowers.vertex_count()
+            + self.twigs.vertex_count()
     }
 
-    /// Triangles of every part.
+    /// Triangles of every part, each twig copy's counted.
     pub fn triangle_count(&self) -> usize {
-        self.bark.triangle_count() + self.leaves.triangle_count() + self.flowers.triangle_count()
+        self.bark.triangle_count()
+            + self.leaves.triangle_count()
+            + self.flowers.triangle_count()
+            + self.twigs.triangle_count()
+    }
+
+    /// The bark with the twig copies placed in it: what a mesh drawn without instancing
+    /// shows (borrowed where there are no copies).
+    pub fn bark_with_twigs(&self) -> std::borrow::Cow<'_, Mesh> {
+        if self.twigs.is_empty() {
+            return std::borrow::Cow::Borrowed(&self.bark);
+        }
+        let mut bark = self.bark.clone();
+        self.twigs.place_into(&mut bark);
+        std::borrow::Cow::Owned(bark)
     }
 }
 
@@ -115,6 +140,10 @@ pub struct MeshOptions {
     /// vertex shades on thin stems (see [`bark::young_bark_shade`]): a white birch's dark
     /// twigs.
     pub young_bark: f32,
+    /// Draws a bare crown's short twigs as copies of one twig ([`TreeMesh::twigs`]) instead of
+    /// in the bark: a model file then holds one twig and a placement a copy. Off where a
+    /// mesh is drawn or read as it is (pictures, the viewer, Python).
+    pub twig_copies: bool,
 }
 
 impl Default for MeshOptions {
@@ -124,6 +153,7 @@ impl Default for MeshOptions {
             sides: None,
             bark: BarkPattern::Smooth,
             young_bark: 1.0,
+            twig_copies: false,
         }
     }
 }
@@ -169,6 +199,11 @@ pub fn mesh_tree_into(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Tre
         part.indices.clear();
         part.shades.clear();
     }
+    mesh.twigs = if options.twig_copies {
+        twigs::twig_copies(skeleton, options)
+    } else {
+        TwigCopies::default()
+    };
     // Size every buffer exactly first: growing them by doubling costs more than filling them.
     let (v, i) = stems::count(skeleton, options);
     mesh.bark.reserve(v, i);

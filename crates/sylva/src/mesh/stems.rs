@@ -34,12 +34,24 @@ fn circle(n: usize, out: &mut Vec<(f32, f32)>) {
     }));
 }
 
+/// The stems meshed into the bark: [`Skeleton::meshed_stems`], less the short twigs where they
+/// are drawn as copies (`twigs.rs`).
+fn meshed<'a>(skeleton: &'a Skeleton, options: &MeshOptions) -> &'a [Stem] {
+    if options.twig_copies {
+        skeleton.frame_stems()
+    } else {
+        skeleton.meshed_stems()
+    }
+}
+
 /// Vertices and indices that [`mesh_stems`] will write.
 pub(super) fn count(skeleton: &Skeleton, options: &MeshOptions) -> (usize, usize) {
-    skeleton.meshed_stems().iter().fold((0, 0), |(v, i), stem| {
-        let (sv, si) = stem_size(skeleton, stem, options);
-        (v + sv, i + si)
-    })
+    meshed(skeleton, options)
+        .iter()
+        .fold((0, 0), |(v, i), stem| {
+            let (sv, si) = stem_size(skeleton, stem, options);
+            (v + sv, i + si)
+        })
 }
 
 /// Vertices and indices one stem's mesh takes.
@@ -136,7 +148,7 @@ fn tip_is_point(sections: &[CrossSection]) -> bool {
 
 pub(super) fn mesh_stems(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh) {
     if !mesh_stems_apart(skeleton, options, mesh) {
-        mesh_run(skeleton, skeleton.meshed_stems(), options, mesh);
+        mesh_run(skeleton, meshed(skeleton, options), options, mesh);
     }
 }
 
@@ -150,7 +162,7 @@ fn mesh_stems_apart(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh)
     }
     let mut runs: Vec<(&[Stem], (usize, usize))> = Vec::new();
     let (mut start, mut size, mut total) = (0, (0, 0), 0);
-    let stems = skeleton.meshed_stems();
+    let stems = meshed(skeleton, options);
     for (k, stem) in stems.iter().enumerate() {
         let (v, i) = stem_size(skeleton, stem, options);
         size = (size.0 + v, size.1 + i);
@@ -170,7 +182,12 @@ fn mesh_stems_apart(skeleton: &Skeleton, options: &MeshOptions, mesh: &mut Mesh)
 }
 
 /// Meshes `stems` (of `skeleton`) in order into `out`.
-fn mesh_run(skeleton: &Skeleton, stems: &[Stem], options: &MeshOptions, out: &mut impl Sink) {
+pub(super) fn mesh_run(
+    skeleton: &Skeleton,
+    stems: &[Stem],
+    options: &MeshOptions,
+    out: &mut impl Sink,
+) {
     // Stems come parent before children, so the ring size changes from one stem to the next:
     // each size's circle is worked out once and kept.
     let mut circles: Vec<Vec<(f32, f32)>> = Vec::new();
