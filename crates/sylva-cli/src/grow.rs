@@ -138,7 +138,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             }
             // A bare crown's short twigs go into the model as copies of one twig.
             let options = MeshOptions {
-                twig_copies: true,
+                twig_copies: !args.twigs_in_bark,
                 ..report::MESH
             };
             let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &options);

@@ -337,6 +337,11 @@ pub struct GrowArgs {
     #[arg(long)]
     pub no_pictures: bool,
 
+    /// Mesh a bare crown's short twigs into the bark of the GLB, one by one, instead of as
+    /// copies of one twig (EXT_mesh_gpu_instancing): for readers without that extension.
+    #[arg(long)]
+    pub twigs_in_bark: bool,
+
     /// Print one JSON object per species and age (the grown tree's dimensions beside the
     /// equations', and its form: leaf share near the axis, leaders, scaffold angle, pipe
     /// exponent, live and shed branches) instead of the table.

@@ -268,6 +268,28 @@ fn seasons_dress_the_grown_tree_and_leave_its_growth_alone() {
         .map(|a| json["accessors"][a as usize]["count"].as_u64().unwrap())
         .sum::<u64>();
     assert!(copies > 100, "{copies} twig copies");
+    // `--twigs-in-bark`: every twig meshed into the bark, for readers without instancing.
+    let flat = dir.path().join("flat");
+    let run = sylva(&[
+        "grow",
+        "PRSE2",
+        "--region",
+        "NoEast",
+        "--from",
+        "6",
+        "--to",
+        "6",
+        "--season",
+        "winter",
+        "--no-pictures",
+        "--twigs-in-bark",
+        "-o",
+        flat.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let (doc, _, _) = gltf::import(flat.join("PRSE2-age-06-winter.glb")).unwrap();
+    assert_eq!(doc.extensions_required().count(), 0);
+    assert_eq!(doc.meshes().flat_map(|m| m.primitives()).count(), 1);
     // Sylva's own reader draws them: the winter GLB renders as bare wood.
     let png = dir.path().join("winter-glb.png");
     let glb = out.join("PRSE2-age-06-winter.glb");
