@@ -9,18 +9,18 @@ mod atomic;
 mod glb;
 mod instanced;
 mod obj;
+mod scene;
 mod shelled;
 mod twigs;
 
 pub use atomic::{write_atomically, write_atomically_with};
-pub use glb::{
-    Glb, Instance, Materials, glb_scene, to_glb, to_glb_lod, to_glb_scene, tree_glb, write_glb,
-};
+pub use glb::{Glb, Materials, to_glb_lod};
 pub use instanced::{
     Column, Features, InstancedGroup, InstancedMesh, MeshSource, Metadata, PropertyTable,
     SharedMesh, instanced_glb,
 };
 pub use obj::{to_obj, write_obj};
+pub use scene::{Instance, glb_scene, to_glb, to_glb_scene, tree_glb, write_glb};
 pub use shelled::shelled_glb;
 
 /// Z-up model coordinates to Y-up file coordinates.
