@@ -79,7 +79,7 @@ impl Bends {
             last = node;
         }
         self.ranges[id as usize] = (lo, self.nodes.len() as u32);
-        self.sides[id as usize] = Self::side(id, s);
+        self.sides[id as usize] = Self::side(s.id, s);
         let nodes = &self.nodes[lo as usize..];
         kinks.extend(
             nodes

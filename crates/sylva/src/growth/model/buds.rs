@@ -74,6 +74,9 @@ impl Grower {
         }
         let space = self.space(&next, self.spread as f32 * MARKER_MARGIN);
         self.prune_buds(next.crown_base() as f32);
+        if !sylleptic {
+            self.compact();
+        }
         // A branch cut back to a lateral has no apex left: the lateral grows on for it.
         let terminals: Vec<u32> = (0..self.branches.len() as u32)
             .filter(|&b| self.branches[b as usize].alive && !self.branches[b as usize].headed)
@@ -552,7 +555,9 @@ impl Grower {
     pub(super) fn extend(&mut self, b: usize, direction: Vec3, length: f32) {
         let apex = self.apex_segment(b);
         let done = apex.length;
+        let id = self.next_segment_id();
         self.segments.push(Segment {
+            id,
             branch: b as u32,
             start: apex.end(),
             direction,
@@ -597,7 +602,9 @@ impl Grower {
         };
         let id = self.branches.len() as u32;
         self.branches[parent].children.push(id);
+        let branch_id = self.next_branch_id();
         self.branches.push(Branch {
+            id: branch_id,
             order,
             rank,
             parent: Some((bud.branch, bud.segment)),
@@ -612,7 +619,9 @@ impl Grower {
             headed: false,
             sprung: bud.sprout || self.branches[parent].sprung,
         });
+        let segment_id = self.next_segment_id();
         self.segments.push(Segment {
+            id: segment_id,
             branch: id,
             start,
             direction,

@@ -328,8 +328,10 @@ impl Grower {
                 self.branches[ch as usize].parent = Some((dead, from));
             }
         }
+        let id = self.next_branch_id();
         let branch = &self.branches[b];
         self.branches.push(Branch {
+            id,
             order: branch.order,
             rank: branch.rank,
             parent: Some((b as u32, sj)),

@@ -350,7 +350,7 @@ impl Grower {
     ) {
         let mut turn = 0.0f32;
         let mut turns = leaf_turns().iter();
-        let mut rng = self.key.child(1000 + b as u64).stream();
+        let mut rng = self.key.child(1000 + self.branches[b].id as u64).stream();
         for &si in &self.branches[b].segments {
             let s = &self.segments[si as usize];
             let n = self.leaves_on.get(si as usize).copied().unwrap_or(0) as usize;

@@ -34,6 +34,7 @@ mod allocate;
 mod bends;
 mod buds;
 mod colonise;
+mod compact;
 mod cuts;
 mod fit;
 mod leaves;
@@ -176,6 +177,10 @@ impl Default for GrowthOptions {
 /// What one branch is.
 #[derive(Clone, Debug)]
 struct Branch {
+    /// Its number among the branches the tree has made, given when it was made: what its
+    /// random streams are keyed by, since its place in `Grower::branches` changes as dead
+    /// branches are dropped (`compact.rs`).
+    id: u32,
     /// 0 for the trunk and, on a multi-stem tree, the stems rising from its collar.
     order: u8,
     /// Its place in the architecture its buds follow: its order, except on regrowth after a
@@ -211,6 +216,8 @@ struct Branch {
 /// One annual segment.
 #[derive(Clone, Copy, Debug)]
 struct Segment {
+    /// Its number among the segments the tree has made (see `Branch::id`).
+    id: u32,
     branch: u32,
     start: Vec3,
     direction: Vec3,
@@ -328,6 +335,10 @@ pub struct Grower {
     /// The top of a tree whose leader the street cut back, m: its crown base is held to the
     /// measured share of it (`Grower::targets`).
     cut_top: Option<f32>,
+    /// Branches and segments made so far: the next of each gets this number as its id.
+    made: (u32, u32),
+    /// Dead branches dropped from `branches` (`compact.rs`), still counted as shed.
+    dropped_branches: usize,
     /// Time spent in the last step.
     pub times: StepTimes,
 }
@@ -413,6 +424,8 @@ impl Grower {
             leaf_reach: LEAF_REACH,
             regrowth: None,
             cut_top: None,
+            made: (0, 0),
+            dropped_branches: 0,
             times: StepTimes::default(),
             options,
             measured,
@@ -430,7 +443,9 @@ impl Grower {
         } else {
             t.height as f32
         };
+        let id = g.next_branch_id();
         g.branches.push(Branch {
+            id,
             order: 0,
             rank: 0,
             parent: None,
@@ -445,7 +460,9 @@ impl Grower {
             headed: false,
             sprung: false,
         });
+        let id = g.next_segment_id();
         g.segments.push(Segment {
+            id,
             branch: 0,
             start: Vec3::ZERO,
             direction: Vec3::Z,
@@ -480,7 +497,9 @@ impl Grower {
             );
             let id = self.branches.len() as u32;
             self.branches[0].children.push(id);
+            let branch_id = self.next_branch_id();
             self.branches.push(Branch {
+                id: branch_id,
                 order: 0,
                 rank: 0,
                 parent: Some((0, 0)),
@@ -495,7 +514,9 @@ impl Grower {
                 headed: false,
                 sprung: false,
             });
+            let segment_id = self.next_segment_id();
             self.segments.push(Segment {
+                id: segment_id,
                 branch: id,
                 start: collar,
                 direction,
@@ -530,7 +551,7 @@ impl Grower {
     /// Branches (the trunk aside) alive, and shed since planting.
     pub fn branch_counts(&self) -> (usize, usize) {
         let live = self.branches[1..].iter().filter(|b| b.alive).count();
-        (live, self.branches.len() - 1 - live)
+        (live, self.branches.len() - 1 - live + self.dropped_branches)
     }
 
     /// Live branch segments.

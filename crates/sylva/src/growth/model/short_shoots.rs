@@ -44,7 +44,7 @@ const SHADED_YEARS: u8 = 3;
 #[derive(Clone, Copy, Debug)]
 pub(super) struct ShortShoot {
     /// The long shoot (segment) it stands on.
-    segment: u32,
+    pub(super) segment: u32,
     /// Where along it, m from its start.
     along: f32,
     direction: Vec3,
@@ -124,7 +124,7 @@ impl Grower {
         let (lo, hi) = PER_SHOOT_LENGTHS;
         let share = ((s.length - lo) / (hi - lo)).clamp(0.0, 1.0);
         let n = (PER_SHOOT.0 + share * (PER_SHOOT.1 - PER_SHOOT.0)).round() as usize;
-        let mut rng = self.key.child(SHORT_SHOOT_KEYS + segment as u64).stream();
+        let mut rng = self.key.child(SHORT_SHOOT_KEYS + s.id as u64).stream();
         let angle = self.habit.branch_angle.min(50.0);
         let axis = s.direction;
         let mut azimuth = (rng.unit() * 360.0) as f32;
