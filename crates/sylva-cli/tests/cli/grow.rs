@@ -191,9 +191,9 @@ fn draw_grows_a_street_tree_to_an_age_for_plans() {
 fn seasons_dress_the_grown_tree_and_leave_its_growth_alone() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("cherry");
-    // `season` as given, and as the file names it.
-    let grow = |season: &str, label: &str| {
-        let run = sylva(&[
+    // The cherry at 6 in `season`, written to `to` with any `more` flags.
+    let grow_into = |to: &std::path::Path, season: &str, more: &[&str]| {
+        let args = [
             "grow",
             "PRSE2",
             "--region",
@@ -202,13 +202,15 @@ fn seasons_dress_the_grown_tree_and_leave_its_growth_alone() {
             "6",
             "--to",
             "6",
-            "--season",
-            season,
             "--no-pictures",
-            "-o",
-            out.to_str().unwrap(),
-        ]);
+            "--season",
+        ];
+        let run = sylva(&[&args[..], &[season, "-o", to.to_str().unwrap()], more].concat());
         assert!(run.status.success(), "{}", text(&run.stderr));
+    };
+    // `season` as given, and as the file names it.
+    let grow = |season: &str, label: &str| {
+        grow_into(&out, season, &[]);
         let path = out.join(format!("PRSE2-age-06-{label}.glb"));
         // A bare crown's twigs are instanced copies, an extension the gltf crate refuses
         // when required: it is taken off the list, and the rest of the file checked.
@@ -270,23 +272,7 @@ fn seasons_dress_the_grown_tree_and_leave_its_growth_alone() {
     assert!(copies > 100, "{copies} twig copies");
     // `--twigs-in-bark`: every twig meshed into the bark, for readers without instancing.
     let flat = dir.path().join("flat");
-    let run = sylva(&[
-        "grow",
-        "PRSE2",
-        "--region",
-        "NoEast",
-        "--from",
-        "6",
-        "--to",
-        "6",
-        "--season",
-        "winter",
-        "--no-pictures",
-        "--twigs-in-bark",
-        "-o",
-        flat.to_str().unwrap(),
-    ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    grow_into(&flat, "winter", &["--twigs-in-bark"]);
     let (doc, _, _) = gltf::import(flat.join("PRSE2-age-06-winter.glb")).unwrap();
     assert_eq!(doc.extensions_required().count(), 0);
     assert_eq!(doc.meshes().flat_map(|m| m.primitives()).count(), 1);
