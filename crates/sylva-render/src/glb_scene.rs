@@ -7,7 +7,7 @@ use glam::{Mat4, Vec3};
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::path::Path;
-use sylva::mesh::{Mesh, TreeMesh};
+use sylva::mesh::{Mesh, TreeMesh, place_copies};
 
 /// Deepest node hierarchy read, and most nodes visited: a malformed file (a node listed as its
 /// own child) stops here instead of looping.
@@ -317,7 +317,8 @@ fn instances(
         match found {
             Some(a) if a.data_type() == gltf::accessor::DataType::F32 => Ok(Some(a)),
             _ => fail!(
-                "{}: node {}'s EXT_mesh_gpu_instancing {name} is not an accessor of floats                  (only float copies are read)",
+                "{}: node {}'s EXT_mesh_gpu_instancing {name} names no accessor of floats (only \
+                 float copies are read)",
                 path.display(),
                 node.index()
             ),
@@ -337,7 +338,8 @@ fn instances(
     let fits = |len: usize| len == 0 || len == n;
     if !(fits(moves.len()) && fits(scales.len()) && fits(turns.len())) {
         fail!(
-            "{}: node {}'s copies have {} translations, {} rotations and {} scales (each              must be absent or as many as the copies)",
+            "{}: node {}'s copies have {} translations, {} rotations and {} scales (each \
+             must be absent or as many as the copies)",
             path.display(),
             node.index(),
             moves.len(),
@@ -361,8 +363,7 @@ fn instances(
 }
 
 /// `mesh` read once and written out at each of `copies` (glTF's frame, under `to_sylva`): one
-/// mesh of every copy. Normals go through each copy's inverse transpose, as its scale need not
-/// be uniform.
+/// mesh of every copy (`sylva::mesh::place_copies`).
 fn read_copies(
     mesh: &gltf::Mesh,
     buffers: &[gltf::buffer::Data],
@@ -373,7 +374,8 @@ fn read_copies(
     let (one, colours) = read_mesh(mesh, buffers, Mat4::IDENTITY);
     if one.vertex_count().saturating_mul(copies.len()) > MAX_COPIED_VERTICES {
         fail!(
-            "{}: {} copies of a mesh of {} vertices are more than the {MAX_COPIED_VERTICES}              vertices read from instanced copies",
+            "{}: {} copies of a mesh of {} vertices are more than the \
+             {MAX_COPIED_VERTICES} vertices read from instanced copies",
             path.display(),
             copies.len(),
             one.vertex_count()
@@ -385,20 +387,7 @@ fn read_copies(
         (&one.leaves, &mut out.leaves),
         (&one.flowers, &mut out.flowers),
     ] {
-        for &copy in copies {
-            let m = to_sylva * copy;
-            let normals = glam::Mat3::from_mat4(m).inverse().transpose();
-            let base = to.positions.len() as u32;
-            for (p, n) in from.positions.iter().zip(&from.normals) {
-                to.positions
-                    .push(m.transform_point3(Vec3::from(*p)).to_array());
-                let n = (normals * Vec3::from(*n)).normalize_or(Vec3::Z);
-                to.normals.push(n.to_array());
-            }
-            to.uvs.extend_from_slice(&from.uvs);
-            to.shades.extend_from_slice(&from.shades);
-            to.indices.extend(from.indices.iter().map(|&i| i + base));
-        }
+        place_copies(from, copies.iter().map(|&copy| to_sylva * copy), to);
     }
     Ok((out, colours))
 }

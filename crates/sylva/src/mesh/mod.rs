@@ -17,7 +17,7 @@ pub(crate) use stems::ring_frame;
 pub use stems::ring_vertices;
 #[cfg(test)]
 pub(crate) use twigs::tests as twigs_tests;
-pub use twigs::{TwigCopies, TwigCopy};
+pub use twigs::{TwigCopies, TwigCopy, place_copies};
 
 use crate::skeleton::Skeleton;
 

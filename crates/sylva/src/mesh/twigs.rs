@@ -59,42 +59,39 @@ impl TwigCopies {
     }
 
     /// Appends every copy, placed, to `bark`: the twigs as the bark would hold them, for what
-    /// draws a mesh without instancing (pictures, OBJ). Normals go through the inverse
-    /// transpose, as a copy's scale is not uniform.
+    /// draws a mesh without instancing (pictures, OBJ).
     pub fn place_into(&self, bark: &mut Mesh) {
-        if self.is_empty() {
-            return;
+        if !self.is_empty() {
+            place_copies(&self.twig, self.copies.iter().map(TwigCopy::matrix), bark);
         }
-        let shaded = !bark.shades.is_empty() || !self.twig.shades.is_empty();
+    }
+}
+
+/// Appends `part` to `out` once for each of `copies`, its vertices moved by the copy's matrix
+/// and its normals by the inverse transpose (a copy's scale need not be uniform). Where either
+/// side carries shades, the vertices of the other count as fully lit.
+pub fn place_copies(part: &Mesh, copies: impl ExactSizeIterator<Item = Mat4>, out: &mut Mesh) {
+    let shaded = !out.shades.is_empty() || !part.shades.is_empty();
+    if shaded {
+        out.shades.resize(out.positions.len(), 1.0);
+    }
+    out.reserve(
+        part.vertex_count() * copies.len(),
+        part.indices.len() * copies.len(),
+    );
+    for m in copies {
+        let normals = Mat3::from_mat4(m).inverse().transpose();
+        let base = out.positions.len() as u32;
+        for (k, (p, n)) in part.positions.iter().zip(&part.normals).enumerate() {
+            let p = m.transform_point3(Vec3::from(*p));
+            let n = (normals * Vec3::from(*n)).normalize_or(Vec3::Z);
+            out.push(p, n, part.uvs.get(k).copied().unwrap_or_default());
+        }
+        out.indices.extend(part.indices.iter().map(|&i| i + base));
         if shaded {
-            bark.shades.resize(bark.positions.len(), 1.0);
-        }
-        bark.reserve(
-            self.vertex_count(),
-            self.twig.indices.len() * self.copies.len(),
-        );
-        for copy in &self.copies {
-            let m = copy.matrix();
-            let normals = Mat3::from_mat4(m).inverse().transpose();
-            let base = bark.positions.len() as u32;
-            for (k, (p, n)) in self
-                .twig
-                .positions
-                .iter()
-                .zip(&self.twig.normals)
-                .enumerate()
-            {
-                let p = m.transform_point3(Vec3::from(*p));
-                let n = (normals * Vec3::from(*n)).normalize_or(Vec3::Z);
-                bark.push(p, n, self.twig.uvs.get(k).copied().unwrap_or_default());
-            }
-            bark.indices
-                .extend(self.twig.indices.iter().map(|&i| i + base));
-            if shaded {
-                match self.twig.shades.len() == self.twig.positions.len() {
-                    true => bark.shades.extend_from_slice(&self.twig.shades),
-                    false => bark.shades.resize(bark.positions.len(), 1.0),
-                }
+            match part.shades.len() == part.positions.len() {
+                true => out.shades.extend_from_slice(&part.shades),
+                false => out.shades.resize(out.positions.len(), 1.0),
             }
         }
     }

@@ -58,11 +58,7 @@ impl Grower {
         let keep_segment = |s: usize| segment_at[s] != GONE;
         retain_live(&mut self.leaves_on, &segment_at);
         retain_live(&mut self.radii, &segment_at);
-        let mut s = 0;
-        self.segments.retain(|_| {
-            s += 1;
-            keep_segment(s - 1)
-        });
+        retain_live(&mut self.segments, &segment_at);
         for segment in &mut self.segments {
             segment.branch = branch_at[segment.branch as usize];
         }
