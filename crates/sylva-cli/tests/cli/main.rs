@@ -9,6 +9,7 @@ mod generate;
 mod grow;
 mod lobes;
 mod nagel;
+mod regrowth;
 mod render;
 mod street;
 mod view;
