@@ -9,7 +9,9 @@
 import * as T from '/vendor/city.min.js';
 import { lineChart, barChart } from '/charts.js';
 import { softwareGl } from '/gl.js';
-import { prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches } from '/city-trees.js';
+import {
+  prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches, setSpeciesColours, PALETTE, OTHER_SPECIES,
+} from '/city-trees.js';
 
 const $ = (id) => document.getElementById(id);
 const probe = { firstTreesMs: null, shownEpoch: null, clicks: [], problems: [] };
@@ -83,6 +85,7 @@ new ResizeObserver(resize).observe(canvas);
 const frames = [];
 probe.frames = frames;
 const batches = new Batches(scene);
+const drawnSize = new T.Vector2();
 const spent = { update: 0, gather: 0, render: 0, loads: 0, calls: 0 };
 probe.spent = spent;
 function loop(now) {
@@ -104,7 +107,9 @@ function loop(now) {
   const t1 = performance.now();
   if (tiles) {
     const view = new T.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
-    spent.calls = batches.fill(tiles.group, view);
+    renderer.getDrawingBufferSize(drawnSize);
+    const pixels = drawnSize.y / (2 * Math.tan((camera.fov * Math.PI) / 360));
+    spent.calls = batches.fill(tiles.group, view, { position: camera.position, pixels });
   }
   const t2 = performance.now();
   spent.gather += t2 - t1;
@@ -149,6 +154,23 @@ function colourTrees(root) {
   });
 }
 
+// The species of the trees of the tiles loaded so far (a tile's trees are counted at each of
+// its levels: the order, not the count, is what the colours need), as the report lists them.
+const counted = new Map();
+function countSpecies(model) {
+  const by = counted;
+  model.traverse((o) => {
+    if (!o.isInstancedMesh) return;
+    for (const [row] of trees(o)) {
+      if (!row) continue;
+      const s = by.get(row.species) || { code: row.species, common: row.common_name || row.species, trees: 0 };
+      s.trees++;
+      by.set(row.species, s);
+    }
+  });
+  return [...by.values()];
+}
+
 function tilesetOf(index) {
   if (state.tilesets.has(index)) return state.tilesets.get(index);
   const epoch = state.city.epochs[index];
@@ -168,6 +190,7 @@ function tilesetOf(index) {
     model.traverse((o) => { if (o.isInstancedMesh) { prepare(o); share(o); } });
     combine(model);
     colourTrees(model);
+    if (!state.report) colourSpecies(countSpecies(model));
     spent.loads += performance.now() - t0;
     if (probe.firstTreesMs == null && index === state.epoch) {
       // The first frame with trees in it is the next one drawn.
@@ -291,6 +314,7 @@ async function chooseCity(name) {
   state.tilesets.clear();
   batches.clear();
   forget();
+  counted.clear();
   $('card').hidden = true;
   const city = state.cities.find((c) => c.name === name);
   state.city = city;
@@ -300,14 +324,7 @@ async function chooseCity(name) {
   state.frame = pageFrame(first.root.transform);
   const e = extentOf(first.root.boundingVolume.box);
   drawGround(e);
-  // The default view: from the south-south-west and 50 degrees up, over the middle of the
-  // trees, near enough that a street's trees are told apart, far enough to see a few blocks.
-  const r = Math.min(300, 0.6 * Math.max(e.x1 - e.x0, e.n1 - e.n0) + 40);
-  const cx = (e.x0 + e.x1) / 2, cz = -(e.n0 + e.n1) / 2;
-  const up = (50 * Math.PI) / 180, round = (20 * Math.PI) / 180;
-  controls.target.set(cx, 0, cz);
-  camera.position.set(cx - r * Math.cos(up) * Math.sin(round), r * Math.sin(up), cz + r * Math.cos(up) * Math.cos(round));
-  controls.update();
+  fitView(e);
   const slider = $('epoch');
   slider.max = String(city.epochs.length - 1);
   slider.disabled = city.epochs.length < 2;
@@ -315,7 +332,41 @@ async function chooseCity(name) {
     `<span style="left:${city.epochs.length > 1 ? (100 * i) / (city.epochs.length - 1) : 0}%">` +
     `${ep.years === 0 ? 'now' : `+${ep.years}`}</span>`).join('');
   await loadReport(city);
+  colourSpecies();
   showEpoch(0);
+}
+
+// The default view: from the south-south-west and 50 degrees up, over the middle of the trees,
+// just far enough that all of them are in the picture (a census sample spread over kilometres
+// as well as a dense demo city); trees too small to see there are drawn as markers.
+function fitView(e) {
+  const w = e.x1 - e.x0, d = e.n1 - e.n0;
+  const cx = (e.x0 + e.x1) / 2, cz = -(e.n0 + e.n1) / 2;
+  const up = (50 * Math.PI) / 180, round = (20 * Math.PI) / 180;
+  const half = Math.tan((camera.fov * Math.PI) / 360);
+  // The extent turned as the camera sees it, its depth foreshortened by the view's slope; a
+  // third spare (the near side is drawn larger than the far), and never nearer than a street's length.
+  const across = Math.abs(w * Math.cos(round)) + Math.abs(d * Math.sin(round));
+  const deep = (Math.abs(w * Math.sin(round)) + Math.abs(d * Math.cos(round))) * Math.sin(up);
+  const r = Math.max(80, 1.3 * Math.max(across / 2 / (half * camera.aspect), deep / 2 / half));
+  controls.target.set(cx, 0, cz);
+  camera.position.set(cx - r * Math.cos(up) * Math.sin(round), r * Math.sin(up), cz + r * Math.cos(up) * Math.cos(round));
+  camera.far = Math.max(30000, 4 * r);
+  camera.updateProjectionMatrix();
+  controls.update();
+  probe.fitted = { distance: r, extent: [w, d] };
+}
+
+// The markers' colours: the report's most common species first; a city without a report, the
+// most common in the tiles loaded so far (`speciesInTiles`).
+function colourSpecies(counted = null) {
+  const species = (counted || state.report?.species || []).slice().sort((a, b) => b.trees - a.trees);
+  setSpeciesColours(species.map((s) => s.code));
+  const shownSpecies = species.slice(0, PALETTE.length);
+  const rest = species.length - shownSpecies.length;
+  $('legend').innerHTML = shownSpecies.map((s, i) =>
+    `<span><i style="background:${PALETTE[i]}"></i>${esc(s.common)}</span>`).join('') +
+    (rest > 0 ? `<span><i style="background:${OTHER_SPECIES}"></i>${rest} other species</span>` : '');
 }
 
 // ---- filters ------------------------------------------------------------------------------------
@@ -362,7 +413,10 @@ function treeAt(clientX, clientY) {
     const row = ref && rowOf(ref[0], ref[1]);
     if (row) return row;
   }
-  return null;
+  // A marker within a few pixels of the click (its size and a little more).
+  const within = (2 * 6) / r.height;
+  const ref = batches.markerAt(camera, p.x, p.y, within);
+  return ref ? rowOf(ref[0], ref[1]) : null;
 }
 
 function pick(clientX, clientY) {
@@ -503,7 +557,43 @@ probe.drawn = () => {
     const d = tile.internal.depth;
     if (model.parent && model.visible) levels[d] = (levels[d] || 0) + 1;
   });
-  return { triangles: renderer.info.render.triangles, calls: renderer.info.render.calls, levels, batches: spent.calls };
+  return {
+    triangles: renderer.info.render.triangles, calls: renderer.info.render.calls, levels, batches: spent.calls,
+    markers: batches.markers.n,
+  };
+};
+
+// Where markers stand on the screen, and their trees' ids (at most `most`, spread over all).
+probe.markerPoints = (most = 20) => {
+  const m = batches.markers, out = [], p = new T.Vector3();
+  const r = canvas.getBoundingClientRect();
+  const every = Math.max(1, Math.floor(m.n / most));
+  for (let i = 0; i < m.n && out.length < most; i += every) {
+    p.fromArray(m.position, 3 * i).project(camera);
+    if (Math.abs(p.x) < 0.95 && Math.abs(p.y) < 0.95 && p.z < 1) {
+      const [tile, k] = m.refs[i];
+      out.push({ x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height, id: rowOf(tile, k)?.id });
+    }
+  }
+  return out;
+};
+
+// The trees' places on the screen: how many of the loaded tiles' trees lie inside the picture
+// (each tree's sphere centre, from its tile's data), for the test of the fitted view.
+probe.treesInPicture = () => {
+  let inside = 0, all = 0;
+  const p = new T.Vector3(), m = new T.Matrix4();
+  state.tilesets.get(state.epoch)?.group.traverse((o) => {
+    const s = o.userData.sylva;
+    if (!o.isInstancedMesh || !s?.merged) return;
+    for (let i = 0; i < s.n; i++) {
+      all++;
+      m.fromArray(s.matrices, 16 * i).premultiply(o.matrixWorld);
+      p.setFromMatrixPosition(m).project(camera);
+      if (Math.abs(p.x) <= 1 && Math.abs(p.y) <= 1 && p.z < 1) inside++;
+    }
+  });
+  return { inside, all };
 };
 
 // Trees of the shown epoch's loaded tiles, lit (the filter keeps them) and dimmed.

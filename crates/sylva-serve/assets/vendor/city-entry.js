@@ -2,10 +2,10 @@
 // view uses, bundled with esbuild into one module so that both share one three.js: see
 // crates/sylva-serve/assets/vendor/README.md.
 export {
-  AmbientLight, Box3, BufferGeometry, Cache, Color, DirectionalLight, Float32BufferAttribute, Frustum, Group,
+  AmbientLight, Box3, BufferAttribute, BufferGeometry, Cache, Color, DirectionalLight, Float32BufferAttribute, Frustum, Group,
   InstancedBufferAttribute, InstancedMesh,
   HemisphereLight, LineBasicMaterial, LineLoop, Matrix4, Mesh, MeshBasicMaterial,
-  MeshLambertMaterial, PerspectiveCamera, PlaneGeometry, Raycaster, SRGBColorSpace, Scene,
+  MeshLambertMaterial, PerspectiveCamera, PlaneGeometry, Points, PointsMaterial, Raycaster, SRGBColorSpace, Scene,
   TextureLoader, Vector2, Vector3, WebGLRenderer,
 } from 'three';
 export { MapControls } from 'three/examples/jsm/controls/MapControls.js';

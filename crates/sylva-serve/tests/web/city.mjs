@@ -9,8 +9,9 @@
 //   node city.mjs path/to/sylva SHOTS [CITY]
 //
 // Without CITY it writes a small demo city itself (`sylva city-demo`, `sylva city --years 0,20
-// --report`); with CITY (a folder `sylva city` wrote, such as the 100,000-tree demo) it times
-// that one.
+// --report`), and the same trees spread over kilometres, as sparse as a census sample (issue X:
+// a real inventory opened on empty ground); with CITY (a folder `sylva city` wrote, such as
+// the 100,000-tree demo) it times that one.
 
 import { chromium } from 'playwright-core';
 import { execFileSync, spawnSync } from 'node:child_process';
@@ -30,12 +31,18 @@ const work = mkdtempSync(join(tmpdir(), 'sylva-city-view-'));
 
 // 1. The cities: a demo city at two epochs, and three folders that are none.
 let city = given;
+let sparse = null;
 if (!city) {
   city = join(work, 'modesto-demo');
   execFileSync(bin, ['city-demo', '-o', join(work, 'demo.csv'), '--trees', '300', '--region', 'InlVal', '--seed', '3'], { stdio: 'ignore' });
   const t0 = Date.now();
-  execFileSync(bin, ['city', join(work, 'demo.csv'), '-o', city, '--years', '0,20', '--report', '--variants', '1', '--no-cache'], { stdio: 'ignore' });
+  // A cache of its own, so that the sparse city below grows nothing again.
+  const cache = ['--cache', join(work, 'grown')];
+  execFileSync(bin, ['city', join(work, 'demo.csv'), '-o', city, '--years', '0,20', '--report', '--variants', '1', ...cache], { stdio: 'ignore' });
   console.log(`demo city written in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+  sparse = join(work, 'sparse-census');
+  writeFileSync(join(work, 'sparse.csv'), spread(readFileSync(join(work, 'demo.csv'), 'utf8'), 12));
+  execFileSync(bin, ['city', join(work, 'sparse.csv'), '-o', sparse, '--years', '0', '--variants', '1', ...cache], { stdio: 'ignore' });
 }
 const name = city.split('/').filter(Boolean).pop();
 const notCity = join(work, 'holiday-photos');
@@ -78,7 +85,8 @@ const browser = await chromium.launch({
     '--disable-component-update', '--disable-sync', '--use-angle=swiftshader',
     '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
 });
-const server = await startServer(bin, ['--city', city, '--city', notCity, '--city', damaged, '--city', other, '--basemap', basemap]);
+const server = await startServer(bin, ['--city', city, '--city', notCity, '--city', damaged, '--city', other, '--basemap', basemap,
+  ...(sparse ? ['--city', sparse] : [])]);
 let failed = false;
 try {
   // 2. The API lists every city, the broken ones with why.
@@ -113,6 +121,7 @@ try {
   const drawn = await waitUntil('the basemap drawn', () => page.evaluate(() => window.sylvaCity.basemapDrawn), 30);
   check(drawn === mapAsked.length, `every basemap tile asked for lies under the trees (${drawn})`);
   if (shots) writeFileSync(`${shots}/city-epoch-0.png`, await page.screenshot());
+  await fitted(page, name);
 
   // 5. Frames a second while turning at the default view.
   console.log(`drawn at the default view: ${JSON.stringify(await page.evaluate(() => window.sylvaCity.drawn()))}`);
@@ -121,8 +130,8 @@ try {
   console.log(`turning at the default view: ${fps.toFixed(1)} frames a second (target 10: ${fps >= 10 ? 'met' : 'MISSED'})`);
   check(fps >= 2, 'turning at two frames a second or better');
 
-  // 6. A click on a tree opens its card.
-  const points = await page.evaluate(() => window.sylvaCity.treePoints(12));
+  // 6. A click on a tree, or on a tree's marker, opens its card.
+  const points = await page.evaluate(() => [...window.sylvaCity.treePoints(12), ...window.sylvaCity.markerPoints(12)]);
   check(points.length > 0, `${points.length} trees on the screen to click`);
   let opened = null;
   for (const p of points) {
@@ -204,6 +213,31 @@ try {
     writeFileSync(`${shots}/city-report.png`, await page.screenshot());
   }
 
+  // 10. A sparse inventory over kilometres: every tree in the opening view, as a marker where
+  // its crown is too small to see, and a marker's click opens its tree's card.
+  if (sparse) {
+    await page.goto(`${server.url}city.html?city=sparse-census`);
+    await waitUntil('the sparse city\'s trees', () => page.evaluate(() => window.sylvaCity.shownEpoch != null), 120);
+    const extent = await page.evaluate(() => window.sylvaCity.fitted.extent);
+    check(Math.min(...extent) > 2000, `the sparse city spreads over ${extent.map((m) => (m / 1000).toFixed(1)).join(' by ')} km`);
+    await fitted(page, 'sparse-census');
+    const drawn = await page.evaluate(() => window.sylvaCity.drawn());
+    check(drawn.markers > 0.5 * 300, `at the opening view most of its trees are markers (${drawn.markers}), each in its species' colour`);
+    const legend = await page.locator('#legend span').count();
+    check(legend > 1, `the legend names the markers' colours (${legend} entries)`);
+    if (shots) writeFileSync(`${shots}/city-sparse.png`, await page.screenshot());
+    const marks = await page.evaluate(() => window.sylvaCity.markerPoints(6));
+    let card = null;
+    for (const m of marks) {
+      const before = await page.evaluate(() => window.sylvaCity.clicks.length);
+      await page.mouse.click(m.x, m.y);
+      const click = await waitUntil('the marker\'s click answered', () => page.evaluate((n) => window.sylvaCity.clicks[n], before), 10);
+      if (click.id === m.id) { card = click; break; }
+    }
+    check(card, `a click on a marker opened its tree's card (tree ${card?.id})`);
+    check((await page.textContent('#card-title')).includes(`tree ${card.id}`), 'the card is the marker\'s tree\'s');
+  }
+
   // 10. The server's memory.
   const rss = Number(readFileSync(`/proc/${server.pid}/status`, 'utf8').match(/VmRSS:\s+(\d+)/)[1]) / 1024;
   console.log(`the server's memory after the tests: ${rss.toFixed(0)} MB (its cache bound: 1024 MB of grown trees)`);
@@ -218,6 +252,30 @@ try {
   rmSync(work, { recursive: true, force: true });
 }
 if (failed) process.exit(1);
+
+// The opening view holds every tree of the loaded tiles (its fitted view, issue X).
+async function fitted(page, label) {
+  const at = await page.evaluate(() => window.sylvaCity.treesInPicture());
+  check(at.all > 0 && at.inside === at.all, `${label}: the opening view holds all ${at.all} trees of its tiles (${at.inside} inside the picture)`);
+}
+
+// A census-layout CSV (latitude and longitude columns) with every tree's distance from the
+// first multiplied by `k`: the same trees along streets `k` times longer.
+function spread(text, k) {
+  const lines = text.trim().split('\n');
+  const head = lines[0].split(',');
+  const [lat, lon] = [head.indexOf('latitude'), head.indexOf('longitude')];
+  let origin = null;
+  return [lines[0], ...lines.slice(1).map((line) => {
+    const f = line.split(',');
+    const y = Number(f[lat]), x = Number(f[lon]);
+    if (f.length !== head.length || !Number.isFinite(y) || !Number.isFinite(x) || !f[lat] || !f[lon]) return line;
+    origin ??= [y, x];
+    f[lat] = (origin[0] + (y - origin[0]) * k).toFixed(8);
+    f[lon] = (origin[1] + (x - origin[1]) * k).toFixed(8);
+    return f.join(',');
+  })].join('\n') + '\n';
+}
 
 function target(what, ms, most) {
   console.log(`${what}: ${ms.toFixed(0)} ms (target ${most} ms: ${ms <= most ? 'met' : 'MISSED'})`);

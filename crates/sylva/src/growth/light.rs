@@ -116,11 +116,23 @@ impl LightGrid {
     /// The cell an occluder at `p` lies in and the share of light it lets through there,
     /// (1 - A)(1 - l) (see [`LightGrid::occlude`]); none outside the grid.
     pub fn occluder(&self, p: Vec3, branch: f32, leaves: f32) -> Option<(usize, f32)> {
-        let [x, y, z] = self.cell_of(p)?;
+        Some((self.index_of(p)?, self.passing(branch, leaves)))
+    }
+
+    /// The share of light an occluder covering `branch` m² of wood and `leaves` m² of leaves
+    /// lets through a cell: (1 - A)(1 - l) (see [`LightGrid::occlude`]). The same wherever in
+    /// the grid it lies, so the pieces of one shoot work it out once.
+    pub fn passing(&self, branch: f32, leaves: f32) -> f32 {
         let area = self.cell * self.cell;
         let a = (branch / area).clamp(0.0, 1.0);
         let l = (leaves / area).clamp(0.0, 1.0);
-        Some((self.index(x, y, z), (1.0 - a) * (1.0 - l)))
+        (1.0 - a) * (1.0 - l)
+    }
+
+    /// The flat index of the cell holding a point, if inside.
+    #[inline]
+    pub fn index_of(&self, p: Vec3) -> Option<usize> {
+        self.cell_of(p).map(|[x, y, z]| self.index(x, y, z))
     }
 
     /// Light at a point (1 outside the grid: nothing shades it there).

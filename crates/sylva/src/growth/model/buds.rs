@@ -516,6 +516,7 @@ impl Grower {
             // Next year's crown, as the targets are.
             grown: self.habit.envelope.grown(self.age + 1.0),
             lobes: self.lobes,
+            twist: [self.lobes[2].sin(), self.lobes[2].cos()],
             // A young crown of a few shoots has no limbs to lobe it.
             lobe_depth: LOBE_DEPTH * ((t.crown_diameter as f32 - 3.0) / 3.0).clamp(0.0, 1.0),
         }

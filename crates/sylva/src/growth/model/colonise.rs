@@ -31,6 +31,9 @@ pub(super) struct Space {
     pub grown: f32,
     /// Phases of the crown's lobes, radians (see `lobe`).
     pub lobes: [f32; 3],
+    /// The sine and cosine of the lobes' third phase, their twist with height: worked out
+    /// once a space, not once a point (`contains` is asked some 16 times a shoot per fit).
+    pub twist: [f32; 2],
     /// How deep they are, a share of the radius.
     pub lobe_depth: f32,
 }
@@ -60,9 +63,10 @@ impl Space {
         }
         let azimuth = p.y.atan2(p.x);
         let rel = (p.z - self.base) / (self.top - self.base).max(0.1);
-        let [a, b, c] = self.lobes;
-        let wave = 0.6 * (2.0 * azimuth + a + 2.0 * rel * c.sin()).sin()
-            + 0.4 * (3.0 * azimuth + b + 3.0 * rel * c.cos()).sin();
+        let [a, b, _] = self.lobes;
+        let [twist_sin, twist_cos] = self.twist;
+        let wave = 0.6 * (2.0 * azimuth + a + 2.0 * rel * twist_sin).sin()
+            + 0.4 * (3.0 * azimuth + b + 3.0 * rel * twist_cos).sin();
         1.0 + self.lobe_depth * wave
     }
 

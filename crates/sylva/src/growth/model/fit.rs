@@ -127,6 +127,12 @@ impl Grower {
 
     /// `crown_above`, and the diameter of its wood alone.
     fn crown_and_wood_above(&self, base: f32) -> (f64, f64, f64) {
+        self.crown_bounds(base, true)
+    }
+
+    /// `crown_and_wood_above`, passing over the leaves that cannot widen it where `skip`
+    /// (the same bits either way: `crowns_measured_with_inner_leaves_passed_over_are_the_same`).
+    pub(super) fn crown_bounds(&self, base: f32, skip: bool) -> (f64, f64, f64) {
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
         let mut top = f32::NEG_INFINITY;
         let counted = |b: &Branch| b.alive && b.order > 0 && b.anchor >= base;
@@ -148,13 +154,16 @@ impl Grower {
         let leaf = self.drawn_leaf_size().0;
         let tree_top = self.targets_now().height as f32;
         let (wood_lo, wood_hi) = (lo, hi);
-        let near_edge = |p: Vec3| {
-            p.x - leaf < wood_lo.x
-                || p.y - leaf < wood_lo.y
-                || p.z - leaf < wood_lo.z
-                || p.x + leaf > wood_hi.x
-                || p.y + leaf > wood_hi.y
+        // Whether `p` lies within `by` of a bound the crown is measured by (its top is the
+        // highest shoot's, so not the box's).
+        let within = |p: Vec3, by: f32| {
+            p.x - by < wood_lo.x
+                || p.y - by < wood_lo.y
+                || p.z - by < wood_lo.z
+                || p.x + by > wood_hi.x
+                || p.y + by > wood_hi.y
         };
+        let near_edge = |p: Vec3| within(p, leaf);
         let floor = self.leaf_floor();
         for (i, b) in self.branches.iter().enumerate() {
             // The leader's young shoot carries leaves too: always look at those.
@@ -167,7 +176,12 @@ impl Grower {
             {
                 continue;
             }
-            self.for_each_leaf(i, (leaf, tree_top, floor), |p, q, _| {
+            // A leaf reaches at most its length from its node, and its node lies on its
+            // shoot: the leaves of shoots farther than that inside every bound cannot move
+            // one, and are not placed (the margin is a thousand times the rounding).
+            let margin = leaf * 1.01 + 1e-3;
+            let wanted = |s: &Segment| !skip || within(s.start, margin) || within(s.end(), margin);
+            self.for_each_leaf_on(i, (leaf, tree_top, floor), wanted, |p, q, _| {
                 let tip = p + q * Vec3::new(0.0, 0.0, leaf);
                 lo = lo.min(p.min(tip));
                 hi = hi.max(p.max(tip));

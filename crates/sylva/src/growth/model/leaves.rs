@@ -309,9 +309,10 @@ impl Grower {
                     // shows it pi/4 of its silhouette (diameter x length) on average over
                     // directions, as the shade model's crown counts it (`street::crown::G_WOOD`).
                     let covered = WOOD_G * 2.0 * r * piece;
+                    let passing = grid.passing(covered, leaf_share);
                     out.extend((0..pieces).filter_map(|k| {
                         let p = s.start + s.direction * piece * (k as f32 + 0.5);
-                        grid.occluder(p, covered, leaf_share)
+                        Some((grid.index_of(p)?, passing))
                     }));
                 }
                 out
@@ -345,7 +346,20 @@ impl Grower {
     pub(super) fn for_each_leaf(
         &self,
         b: usize,
+        dims: (f32, f32, f32),
+        f: impl FnMut(Vec3, Quat, Blade),
+    ) {
+        self.for_each_leaf_on(b, dims, |_| true, f);
+    }
+
+    /// [`Grower::for_each_leaf`] on the segments `wanted` keeps: the others' leaves are
+    /// passed over, their turns and random draws taken as if placed, so the leaves that are
+    /// placed come out exactly as `for_each_leaf` places them.
+    pub(super) fn for_each_leaf_on(
+        &self,
+        b: usize,
         (length, top, floor): (f32, f32, f32),
+        wanted: impl Fn(&Segment) -> bool,
         mut f: impl FnMut(Vec3, Quat, Blade),
     ) {
         let mut turn = 0.0f32;
@@ -355,6 +369,14 @@ impl Grower {
             let s = &self.segments[si as usize];
             let n = self.leaves_on.get(si as usize).copied().unwrap_or(0) as usize;
             if n == 0 {
+                continue;
+            }
+            if !wanted(s) {
+                for _ in 0..n {
+                    turn += DIVERGENCE;
+                    turns.next();
+                    rng.var(10.0);
+                }
                 continue;
             }
             let base = frame(s.direction);

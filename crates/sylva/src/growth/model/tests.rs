@@ -552,3 +552,21 @@ fn limbs_are_drawn_kinked_between_their_nodes_and_branches_leave_the_drawn_wood(
         "straight for {longest_run} m; the longest shoot {longest_shoot} m"
     );
 }
+
+#[test]
+fn crowns_measured_with_inner_leaves_passed_over_are_the_same() {
+    // The crown's width is measured from its leaves, and only the leaves of shoots within a
+    // leaf's reach of its bounds can widen it: measured with the rest passed over, it is the
+    // same to the bit, on a plane's full crown and on a walnut sapling's long leaves, below
+    // the crown base and above it.
+    for (region, code, years) in [("InlVal", "PLAC", 18.0), ("LoMidW", "JUNI", 5.0)] {
+        let g = grown(region, code, years);
+        let base = g.targets_now().crown_base() as f32;
+        for at in [f32::NEG_INFINITY, base] {
+            let bits = |c: (f64, f64, f64)| [c.0.to_bits(), c.1.to_bits(), c.2.to_bits()];
+            let (fast, every) = (g.crown_bounds(at, true), g.crown_bounds(at, false));
+            assert_eq!(bits(fast), bits(every), "{code} at {years}, above {at}");
+            assert!(fast.0 > 0.5, "{code}: a crown {} m wide", fast.0);
+        }
+    }
+}
