@@ -350,12 +350,23 @@ function fitView(e) {
   const deep = (Math.abs(w * Math.sin(round)) + Math.abs(d * Math.cos(round))) * Math.sin(up);
   const r = Math.max(80, 1.3 * Math.max(across / 2 / (half * camera.aspect), deep / 2 / half));
   controls.target.set(cx, 0, cz);
+  lookFrom(r);
+  probe.fitted = { distance: r, extent: [w, d] };
+}
+
+// The camera `r` metres from the view's centre, 50 degrees up from the south-south-west.
+function lookFrom(r) {
+  const up = (50 * Math.PI) / 180, round = (20 * Math.PI) / 180;
+  const { x: cx, z: cz } = controls.target;
   camera.position.set(cx - r * Math.cos(up) * Math.sin(round), r * Math.sin(up), cz + r * Math.cos(up) * Math.cos(round));
   camera.far = Math.max(30000, 4 * r);
   camera.updateProjectionMatrix();
   controls.update();
-  probe.fitted = { distance: r, extent: [w, d] };
+  redraw();
 }
+// For the browser test: the view `r` metres from the middle (300: the opening view before
+// it was fitted).
+probe.lookFrom = lookFrom;
 
 // The markers' colours: the report's most common species first; a city without a report, the
 // most common in the tiles loaded so far (`speciesInTiles`).

@@ -1,6 +1,7 @@
 // A city as a new user first sees it: `sylva serve --city CITY`, the city view at its default
 // view, a screenshot, what it drew, how many trees lie in the picture, a click on a marker,
-// frames a second turning; then zoomed in at the middle, another screenshot.
+// frames a second turning; the same 300 m from the middle (the opening view before issue X
+// fitted it); then zoomed in at the middle, another screenshot.
 //
 //   node look.mjs path/to/sylva CITY SHOTS NAME
 import { chromium } from 'playwright-core';
@@ -37,6 +38,17 @@ try {
     console.log(`marker of tree ${p.id} clicked: card of ${click.id} in ${click.ms.toFixed(1)} ms`);
   }
   writeFileSync(`${shots}/${label}-card.png`, await page.screenshot());
+  // The opening view before it was fitted: 300 m from the middle.
+  if (await page.evaluate(() => !!window.sylvaCity.lookFrom)) {
+    await page.evaluate(() => document.getElementById('card').hidden = true);
+    await page.evaluate(() => { window.sylvaCity.shownEpoch = null; window.sylvaCity.lookFrom(300); });
+    await new Promise((ok) => setTimeout(ok, 1500));
+    await waitUntil('the tiles at 300 m', () => page.evaluate(() => window.sylvaCity.shownEpoch != null), 300);
+    writeFileSync(`${shots}/${label}-300m.png`, await page.screenshot());
+    console.log('at 300 m drawn', JSON.stringify(await page.evaluate(() => window.sylvaCity.drawn())));
+    const near = await page.evaluate(() => window.sylvaCity.turn(4000));
+    console.log(`turning at 300 m: ${((1000 * near.frames) / near.ms).toFixed(1)} fps`);
+  }
   await page.evaluate(() => document.getElementById('card').hidden = true);
   // Zoomed in: the camera moved to a fifth of its distance toward the middle.
   await page.mouse.move(800, 500);
