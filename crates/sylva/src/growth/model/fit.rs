@@ -116,82 +116,103 @@ impl Grower {
     /// less the lowest point of either.
     #[cfg(test)]
     pub(crate) fn crown_now(&self) -> (f64, f64) {
-        self.crown_above(f32::NEG_INFINITY)
-    }
-
-    /// `crown_now` of the branches whose scaffolds leave the trunk at or above `base`.
-    pub(super) fn crown_above(&self, base: f32) -> (f64, f64) {
-        let (diameter, height, _) = self.crown_and_wood_above(base);
+        let [(diameter, height, _)] = self.crowns_above([f32::NEG_INFINITY], true);
         (diameter, height)
     }
 
-    /// `crown_above`, and the diameter of its wood alone.
-    fn crown_and_wood_above(&self, base: f32) -> (f64, f64, f64) {
-        self.crown_bounds(base, true)
-    }
-
-    /// `crown_and_wood_above`, passing over the leaves that cannot widen it where `skip`
-    /// (the same bits either way: `crowns_measured_with_inner_leaves_passed_over_are_the_same`).
-    pub(super) fn crown_bounds(&self, base: f32, skip: bool) -> (f64, f64, f64) {
-        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    /// The crown's diameter and height, as `crown_now`, of the branches whose scaffolds leave
+    /// the trunk at or above each of `bases`, and the diameter of its wood alone, measured at
+    /// once: a branch's leaves are placed once for all the crowns that count it. Where
+    /// `skip`, the leaves that cannot widen any of them are passed over. Bounds are minima
+    /// and maxima, exact in any order, so each crown comes out to the bit as measured alone
+    /// with every leaf placed (`crowns_measured_with_inner_leaves_passed_over_are_the_same`).
+    pub(super) fn crowns_above<const N: usize>(
+        &self,
+        bases: [f32; N],
+        skip: bool,
+    ) -> [(f64, f64, f64); N] {
+        let empty = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        let mut bounds = [empty; N];
         let mut top = f32::NEG_INFINITY;
-        let counted = |b: &Branch| b.alive && b.order > 0 && b.anchor >= base;
+        let counted = |b: &Branch, k: usize| b.alive && b.order > 0 && b.anchor >= bases[k];
         for s in &self.segments {
             let b = &self.branches[s.branch as usize];
             if b.alive {
                 top = top.max(s.end().z);
             }
-            if counted(b) && s.length > 1e-4 {
-                lo = lo.min(s.start.min(s.end()));
-                hi = hi.max(s.start.max(s.end()));
+            for (k, (lo, hi)) in bounds.iter_mut().enumerate() {
+                if counted(b, k) && s.length > 1e-4 {
+                    *lo = lo.min(s.start.min(s.end()));
+                    *hi = hi.max(s.start.max(s.end()));
+                }
             }
         }
-        if lo.x > hi.x {
-            return (0.0, 0.0, 0.0);
-        }
-        // Leaves widen the crown only where a shoot comes within a leaf's length of its
+        // The wood's bounds; a crown with no wood measures nothing.
+        let wood = bounds;
+        let measured = wood.map(|(lo, hi)| lo.x <= hi.x);
+        // Leaves widen a crown only where a shoot comes within a leaf's length of its
         // bounds: those branches' leaves are placed exactly as the skeleton places them.
         let leaf = self.drawn_leaf_size().0;
         let tree_top = self.targets_now().height as f32;
-        let (wood_lo, wood_hi) = (lo, hi);
-        // Whether `p` lies within `by` of a bound the crown is measured by (its top is the
+        // Whether `p` lies within `by` of a bound crown `k` is measured by (its top is the
         // highest shoot's, so not the box's).
-        let within = |p: Vec3, by: f32| {
-            p.x - by < wood_lo.x
-                || p.y - by < wood_lo.y
-                || p.z - by < wood_lo.z
-                || p.x + by > wood_hi.x
-                || p.y + by > wood_hi.y
+        let within = |k: usize, p: Vec3, by: f32| {
+            let (lo, hi) = wood[k];
+            p.x - by < lo.x
+                || p.y - by < lo.y
+                || p.z - by < lo.z
+                || p.x + by > hi.x
+                || p.y + by > hi.y
         };
-        let near_edge = |p: Vec3| within(p, leaf);
+        // A leaf reaches at most its length from its node, and its node lies on its shoot:
+        // the leaves of shoots farther than that inside every bound cannot move one, and are
+        // not placed (the margin is a thousand times the rounding).
+        let margin = leaf * 1.01 + 1e-3;
         let floor = self.leaf_floor();
         for (i, b) in self.branches.iter().enumerate() {
             // The leader's young shoot carries leaves too: always look at those.
-            if (i > 0 && !counted(b))
-                || !b.segments.iter().any(|&si| {
-                    let s = &self.segments[si as usize];
-                    self.leaves_on.get(si as usize).is_some_and(|&n| n > 0)
-                        && (near_edge(s.start) || near_edge(s.end()))
-                })
-            {
+            let near = |k: usize| {
+                measured[k]
+                    && (i == 0 || counted(b, k))
+                    && b.segments.iter().any(|&si| {
+                        let s = &self.segments[si as usize];
+                        self.leaves_on.get(si as usize).is_some_and(|&n| n > 0)
+                            && (within(k, s.start, leaf) || within(k, s.end(), leaf))
+                    })
+            };
+            let widens: [bool; N] = std::array::from_fn(near);
+            if !widens.contains(&true) {
                 continue;
             }
-            // A leaf reaches at most its length from its node, and its node lies on its
-            // shoot: the leaves of shoots farther than that inside every bound cannot move
-            // one, and are not placed (the margin is a thousand times the rounding).
-            let margin = leaf * 1.01 + 1e-3;
-            let wanted = |s: &Segment| !skip || within(s.start, margin) || within(s.end(), margin);
+            let wanted = |s: &Segment| {
+                !skip
+                    || (0..N).any(|k| {
+                        widens[k] && (within(k, s.start, margin) || within(k, s.end(), margin))
+                    })
+            };
+            let (mut lo, mut hi) = empty;
             self.for_each_leaf_on(i, (leaf, tree_top, floor), wanted, |p, q, _| {
                 let tip = p + q * Vec3::new(0.0, 0.0, leaf);
                 lo = lo.min(p.min(tip));
                 hi = hi.max(p.max(tip));
             });
+            for (k, crown) in bounds.iter_mut().enumerate() {
+                if widens[k] {
+                    *crown = (crown.0.min(lo), crown.1.max(hi));
+                }
+            }
         }
-        (
-            (((hi.x - lo.x) + (hi.y - lo.y)) / 2.0) as f64,
-            (top - lo.z).max(0.0) as f64,
-            (((wood_hi.x - wood_lo.x) + (wood_hi.y - wood_lo.y)) / 2.0) as f64,
-        )
+        std::array::from_fn(|k| {
+            let ((lo, hi), (wood_lo, wood_hi)) = (bounds[k], wood[k]);
+            if !measured[k] {
+                return (0.0, 0.0, 0.0);
+            }
+            (
+                (((hi.x - lo.x) + (hi.y - lo.y)) / 2.0) as f64,
+                (top - lo.z).max(0.0) as f64,
+                (((wood_hi.x - wood_lo.x) + (wood_hi.y - wood_lo.y)) / 2.0) as f64,
+            )
+        })
     }
 
     /// The scale of next year's envelope, and a stretch of the shoots' lengths (the year's
@@ -310,12 +331,10 @@ impl Grower {
         let t = self.targets_now();
         // The vigour steers the crown that will still be there in a year: scaffolds the crown
         // base is about to pass are shed soon whatever their length. Both crowns are
-        // measured at once.
+        // measured in one pass, each branch's leaves placed once for both.
         let coming_base = self.targets(self.age + 1.0).crown_base() as f32;
-        let ((diameter, _, wood), (mut coming, _)) = rayon::join(
-            || self.crown_and_wood_above(f32::NEG_INFINITY),
-            || self.crown_above(coming_base),
-        );
+        let [(diameter, _, wood), (mut coming, _, _)] =
+            self.crowns_above([f32::NEG_INFINITY, coming_base], true);
         // The leaves' reach as they came out, so next year's crown is fitted with it: a
         // walnut's 45 cm leaves at its shoots' tips reach out 0.8 of their length, and with
         // the half assumed its sapling's crown came out 14% too wide (issue R).

@@ -562,10 +562,18 @@ fn crowns_measured_with_inner_leaves_passed_over_are_the_same() {
     for (region, code, years) in [("InlVal", "PLAC", 18.0), ("LoMidW", "JUNI", 5.0)] {
         let g = grown(region, code, years);
         let base = g.targets_now().crown_base() as f32;
-        for at in [f32::NEG_INFINITY, base] {
-            let bits = |c: (f64, f64, f64)| [c.0.to_bits(), c.1.to_bits(), c.2.to_bits()];
-            let (fast, every) = (g.crown_bounds(at, true), g.crown_bounds(at, false));
+        let bits = |c: (f64, f64, f64)| [c.0.to_bits(), c.1.to_bits(), c.2.to_bits()];
+        let both = g.crowns_above([f32::NEG_INFINITY, base], true);
+        for (k, at) in [f32::NEG_INFINITY, base].into_iter().enumerate() {
+            let [fast] = g.crowns_above([at], true);
+            let [every] = g.crowns_above([at], false);
             assert_eq!(bits(fast), bits(every), "{code} at {years}, above {at}");
+            // Measured beside another crown, each is as measured alone.
+            assert_eq!(
+                bits(both[k]),
+                bits(every),
+                "{code} at {years}, above {at}, in a pair"
+            );
             assert!(fast.0 > 0.5, "{code}: a crown {} m wide", fast.0);
         }
     }
