@@ -158,17 +158,16 @@ function colourTrees(root) {
 // its levels: the order, not the count, is what the colours need), as the report lists them.
 const counted = new Map();
 function countSpecies(model) {
-  const by = counted;
   model.traverse((o) => {
     if (!o.isInstancedMesh) return;
     for (const [row] of trees(o)) {
       if (!row) continue;
-      const s = by.get(row.species) || { code: row.species, common: row.common_name || row.species, trees: 0 };
+      const s = counted.get(row.species) || { code: row.species, common: row.common_name || row.species, trees: 0 };
       s.trees++;
-      by.set(row.species, s);
+      counted.set(row.species, s);
     }
   });
-  return [...by.values()];
+  return [...counted.values()];
 }
 
 function tilesetOf(index) {
@@ -336,18 +335,20 @@ async function chooseCity(name) {
   showEpoch(0);
 }
 
+// The view's slope and bearing: 50 degrees up, from 20 degrees west of south.
+const UP = (50 * Math.PI) / 180, ROUND = (20 * Math.PI) / 180;
+
 // The default view: from the south-south-west and 50 degrees up, over the middle of the trees,
 // just far enough that all of them are in the picture (a census sample spread over kilometres
 // as well as a dense demo city); trees too small to see there are drawn as markers.
 function fitView(e) {
   const w = e.x1 - e.x0, d = e.n1 - e.n0;
   const cx = (e.x0 + e.x1) / 2, cz = -(e.n0 + e.n1) / 2;
-  const up = (50 * Math.PI) / 180, round = (20 * Math.PI) / 180;
   const half = Math.tan((camera.fov * Math.PI) / 360);
   // The extent turned as the camera sees it, its depth foreshortened by the view's slope; a
   // third spare (the near side is drawn larger than the far), and never nearer than a street's length.
-  const across = Math.abs(w * Math.cos(round)) + Math.abs(d * Math.sin(round));
-  const deep = (Math.abs(w * Math.sin(round)) + Math.abs(d * Math.cos(round))) * Math.sin(up);
+  const across = Math.abs(w * Math.cos(ROUND)) + Math.abs(d * Math.sin(ROUND));
+  const deep = (Math.abs(w * Math.sin(ROUND)) + Math.abs(d * Math.cos(ROUND))) * Math.sin(UP);
   const r = Math.max(80, 1.3 * Math.max(across / 2 / (half * camera.aspect), deep / 2 / half));
   controls.target.set(cx, 0, cz);
   lookFrom(r);
@@ -356,9 +357,8 @@ function fitView(e) {
 
 // The camera `r` metres from the view's centre, 50 degrees up from the south-south-west.
 function lookFrom(r) {
-  const up = (50 * Math.PI) / 180, round = (20 * Math.PI) / 180;
   const { x: cx, z: cz } = controls.target;
-  camera.position.set(cx - r * Math.cos(up) * Math.sin(round), r * Math.sin(up), cz + r * Math.cos(up) * Math.cos(round));
+  camera.position.set(cx - r * Math.cos(UP) * Math.sin(ROUND), r * Math.sin(UP), cz + r * Math.cos(UP) * Math.cos(ROUND));
   camera.far = Math.max(30000, 4 * r);
   camera.updateProjectionMatrix();
   controls.update();
