@@ -113,16 +113,28 @@ impl PointGrid {
     /// Every id within one cell of `p`'s cell (a superset of those within `cell` of `p`), in
     /// a fixed order.
     fn near(&self, p: Vec3, mut f: impl FnMut(u32)) {
+        self.any_near(p, |i| {
+            f(i);
+            false
+        });
+    }
+
+    /// Whether `f` holds for any id within one cell of `p`'s cell, asked in `near`'s order
+    /// until it does.
+    fn any_near(&self, p: Vec3, mut f: impl FnMut(u32) -> bool) -> bool {
         let (x, y, z) = self.key(p);
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    if let Some(ids) = self.cells.get(&(x + dx, y + dy, z + dz)) {
-                        ids.iter().for_each(|&i| f(i));
+                    if let Some(ids) = self.cells.get(&(x + dx, y + dy, z + dz))
+                        && ids.iter().any(|&i| f(i))
+                    {
+                        return true;
                     }
                 }
             }
         }
+        false
     }
 }
 
@@ -178,12 +190,12 @@ impl Markers {
             }
         }
         let limit = reach * reach;
+        // Taken where any wood point is not farther than the reach (a NaN distance takes it,
+        // as it always has).
         points.retain(|&m| {
-            let mut free = true;
-            taken.near(m, |i| {
-                free &= wood_points[i as usize].distance_squared(m) > limit
-            });
-            free
+            !taken.any_near(m, |i| {
+                !(wood_points[i as usize].distance_squared(m) > limit)
+            })
         });
         Markers {
             points,
@@ -196,6 +208,7 @@ impl Markers {
     /// them (zero if none). A marker belongs to the nearest bud that perceives it.
     pub fn perceive(&self, buds: &[(Vec3, Vec3)]) -> (Vec<u32>, Vec<Vec3>) {
         let radius = self.reach * 4.0;
+        let far = radius * radius * 1.001;
         let mut grid = PointGrid::new(radius);
         for (i, (p, _)) in buds.iter().enumerate() {
             grid.insert(*p, i as u32);
@@ -207,6 +220,11 @@ impl Markers {
             grid.near(m, |i| {
                 let (p, d) = buds[i as usize];
                 let to = m - p;
+                // Most buds the grid offers lie beyond the radius: the square, with a margin
+                // for the root's rounding, turns them away before the root is taken.
+                if to.length_squared() > far {
+                    return;
+                }
                 let dist = to.length();
                 if dist > radius || dist < 1e-5 || to.dot(d) < PERCEPTION_COS * dist {
                     return;
