@@ -194,7 +194,8 @@ impl Markers {
         // as it always has).
         points.retain(|&m| {
             !taken.any_near(m, |i| {
-                !(wood_points[i as usize].distance_squared(m) > limit)
+                let d = wood_points[i as usize].distance_squared(m);
+                d.partial_cmp(&limit) != Some(std::cmp::Ordering::Greater)
             })
         });
         Markers {
