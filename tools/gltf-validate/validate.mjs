@@ -26,7 +26,9 @@ async function instancingProblems(bytes) {
     .map((n) => n.extensions?.EXT_mesh_gpu_instancing?.attributes)
     .filter(Boolean)
     .map((a) => json.accessors[a.TRANSLATION ?? a.ROTATION ?? a.SCALE].count);
-  const external = (json.buffers ?? []).some((b) => b.uri !== undefined);
+  // Files of their own (shared meshes, impostors' atlases) are not fetched here: node has no
+  // image decoder for three.js, and the validator above has read them.
+  const external = [...(json.buffers ?? []), ...(json.images ?? [])].some((b) => b.uri !== undefined);
   if (wanted.length === 0 || external) return { read: false, problems: [] };
   const data = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
   const gltf = await new GLTFLoader().parseAsync(data, "");

@@ -7,9 +7,11 @@ use crate::plan::ProtoKey;
 use std::collections::BTreeMap;
 #[cfg(test)]
 use std::collections::HashMap;
-use sylva::export::{Materials, SharedMesh};
+use sylva::export::{Materials, SharedImpostor, SharedMesh};
 use sylva::growth::season::dressed_skeleton;
 use sylva::growth::{Grower, GrowthOptions, Measured, measure};
+use sylva::lod::bake::bake_on_cpu;
+use sylva::lod::impostor::ImpostorFrame;
 use sylva::lod::{Choice, LodTree};
 use sylva::mesh::{MeshOptions, TreeMesh};
 use sylva::street::crown::{Crown, leaves_of};
@@ -19,6 +21,11 @@ use sylva::street::crown::{Crown, leaves_of};
 /// 2,000; every coarser tile's at 400, a trunk, its limbs and the crown's leaf area in some
 /// hundred cards, so a city of 10^5 trees seen whole draws some 4 x 10^7.
 pub const LOD_TRIANGLES: [usize; 3] = [10_000, 2_000, 400];
+
+/// Height of each view of a prototype's impostor, pixels (Sylva's choice): a far tile's tree
+/// is drawn a few to some tens of pixels tall, so 64 rows keep its crown's texture at every
+/// range the coarsest level is drawn at, in an atlas of some 10 kB.
+pub const IMPOSTOR_PIXELS: u32 = 64;
 
 /// The meshes' options: the growth pictures' ring resolution.
 const MESH: MeshOptions = MeshOptions {
@@ -47,8 +54,11 @@ pub struct Prototype {
     pub lods: [SharedMesh; 3],
     /// How far each level's surface lies from the whole tree's, m: the one-sided distance from
     /// the whole tree's vertices to the level's (their largest), never less than the level
-    /// before's.
+    /// before's. The coarsest level's is its impostor's, where it has one.
     pub errors: [f32; 3],
+    /// Its impostor, drawn in place of the coarsest level (`tiles::content`): baked for each
+    /// class's first seed variant, the one coarse levels draw.
+    pub impostor: Option<SharedImpostor>,
 }
 
 /// One growth task: a species, region and seed variant grown once, its age classes taken on
@@ -163,12 +173,24 @@ fn prototype(
         worst = worst.max(distance_to(&whole, mesh));
         errors[k] = worst;
     }
-    let mut files = Vec::with_capacity(3);
+    let mut files = Vec::with_capacity(4);
     let lods = [0, 1, 2].map(|k| {
         let name = format!("{}-L{k}.bin", key.file_stem());
         let (shared, bytes) = SharedMesh::new(&meshes[k], name.clone());
         files.push((name, bytes));
         shared
+    });
+    // The impostor is baked from the most detailed level: its leaves keep the crown's area
+    // and outline at a tenth of the whole tree's triangles.
+    let impostor = (key.variant == 0).then(|| {
+        let baked = bake_on_cpu(&meshes[0], &dress.materials(), IMPOSTOR_PIXELS);
+        let name = format!("{}-impostor.png", key.file_stem());
+        files.push((name.clone(), baked.png));
+        errors[2] = errors[2].max(off_the_quads(&whole, &baked.frame));
+        SharedImpostor {
+            uri: name,
+            frame: baked.frame,
+        }
     });
     let prototype = Prototype {
         key,
@@ -178,6 +200,7 @@ fn prototype(
         surfaces: (crown.leaf_area, crown.bark_area, crown.projection),
         lods,
         errors,
+        impostor,
     };
     (prototype, files)
 }
@@ -239,6 +262,32 @@ fn distance_to(whole: &TreeMesh, part: &TreeMesh) -> f32 {
         .iter()
         .step_by(step)
         .map(|&p| grid.nearest(p, &targets))
+        .fold(0.0, f32::max)
+}
+
+/// How far the whole tree's vertices lie from the nearest of the impostor's quads, m (their
+/// largest, over a sample as `distance_to` takes it): each quad is a plane through the trunk's
+/// axis, so a point r from the axis, at an angle a from the nearest plane, lies r |sin a| from
+/// it.
+fn off_the_quads(whole: &TreeMesh, frame: &ImpostorFrame) -> f32 {
+    let points: Vec<[f32; 3]> = [&whole.bark, &whole.leaves]
+        .iter()
+        .flat_map(|m| m.positions.iter().copied())
+        .collect();
+    let step = points.len().div_ceil(4000).max(1);
+    // Quads k and k + views/2 lie in one plane (they face away from each other).
+    let planes = (frame.views / 2).max(1);
+    let spacing = std::f32::consts::PI / planes as f32;
+    points
+        .iter()
+        .step_by(step)
+        .map(|p| {
+            let r = p[0].hypot(p[1]);
+            // The quads' planes, seen from above, lie at azimuths k * spacing from the x axis
+            // (view 0 looks from the south, so its quad spans x).
+            let a = p[1].atan2(p[0]).rem_euclid(spacing);
+            r * a.min(spacing - a).sin()
+        })
         .fold(0.0, f32::max)
 }
 

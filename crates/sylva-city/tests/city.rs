@@ -298,6 +298,31 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
             b["byteLength"].as_u64().unwrap()
         );
     }
+    // The root, the coarsest level, draws each tree as its grown tree's impostor (16
+    // triangles, its atlas unlit and alpha-masked); the leaf tiles keep the meshes.
+    let meshes = doc["meshes"].as_array().unwrap();
+    let materials = doc["materials"].as_array().unwrap();
+    let textured = |m: &serde_json::Value| {
+        let material = &materials[m["primitives"][0]["material"].as_u64().unwrap() as usize];
+        !material["pbrMetallicRoughness"]["baseColorTexture"].is_null()
+            && material["alphaMode"] == "MASK"
+            && material["extensions"]["KHR_materials_unlit"].is_object()
+    };
+    let trees = meshes.iter().filter(|m| m["name"] != "stump").count();
+    assert!(trees > 0);
+    assert_eq!(meshes.iter().filter(|m| textured(m)).count(), trees);
+    assert_eq!(doc["images"].as_array().unwrap().len(), trees);
+    let depth = run.epochs[0].2.depth;
+    let leaf = std::fs::read_dir(out.join(format!("content/{depth}")))
+        .unwrap()
+        .flatten()
+        .next()
+        .unwrap()
+        .path();
+    let glb = std::fs::read(leaf).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    assert!(doc["images"].is_null(), "a leaf tile draws meshes");
     // A folder holding other files is refused and left as it was.
     let other = dir.path().join("mine");
     std::fs::create_dir(&other).unwrap();

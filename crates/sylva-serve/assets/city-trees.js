@@ -63,6 +63,8 @@ export function share(mesh) {
 // Forgets the shared meshes (another city's names may mean other trees).
 export function forget() {
   shared.clear();
+  for (const m of impostors.values()) { m.map?.dispose(); m.dispose(); }
+  impostors.clear();
   for (const g of merged.values()) g.dispose();
   merged.clear();
 }
@@ -127,9 +129,44 @@ export function combine(root) {
   for (const parts of trees.values()) {
     const s = prepare(parts[0]);
     if (s.merged) continue;
-    s.merged = mergedOf(parts);
+    const atlas = parts.length === 1 && parts[0].material.map;
+    if (atlas) {
+      // A far tile's impostor: its quads and its unlit, alpha-masked atlas, drawn as they came.
+      s.merged = parts[0].geometry;
+      if (!s.merged.boundingSphere) s.merged.computeBoundingSphere();
+      s.material = impostorMaterial(parts[0].material);
+    } else {
+      s.merged = mergedOf(parts);
+    }
     s.spheres = spheresOf(parts[0], s.merged.boundingSphere);
   }
+}
+
+// Impostors' materials by name (each names its grown tree and level): tiles that draw the
+// same trees then share one material, one texture on the GPU and one batch.
+const impostors = new Map();
+
+function impostorMaterial(material) {
+  let kept = impostors.get(material.name);
+  if (kept) return kept;
+  // The tiles renderer closes a tile's pictures when it drops the tile, so the kept material
+  // draws from its own copy of the atlas: a clone of the tile's texture (flip, colour space,
+  // filters) over a canvas of its pixels, with a source of its own.
+  const atlas = material.map.image;
+  const canvas = document.createElement('canvas');
+  canvas.width = atlas.width;
+  canvas.height = atlas.height;
+  const context = canvas.getContext('2d', { willReadFrequently: true });
+  context.drawImage(atlas, 0, 0);
+  const map = material.map.clone();
+  map.source = new material.map.source.constructor(canvas);
+  map.needsUpdate = true;
+  kept = material.clone();
+  kept.map = map;
+  // Its coverage, for picking: a click on a quad's clear corner passes through it.
+  kept.userData.coverage = { width: canvas.width, height: canvas.height, rgba: context.getImageData(0, 0, canvas.width, canvas.height).data };
+  impostors.set(material.name, kept);
+  return kept;
 }
 
 // The bytes a tile holds of its own (its trees' matrices, colours and rows), for the tile
@@ -156,6 +193,8 @@ export function prepare(mesh) {
     // first part only.
     merged: null,
     spheres: null,
+    // The impostor's own material, where the tree is drawn as one (`combine`); else the trees'.
+    material: null,
     matrices: mesh.instanceMatrix.array.slice(),
     colours: new Float32Array(3 * n).fill(1),
     // Each tree's species colour (`setSpeciesColours`), worked out when first drawn as a
@@ -191,6 +230,17 @@ function tintsOf(s) {
     s.tintVersion = paletteVersion;
   }
   return s.tints;
+}
+
+// Whether a ray that hit a batch mesh of `material` at texture point `uv` hit the tree: an
+// impostor's quad is clear where its atlas is (glTF's texture points run from the picture's
+// top left), every other mesh is solid.
+export function solidAt(material, uv) {
+  const c = material.userData.coverage;
+  if (!c || !uv) return true;
+  const x = Math.min(c.width - 1, Math.max(0, Math.floor(uv.x * c.width)));
+  const y = Math.min(c.height - 1, Math.max(0, Math.floor(uv.y * c.height)));
+  return c.rgba[4 * (y * c.width + x) + 3] >= 128;
 }
 
 // The row of tree `i` of the tile mesh `mesh`.
@@ -266,7 +316,7 @@ export class Batches {
           markers.add(centre, tints, s.colours, i, [o, i]);
           continue;
         }
-        b ??= this.batch(s.merged, TREE_MATERIAL);
+        b ??= this.batch(s.merged, s.material ?? TREE_MATERIAL);
         if (b.n === b.mesh.instanceMatrix.count) this.grow(b);
         world.fromArray(s.matrices, 16 * i).premultiply(o.matrixWorld);
         world.toArray(b.mesh.instanceMatrix.array, 16 * b.n);

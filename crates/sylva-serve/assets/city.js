@@ -10,7 +10,7 @@ import * as T from '/vendor/city.min.js';
 import { lineChart, barChart } from '/charts.js';
 import { softwareGl } from '/gl.js';
 import {
-  prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches, setSpeciesColours, PALETTE, OTHER_SPECIES,
+  prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches, setSpeciesColours, PALETTE, OTHER_SPECIES, solidAt,
 } from '/city-trees.js';
 
 const $ = (id) => document.getElementById(id);
@@ -420,6 +420,7 @@ function treeAt(clientX, clientY) {
   const p = new T.Vector2(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
   raycaster.setFromCamera(p, camera);
   for (const hit of raycaster.intersectObjects(batches.meshes(), false)) {
+    if (!solidAt(hit.object.material, hit.uv)) continue;
     const ref = hit.instanceId == null ? null : batches.ref(hit.object, hit.instanceId);
     const row = ref && rowOf(ref[0], ref[1]);
     if (row) return row;

@@ -148,7 +148,7 @@ pub fn render_preview(mesh: &TreeMesh, options: &PreviewOptions) -> Picture {
 }
 
 /// Calls `plot(x, y, barycentric)` for every pixel centre inside the triangle.
-fn raster(v: &[Vec3; 3], w: u32, h: u32, mut plot: impl FnMut(u32, u32, Vec3)) {
+pub(crate) fn raster(v: &[Vec3; 3], w: u32, h: u32, mut plot: impl FnMut(u32, u32, Vec3)) {
     let area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
     if area.abs() < 1e-12 || !area.is_finite() {
         return;

@@ -223,6 +223,31 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
     if let Some(r) = required.iter().find(|r| !used.contains(r)) {
         problems.push(format!("{r} is required but not used"));
     }
+    // Every file of its own that it names (shared meshes, impostors' atlases) is there: a
+    // buffer as long as it says, an image a PNG file.
+    let beside = path.parent().unwrap_or(Path::new("."));
+    for (k, b) in doc["buffers"].as_array().into_iter().flatten().enumerate() {
+        let Some(uri) = b["uri"].as_str() else {
+            continue;
+        };
+        let len = std::fs::metadata(beside.join(uri)).map(|m| m.len()).ok();
+        if len != b["byteLength"].as_u64() {
+            problems.push(format!(
+                "buffer {k} ({uri}): {len:?} bytes, not its byteLength"
+            ));
+        }
+    }
+    for (k, i) in doc["images"].as_array().into_iter().flatten().enumerate() {
+        let Some(uri) = i["uri"].as_str() else {
+            continue;
+        };
+        let head = std::fs::read(beside.join(uri))
+            .ok()
+            .and_then(|b| b.get(..8).map(<[u8]>::to_vec));
+        if head.as_deref() != Some(&b"\x89PNG\r\n\x1a\n"[..]) {
+            problems.push(format!("image {k} ({uri}) is not a PNG file there"));
+        }
+    }
     let accessors = doc["accessors"].as_array().cloned().unwrap_or_default();
     let views = doc["bufferViews"].as_array().cloned().unwrap_or_default();
     let metadata = &doc["extensions"]["EXT_structural_metadata"];

@@ -12,8 +12,13 @@ use serde_json::json;
 use std::collections::{BTreeMap, HashMap};
 use sylva::export::{
     Column, Features, InstancedGroup, InstancedMesh, Materials, MeshSource, Metadata,
-    PropertyTable, SharedMesh, instanced_glb,
+    PropertyTable, SharedImpostor, SharedMesh, instanced_glb,
 };
+
+/// The level of detail whose trees draw as their impostors: the coarsest, whose tiles are
+/// seen from so far that a tree is a few to some tens of pixels tall. Nearer levels keep
+/// their meshes.
+pub const IMPOSTOR_LEVEL: usize = 2;
 
 /// One tree of a tile: its plan, its year's figures, and what its row of attributes says
 /// beyond them (the inventory's id and the species as the inventory writes it).
@@ -91,28 +96,48 @@ pub fn tile_glb(
         };
         groups.entry(key).or_default().push(row as u32);
     }
-    let mut shared: Vec<(String, SharedMesh, Materials)> = Vec::with_capacity(groups.len());
+    // What each group draws: its mesh at this level, or at the coarsest its impostor.
+    enum Drawn {
+        Mesh(SharedMesh),
+        Impostor(SharedImpostor),
+    }
+    let mut shared: Vec<(String, Drawn, Materials)> = Vec::with_capacity(groups.len());
     for key in groups.keys() {
-        let (name, mesh, materials) = match key {
+        let (name, drawn, materials) = match key {
             Some(k) => {
                 let p = &prototypes[k];
-                (
-                    format!("{}-L{lod}", k.file_stem()),
-                    &p.lods[lod],
-                    p.materials,
-                )
+                let drawn = match &p.impostor {
+                    Some(imp) if lod == IMPOSTOR_LEVEL => Drawn::Impostor(SharedImpostor {
+                        uri: format!("{prefix}{}", imp.uri),
+                        frame: imp.frame,
+                    }),
+                    _ => Drawn::Mesh(p.lods[lod].clone()),
+                };
+                (format!("{}-L{lod}", k.file_stem()), drawn, p.materials)
             }
-            None => ("stump".to_string(), stump, stump_materials()),
+            None => (
+                "stump".to_string(),
+                Drawn::Mesh(stump.clone()),
+                stump_materials(),
+            ),
         };
-        let mut mesh = mesh.clone();
-        mesh.uri = format!("{prefix}{}", mesh.uri);
-        shared.push((name, mesh, materials));
+        let drawn = match drawn {
+            Drawn::Mesh(mut mesh) => {
+                mesh.uri = format!("{prefix}{}", mesh.uri);
+                Drawn::Mesh(mesh)
+            }
+            other => other,
+        };
+        shared.push((name, drawn, materials));
     }
     let meshes: Vec<InstancedMesh<'_>> = shared
         .iter()
-        .map(|(name, mesh, materials)| InstancedMesh {
+        .map(|(name, drawn, materials)| InstancedMesh {
             name,
-            source: MeshSource::Shared(mesh),
+            source: match drawn {
+                Drawn::Mesh(mesh) => MeshSource::Shared(mesh),
+                Drawn::Impostor(imp) => MeshSource::Impostor(imp),
+            },
             materials: *materials,
         })
         .collect();

@@ -226,6 +226,15 @@ impl<'a> Builder<'a> {
     }
 }
 
+/// Where an impostor's atlas (a PNG file) lies.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Image<'a> {
+    /// In the GLB's own buffer.
+    Embedded(&'a [u8]),
+    /// In a file of its own, at this URI.
+    Uri(&'a str),
+}
+
 /// A primitive of indexed triangles.
 pub(super) fn triangles(
     attributes: BTreeMap<
@@ -304,7 +313,11 @@ pub fn to_glb_lod(
     if let (Some((imp, coverage)), Some(quads)) = (impostor, &quads) {
         extensions_used.push("KHR_materials_unlit".into());
         levels.push((
-            b.impostor_mesh(&format!("{name}_LOD{}", chain.len()), imp, quads),
+            b.impostor_mesh(
+                &format!("{name}_LOD{}", chain.len()),
+                Image::Embedded(&imp.png),
+                quads,
+            ),
             coverage,
         ));
     }
@@ -398,18 +411,26 @@ impl<'a> Builder<'a> {
     }
 
     /// The impostor's quads with the atlas as an unlit, alpha-masked texture.
-    fn impostor_mesh(
+    pub(super) fn impostor_mesh(
         &mut self,
         name: &str,
-        imp: &'a super::super::lod::impostor::Impostor,
+        atlas: Image<'a>,
         quads: &'a Mesh,
     ) -> json::Index<json::Mesh> {
-        let view = self.view(Piece::Bytes(&imp.png), None);
+        // A shared atlas is named by its mesh, so that a viewer can tell the trees' apart.
+        let (buffer_view, uri, label) = match atlas {
+            Image::Embedded(png) => (
+                Some(self.view(Piece::Bytes(png), None)),
+                None,
+                "impostor".to_string(),
+            ),
+            Image::Uri(uri) => (None, Some(uri.to_string()), name.to_string()),
+        };
         let image = self.root.push(json::Image {
-            buffer_view: Some(view),
+            buffer_view,
             mime_type: Some(json::image::MimeType("image/png".into())),
-            name: Some("impostor atlas".into()),
-            uri: None,
+            name: Some(format!("{label} atlas")),
+            uri,
             extensions: None,
             extras: Default::default(),
         });
@@ -430,7 +451,7 @@ impl<'a> Builder<'a> {
         let mut others = serde_json::Map::new();
         others.insert("KHR_materials_unlit".into(), serde_json::json!({}));
         let material = self.root.push(json::Material {
-            name: Some("impostor".into()),
+            name: Some(label),
             alpha_mode: Valid(json::material::AlphaMode::Mask),
             alpha_cutoff: Some(json::material::AlphaCutoff(0.5)),
             double_sided: false,

@@ -4,10 +4,11 @@
 //! written once however many copies stand; a copy costs its translation, rotation and scale
 //! (40 bytes) and its row.
 
-use super::glb::{Builder, Materials, Piece, bytes_of, finish, material, triangles};
+use super::glb::{Builder, Image, Materials, Piece, bytes_of, finish, material, triangles};
 use super::y_up;
 use crate::error::ExportError;
-use crate::mesh::TreeMesh;
+use crate::lod::impostor::ImpostorFrame;
+use crate::mesh::{Mesh, TreeMesh};
 use gltf_json as json;
 use json::accessor::{ComponentType as C, Type as T};
 use json::validation::Checked::Valid;
@@ -142,6 +143,20 @@ pub enum MeshSource<'a> {
     Inline(&'a TreeMesh),
     /// Read from its own binary file ([`SharedMesh`]).
     Shared(&'a SharedMesh),
+    /// A baked impostor: its quads written into the file, its atlas read from its own PNG
+    /// file ([`SharedImpostor`]).
+    Impostor(&'a SharedImpostor),
+}
+
+/// A baked impostor ([`crate::lod::impostor`]) whose atlas lies in a PNG file of its own,
+/// which many GLB files refer to: a city's coarse tiles draw each far tree as its 16
+/// triangles and share the picture.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SharedImpostor {
+    /// The PNG file's URI, relative to the GLB files that refer to it.
+    pub uri: String,
+    /// Its views' layout and size.
+    pub frame: ImpostorFrame,
 }
 
 /// A mesh of an instanced file: its name, where it comes from and its materials.
@@ -273,15 +288,28 @@ pub fn instanced_glb(
             }
         }
     }
+    // The impostors' quads, made before the builder that borrows them.
+    let quads: Vec<Option<Mesh>> = meshes
+        .iter()
+        .map(|m| match m.source {
+            MeshSource::Impostor(imp) => Some(imp.frame.quads()),
+            _ => None,
+        })
+        .collect();
     let mut b = Builder::new();
     let mut materials = HashMap::new();
     let gltf_meshes: Vec<_> = meshes
         .iter()
-        .map(|m| match m.source {
-            MeshSource::Inline(mesh) => b.tree_mesh(m.name, mesh, &m.materials),
-            MeshSource::Shared(shared) => {
+        .zip(&quads)
+        .map(|(m, quads)| match (m.source, quads) {
+            (MeshSource::Inline(mesh), _) => b.tree_mesh(m.name, mesh, &m.materials),
+            (MeshSource::Shared(shared), _) => {
                 shared_mesh(&mut b, m.name, shared, &m.materials, &mut materials)
             }
+            (MeshSource::Impostor(imp), Some(quads)) => {
+                b.impostor_mesh(m.name, Image::Uri(&imp.uri), quads)
+            }
+            (MeshSource::Impostor(_), None) => unreachable!("every impostor's quads are made"),
         })
         .collect();
     let mut nodes = Vec::with_capacity(groups.len());
@@ -310,6 +338,9 @@ pub fn instanced_glb(
         }));
     }
     let mut used = vec!["EXT_mesh_gpu_instancing".to_string()];
+    if quads.iter().any(Option::is_some) {
+        used.push("KHR_materials_unlit".into());
+    }
     if let Some(m) = metadata {
         let tables: Vec<Value> = m.tables.iter().map(|t| table_json(&mut b, t)).collect();
         let mut others = Map::new();

@@ -17,7 +17,7 @@ pub use atomic::{write_atomically, write_atomically_with};
 pub use glb::{Glb, Materials, to_glb_lod};
 pub use instanced::{
     Column, Features, InstancedGroup, InstancedMesh, MeshSource, Metadata, PropertyTable,
-    SharedMesh, instanced_glb,
+    SharedImpostor, SharedMesh, instanced_glb,
 };
 pub use obj::{to_obj, write_obj};
 pub use scene::{Instance, glb_scene, to_glb, to_glb_scene, tree_glb, write_glb};

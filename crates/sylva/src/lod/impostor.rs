@@ -55,7 +55,7 @@ pub struct Impostor {
 }
 
 /// Where the views of an impostor are taken from and what they cover.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ImpostorFrame {
     /// Number of views, evenly spread around the tree.
     pub views: u32,

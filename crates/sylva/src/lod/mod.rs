@@ -10,6 +10,7 @@
 //! stored in under 1 MB. [`expand`] rebuilds the same triangles on the CPU (an engine's meshes,
 //! the CPU rasteriser), the reference the shader follows.
 
+pub mod bake;
 mod budget;
 mod build;
 pub mod expand;
