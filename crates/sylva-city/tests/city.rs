@@ -230,6 +230,9 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
         drawn.min(sylva_city::tiles::COARSE_TREES)
     );
     assert_eq!(checked.leaf_instances, drawn);
+    // The trees the root leaves out of its meshes are its points: each tree is in it once
+    // (a unit test holds a root that leaves trees out: `tiles::tests`).
+    assert_eq!(checked.root_instances + checked.root_points, drawn);
     // The report counts every standing tree the tiles hold (the stumps aside), by species,
     // DBH class and genus, and its shares and importance values add up.
     let report: serde_json::Value =

@@ -22,6 +22,9 @@ const centre = new T.Vector3();
 // sample of 138 trees over 2.4 km opened on empty ground), a marker a few pixels wide shows
 // every tree of a sparse inventory and the streets of a dense one. (Sylva's choice.)
 export const MARKER_PIXELS = 3;
+// The name of a coarse tile's points, the trees it leaves out of its meshes (`sylva city`'s
+// `tiles::content::LEFT_OUT`).
+export const LEFT_OUT = 'left-out';
 // A marker's size on the screen, CSS pixels.
 const MARKER_SIZE = 5;
 
@@ -206,6 +209,40 @@ export function prepare(mesh) {
   return state;
 }
 
+// The state of a coarse tile's points (`LEFT_OUT`), as `prepare` keeps a tile mesh's: each
+// point's species as its row (so `paint` and the species colours treat it as a tree; a filter
+// on DBH or benefits dims it, its figures not being in the tile), where it stands, its colour.
+// The left-out trees' dots are smaller than a marker: a dense city's 100,000 of them draw its
+// streets as fine lines, where dots a marker's size ran together (and turned the software
+// view at 7 frames a second, filling each pixel several times).
+const LEFT_OUT_SIZE = 3;
+const LEFT_OUT_PER_PIXEL = 0.12;
+const LEFT_OUT_MATERIAL = new T.PointsMaterial({ size: LEFT_OUT_SIZE, sizeAttenuation: false, vertexColors: true });
+
+export function pointsOf(points) {
+  if (points.userData.sylva) return points.userData.sylva;
+  const g = points.geometry, at = g.getAttribute('position'), cls = g.getAttribute('_class');
+  const classes = points.userData.classes || [];
+  const rows = new Array(at.count);
+  const named = classes.map((species) => ({ species }));
+  for (let i = 0; i < at.count; i++) rows[i] = named[cls ? cls.getX(i) : 0] ?? null;
+  const state = {
+    n: at.count,
+    rows,
+    colours: new Float32Array(3 * at.count).fill(1),
+    tints: null,
+    tintVersion: -1,
+    // The palette version its colours were last painted under, and whether a filter changed
+    // them since (`Batches.leftOut`).
+    paintedAt: -1,
+    dirty: true,
+  };
+  g.setAttribute('color', new T.BufferAttribute(new Float32Array(3 * at.count), 3));
+  points.material = LEFT_OUT_MATERIAL;
+  points.userData.sylva = state;
+  return state;
+}
+
 // Each tree's bounding sphere in the mesh's frame: `sphere`, moved and scaled by the tree's
 // matrix.
 function spheresOf(mesh, sphere) {
@@ -257,7 +294,8 @@ export function* trees(mesh) {
 
 // Colours every tree of `mesh`: full where `keep(row)`, `dim` elsewhere; `null` keeps all.
 export function paint(mesh, keep, dim) {
-  const s = prepare(mesh);
+  const s = mesh.isPoints ? pointsOf(mesh) : prepare(mesh);
+  s.dirty = true;
   for (let i = 0; i < s.n; i++) {
     const lit = !keep || (s.rows[i] && keep(s.rows[i]));
     s.colours.set(lit ? [1, 1, 1] : [dim.r, dim.g, dim.b], 3 * i);
@@ -283,10 +321,15 @@ export class Batches {
     for (const b of this.byKey.values()) b.n = 0;
     const markers = this.markers;
     markers.n = 0;
+    this.leftOutShown = 0;
     // Crown radius r at distance d is drawn r * eye.pixels / d pixels across its half.
     const smallest = MARKER_PIXELS / 2 / eye.pixels;
     root.updateMatrixWorld();
     root.traverse((o) => {
+      if (o.isPoints && o.name.startsWith(LEFT_OUT)) {
+        this.leftOut(o, eye);
+        return;
+      }
       if (!o.isInstancedMesh) return;
       // The tile's own mesh is data from here on: the batches draw its trees.
       o.visible = false;
@@ -343,6 +386,35 @@ export class Batches {
     return calls;
   }
 
+  // A coarse tile's points (the trees it leaves out of its meshes: a parent draws its
+  // tallest 1,000) drawn as markers, so a dense city seen whole shows every tree, and its
+  // streets with them. They stand still in the tile, so the tile's own points are drawn (one
+  // draw a tile) rather than gathered each frame (96,000 of them turned the view at 5 frames a
+  // second). They have no row in the tile, so no card: a click finds the nearest marker that
+  // has one, and zooming in brings the finer tiles that draw them.
+  leftOut(o, eye) {
+    const s = pointsOf(o);
+    // The tile holds its points shuffled, so a first share of them is an even sample: as many
+    // as LEFT_OUT_PER_PIXEL a drawn pixel of the tile's disc on the screen. A software view of
+    // the 100,000-tree demo, whole, turned at 9 frames a second with all 96,000 dots, at 11
+    // with 30,000 (0.25 a pixel), at 14.7 with 15,000 (0.12), its streets still showing.
+    const sphere = o.geometry.boundingSphere || (o.geometry.computeBoundingSphere(), o.geometry.boundingSphere);
+    centre.copy(sphere.center).applyMatrix4(o.matrixWorld);
+    const across = (sphere.radius * eye.pixels) / Math.max(1e-3, centre.distanceTo(eye.position));
+    const shown = Math.min(s.n, Math.ceil(Math.PI * across * across * LEFT_OUT_PER_PIXEL));
+    o.geometry.setDrawRange(0, shown);
+    const tints = tintsOf(s);
+    if (s.paintedAt !== s.tintVersion || s.dirty) {
+      const colour = o.geometry.getAttribute('color').array;
+      for (let k = 0; k < 3 * s.n; k++) colour[k] = tints[k] * s.colours[k];
+      o.geometry.getAttribute('color').needsUpdate = true;
+      s.paintedAt = s.tintVersion;
+      s.dirty = false;
+    }
+    o.visible = true;
+    this.leftOutShown += shown;
+  }
+
   batch(geometry, material) {
     const key = `${geometry.uuid}|${material.uuid}`;
     let b = this.byKey.get(key);
@@ -393,7 +465,7 @@ export class Batches {
       p.fromArray(m.position, 3 * i).project(camera);
       if (p.z > 1) continue;
       const d = (p.x - x) ** 2 + (p.y - y) ** 2;
-      if (d < bestD) { bestD = d; best = m.refs[i]; }
+      if (d < bestD && m.refs[i]) { bestD = d; best = m.refs[i]; }
     }
     return best;
   }

@@ -10,7 +10,7 @@ import * as T from '/vendor/city.min.js';
 import { lineChart, barChart } from '/charts.js';
 import { softwareGl } from '/gl.js';
 import {
-  prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches, setSpeciesColours, PALETTE, OTHER_SPECIES, solidAt,
+  prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches, setSpeciesColours, PALETTE, OTHER_SPECIES, solidAt, LEFT_OUT,
 } from '/city-trees.js';
 
 const $ = (id) => document.getElementById(id);
@@ -147,7 +147,7 @@ function shown(row) {
 function colourTrees(root) {
   const all = !state.filter.species && state.filter.dbh === '' && !(state.filter.benefit > 0);
   root.traverse((o) => {
-    if (!o.isInstancedMesh) return;
+    if (!o.isInstancedMesh && !(o.isPoints && o.name.startsWith(LEFT_OUT))) return;
     if (all && !o.userData.sylva?.painted) return;
     paint(o, all ? null : shown, DIM);
     o.userData.sylva.painted = !all;
@@ -572,6 +572,8 @@ probe.drawn = () => {
   return {
     triangles: renderer.info.render.triangles, calls: renderer.info.render.calls, levels, batches: spent.calls,
     markers: batches.markers.n,
+    // The trees coarse tiles leave out of their meshes, drawn as their own dots.
+    leftOut: batches.leftOutShown,
   };
 };
 
@@ -581,6 +583,8 @@ probe.markerPoints = (most = 20) => {
   const r = canvas.getBoundingClientRect();
   const every = Math.max(1, Math.floor(m.n / most));
   for (let i = 0; i < m.n && out.length < most; i += every) {
+    // Markers of the trees a coarse tile leaves out have no card to open.
+    if (!m.refs[i]) continue;
     p.fromArray(m.position, 3 * i).project(camera);
     if (Math.abs(p.x) < 0.95 && Math.abs(p.y) < 0.95 && p.z < 1) {
       const [tile, k] = m.refs[i];

@@ -19,6 +19,8 @@ pub struct Checked {
     /// Instances in the root tile (coarsest: every tree, or the tallest
     /// [`super::COARSE_TREES`]).
     pub root_instances: usize,
+    /// The root's points: the trees it leaves out of its meshes.
+    pub root_points: usize,
     /// Property table rows read.
     pub rows: usize,
 }
@@ -140,10 +142,11 @@ fn walk(
     let children = tile["children"].as_array().map_or(&[][..], |c| &c[..]);
     if let Some(uri) = tile["content"]["uri"].as_str() {
         match content(&dir.join(uri), &bx) {
-            Ok((instances, rows)) => {
+            Ok((instances, rows, points)) => {
                 out.rows += rows;
                 if parent.is_none() {
                     out.root_instances = instances;
+                    out.root_points = points;
                 }
                 if children.is_empty() {
                     out.leaf_instances += instances;
@@ -194,7 +197,7 @@ fn glb(path: &Path) -> Result<(Value, Vec<u8>), String> {
 }
 
 /// Checks a tile's GLB; its instances and table rows.
-fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
+fn content(path: &Path, bx: &Bx) -> Result<(usize, usize, usize), Vec<String>> {
     let (doc, bin) = glb(path).map_err(|e| vec![e])?;
     let mut problems = Vec::new();
     let list = |k: &str| -> Vec<String> {
@@ -272,7 +275,10 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
                 .collect(),
         )
     };
+    // Whether a point of the file (glTF's Y up turned back to Z up) lies outside the box.
+    let outside = |p: &[f32]| !inside(bx, DVec3::new(p[0] as f64, -p[2] as f64, p[1] as f64), 0.01);
     let mut instances = 0;
+    let mut points = 0;
     let mut used_tables = std::collections::BTreeSet::new();
     for (n, node) in doc["nodes"].as_array().into_iter().flatten().enumerate() {
         let ext = &node["extensions"];
@@ -280,6 +286,25 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
             if !used.contains(name) {
                 problems.push(format!("node {n} uses {name}, not declared"));
             }
+        }
+        // A coarse tile's points (the trees it leaves out) are drawn once each.
+        let primitive =
+            &doc["meshes"][node["mesh"].as_u64().unwrap_or(u64::MAX) as usize]["primitives"][0];
+        if primitive["mode"] == 0 {
+            let at = accessors.get(
+                primitive["attributes"]["POSITION"]
+                    .as_u64()
+                    .unwrap_or(u64::MAX) as usize,
+            );
+            let Some(p) = at.and_then(&floats) else {
+                problems.push(format!("node {n}: points without positions"));
+                continue;
+            };
+            if p.chunks_exact(3).any(outside) {
+                problems.push(format!("node {n}: a point stands outside the tile's box"));
+            }
+            points += p.len() / 3;
+            continue;
         }
         let inst = &ext["EXT_mesh_gpu_instancing"]["attributes"];
         let get = |k: &str| accessors.get(inst[k].as_u64().unwrap_or(u64::MAX) as usize);
@@ -301,9 +326,7 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
                 ));
             }
         }
-        // Every tree stands in the tile's box (glTF's Y up turned back to Z up).
-        let outside =
-            |p: &[f32]| !inside(bx, DVec3::new(p[0] as f64, -p[2] as f64, p[1] as f64), 0.01);
+        // Every tree stands in the tile's box.
         if floats(t).is_some_and(|p| p.chunks_exact(3).any(outside)) {
             problems.push(format!("node {n}: a tree stands outside the tile's box"));
         }
@@ -394,7 +417,7 @@ fn content(path: &Path, bx: &Bx) -> Result<(usize, usize), Vec<String>> {
         problems.push(format!("{rows} table rows for {instances} trees"));
     }
     if problems.is_empty() {
-        Ok((instances, rows))
+        Ok((instances, rows, points))
     } else {
         Err(problems)
     }

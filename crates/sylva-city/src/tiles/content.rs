@@ -11,9 +11,12 @@ use serde::{Deserialize, Serialize};
 use serde_json::json;
 use std::collections::{BTreeMap, HashMap};
 use sylva::export::{
-    Column, Features, InstancedGroup, InstancedMesh, Materials, MeshSource, Metadata,
+    Column, Features, InstancedGroup, InstancedMesh, Materials, MeshSource, Metadata, PointSet,
     PropertyTable, SharedImpostor, SharedMesh, instanced_glb,
 };
+
+/// The name of a coarse tile's points: the trees below it that it leaves out of its meshes.
+pub const LEFT_OUT: &str = "left-out";
 
 /// The level of detail whose trees draw as their impostors: the coarsest, whose tiles are
 /// seen from so far that a tree is a few to some tens of pixels tall. Nearer levels keep
@@ -85,6 +88,7 @@ pub fn tile_glb(
     prototypes: &HashMap<&ProtoKey, &Prototype>,
     stump: &SharedMesh,
     prefix: &str,
+    left_out: &[([f64; 3], String)],
 ) -> Result<Vec<u8>, sylva::ExportError> {
     // Trees by what they are drawn as, in a stable order; each keeps its row in the table.
     let mut groups: BTreeMap<Option<ProtoKey>, Vec<u32>> = BTreeMap::new();
@@ -179,7 +183,25 @@ pub fn tile_glb(
         schema: schema(),
         tables: vec![table(trees)],
     };
-    instanced_glb(&meshes, &groups, Some(&metadata))
+    // The trees it leaves out, as points of their species.
+    let mut classes: Vec<String> = left_out.iter().map(|(_, c)| c.clone()).collect();
+    classes.sort();
+    classes.dedup();
+    let class_of: Vec<u16> = left_out
+        .iter()
+        .map(|(_, c)| classes.binary_search(c).unwrap_or(0) as u16)
+        .collect();
+    let positions: Vec<[f32; 3]> = left_out
+        .iter()
+        .map(|(at, _)| (DVec3::from_array(*at) - centre).as_vec3().to_array())
+        .collect();
+    let points = PointSet {
+        name: LEFT_OUT,
+        positions: &positions,
+        class_of: &class_of,
+        classes: &classes,
+    };
+    instanced_glb(&meshes, &groups, Some(&metadata), Some(&points))
 }
 
 /// The rows of a tile's trees, in their order.

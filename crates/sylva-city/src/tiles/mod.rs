@@ -63,6 +63,10 @@ pub struct TileTask {
     pub trees: Vec<TileTree>,
     /// The tallest tree below it that it does not draw, m (0: it draws them all).
     pub omitted: f64,
+    /// The trees below it that it does not draw: where each stands (the city's frame) and
+    /// what it is (a species code, or `stump`). The tile holds them as points, so that a
+    /// viewer far off shows every tree of a dense city as a dot and its streets with them.
+    pub left_out: Vec<([f64; 3], String)>,
     /// The grown trees they are drawn as.
     pub prototypes: Vec<Prototype>,
     /// The stump's mesh.
@@ -90,6 +94,35 @@ impl TileTask {
         } else {
             tallest(&node.trees, |i| trees[i as usize].height, COARSE_TREES)
         };
+        // `drawn` keeps the order of `node.trees`: the rest, in that order, by one walk.
+        let mut kept = drawn.iter().peekable();
+        let mut rest: Vec<u32> = node
+            .trees
+            .iter()
+            .copied()
+            .filter(|&i| {
+                let is_drawn = kept.peek() == Some(&&i);
+                if is_drawn {
+                    kept.next();
+                }
+                !is_drawn
+            })
+            .collect();
+        // In an order shuffled by each tree's inventory row, fixed for the city: any first
+        // share of them is an even sample over the tile, so a viewer may draw fewer dots than
+        // trees where the tile is small on the screen and still show every street.
+        rest.sort_by_key(|&i| shuffled(trees[i as usize].row as u64));
+        let left_out = rest
+            .iter()
+            .map(|&i| {
+                let t = &trees[i as usize];
+                let what = match &t.kind {
+                    Kind::Tree(k) => k.code.clone(),
+                    Kind::Stump => "stump".to_string(),
+                };
+                (t.at.to_array(), what)
+            })
+            .collect();
         let members: Vec<TileTree> = drawn
             .iter()
             .map(|&i| {
@@ -129,11 +162,21 @@ impl TileTask {
             height: node.height(),
             trees: members,
             omitted,
+            left_out,
             prototypes: used.iter().map(|k| prototypes[k].clone()).collect(),
             stump: stump.clone(),
             prototypes_uri: prototypes_uri.to_string(),
         }
     }
+}
+
+/// A number that depends only on `n`, spread evenly over u64 (splitmix64's finaliser,
+/// Steele, Lea & Flood 2014).
+fn shuffled(n: u64) -> u64 {
+    let mut z = n.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 /// The tallest `most` of `trees` (ties by their place in it), in the order they came in, and
@@ -167,6 +210,7 @@ pub fn make_tile(task: &TileTask) -> Result<(Tile, Vec<u8>), CityError> {
         &prototypes,
         &task.stump,
         &prefix,
+        &task.left_out,
     )
     .map_err(|e| CityError::write(Path::new(&format!("{}{}", task.tileset, tile.uri)), e))?;
     Ok((
@@ -361,5 +405,69 @@ mod tests {
         assert_eq!(tallest(&trees, heights, 3), (vec![7, 1, 4], 5.0));
         // A tile of no more than `most` draws them all, in error by nothing.
         assert_eq!(tallest(&trees, heights, 5), (trees.to_vec(), 0.0));
+    }
+
+    #[test]
+    fn a_coarse_tile_holds_the_trees_it_leaves_out_as_points_of_their_kind() {
+        // 1,500 stumps on a 150 m square, each 1 cm taller than the one before.
+        let n = COARSE_TREES + 500;
+        let planned: Vec<Planned> = (0..n)
+            .map(|i| Planned {
+                row: i,
+                at: DVec3::new((i % 40) as f64 * 3.7, (i / 40) as f64 * 3.9, 0.0),
+                kind: Kind::Stump,
+                turn: 0.0,
+                scale: 1.0,
+                age: 0.0,
+                dbh: 30.0,
+                height: 0.5 + 0.01 * i as f32,
+                crown_diameter: 0.0,
+            })
+            .collect();
+        let at: Vec<[f64; 2]> = planned.iter().map(|t| [t.at.x, t.at.y]).collect();
+        let root = quadtree::build(&at, LEAF_TREES);
+        assert!(!root.children.is_empty());
+        let years = vec![TreeYear::default(); n];
+        let labels = |row: usize| (format!("T{row}"), "stump".to_string());
+        let stump = crate::tasks::stump_file().0;
+        let task = TileTask::new(
+            "",
+            &root,
+            &planned,
+            &years,
+            &labels,
+            &HashMap::new(),
+            &stump,
+            "prototypes/",
+        );
+        // It draws the tallest 1,000 and holds the other 500 as points, where they stand.
+        assert_eq!(task.trees.len(), COARSE_TREES);
+        assert_eq!(task.left_out.len(), 500);
+        for (at, what) in &task.left_out {
+            let i = planned.iter().position(|t| t.at.to_array() == *at).unwrap();
+            assert!(i < 500, "tree {i} is among the tallest");
+            assert_eq!(what, "stump");
+        }
+        let (tile, glb) = make_tile(&task).unwrap();
+        let len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+        let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + len]).unwrap();
+        let node = doc["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|n| n["name"] == content::LEFT_OUT)
+            .unwrap();
+        let mesh = &doc["meshes"][node["mesh"].as_u64().unwrap() as usize];
+        assert_eq!(mesh["primitives"][0]["mode"], 0, "POINTS");
+        assert_eq!(mesh["extras"]["classes"], serde_json::json!(["stump"]));
+        let position = &doc["accessors"][mesh["primitives"][0]["attributes"]["POSITION"]
+            .as_u64()
+            .unwrap() as usize];
+        assert_eq!(position["count"], 500);
+        // The first left out stands where tree 0 does, from the tile's centre, Y up.
+        let centre = tile.centre;
+        let min = position["min"].as_array().unwrap();
+        assert!((min[0].as_f64().unwrap() - (0.0 - centre.x)).abs() < 1e-3);
+        assert!((min[2].as_f64().unwrap() + (planned[499].at.y - centre.y)).abs() < 1e-3);
     }
 }

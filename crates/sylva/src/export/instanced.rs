@@ -196,6 +196,21 @@ pub struct Features<'a> {
     pub rows: &'a [u32],
 }
 
+/// Points drawn once each, not instanced: a coarse tile's trees that it leaves out of its
+/// meshes, where they stand (`POSITION`), each of a class (`_CLASS`, an index into the
+/// mesh's `extras.classes`): a far viewer draws them as dots.
+#[derive(Clone, Copy, Debug)]
+pub struct PointSet<'a> {
+    /// The mesh's and node's name.
+    pub name: &'a str,
+    /// Where each point stands, metres, Z up, relative to the file's origin.
+    pub positions: &'a [[f32; 3]],
+    /// Each point's class, an index into `classes`.
+    pub class_of: &'a [u16],
+    /// The classes' names.
+    pub classes: &'a [String],
+}
+
 /// One property's values, a row per feature.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Column {
@@ -245,6 +260,7 @@ pub fn instanced_glb(
     meshes: &[InstancedMesh<'_>],
     groups: &[InstancedGroup<'_>],
     metadata: Option<&Metadata>,
+    points: Option<&PointSet<'_>>,
 ) -> Result<Vec<u8>, ExportError> {
     let bad = |m: String| Err(ExportError::Format(m));
     let tables = metadata.map_or(&[][..], |m| &m.tables[..]);
@@ -334,6 +350,25 @@ pub fn instanced_glb(
             mesh: Some(gltf_meshes[group.mesh]),
             name: Some(meshes[group.mesh].name.into()),
             extensions: Some(json::extensions::scene::Node { others }),
+            ..Default::default()
+        }));
+    }
+    if let Some(p) = points.filter(|p| !p.positions.is_empty()) {
+        if p.class_of.len() != p.positions.len()
+            || p.class_of.iter().any(|&c| c as usize >= p.classes.len())
+        {
+            return bad(format!(
+                "points `{}`: {} classes for {} points, each under {}",
+                p.name,
+                p.class_of.len(),
+                p.positions.len(),
+                p.classes.len()
+            ));
+        }
+        let mesh = point_mesh(&mut b, p)?;
+        nodes.push(b.root.push(json::Node {
+            mesh: Some(mesh),
+            name: Some(p.name.into()),
             ..Default::default()
         }));
     }
@@ -439,6 +474,42 @@ fn shared_mesh(
         primitives,
         weights: None,
     })
+}
+
+/// A mesh of one POINTS primitive, its classes named in its extras.
+fn point_mesh(
+    b: &mut Builder<'_>,
+    p: &PointSet<'_>,
+) -> Result<json::Index<json::Mesh>, ExportError> {
+    let n = p.positions.len();
+    let positions: Vec<[f32; 3]> = p.positions.iter().map(|&q| y_up(q)).collect();
+    let bounds = bounds_of(&positions);
+    let v = b.view(Piece::Owned(bytes_of(&positions).to_vec()), None);
+    let pos = b.accessor(v, n, C::F32, T::Vec3, Some(bounds));
+    // Classes as floats: exact to 2^24, and a type every reader takes for an attribute.
+    let class_of: Vec<f32> = p.class_of.iter().map(|&c| c as f32).collect();
+    let v = b.view(Piece::Owned(bytes_of(&class_of).to_vec()), None);
+    let class = b.accessor(v, n, C::F32, T::Scalar, None);
+    let mut attributes = BTreeMap::new();
+    attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
+    attributes.insert(Valid(json::mesh::Semantic::Extras("CLASS".into())), class);
+    let extras = serde_json::value::to_raw_value(&json!({ "classes": p.classes }))
+        .map_err(|e| ExportError::Format(e.to_string()))?;
+    Ok(b.root.push(json::Mesh {
+        extensions: None,
+        extras: Some(extras),
+        name: Some(p.name.into()),
+        primitives: vec![json::mesh::Primitive {
+            attributes,
+            extensions: None,
+            extras: Default::default(),
+            indices: None,
+            material: None,
+            mode: Valid(json::mesh::Mode::Points),
+            targets: None,
+        }],
+        weights: None,
+    }))
 }
 
 /// The TRANSLATION, ROTATION and SCALE accessors of a group's copies, Y up.

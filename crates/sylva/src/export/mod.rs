@@ -16,7 +16,7 @@ mod twigs;
 pub use atomic::{write_atomically, write_atomically_with};
 pub use glb::{Glb, Materials, to_glb_lod};
 pub use instanced::{
-    Column, Features, InstancedGroup, InstancedMesh, MeshSource, Metadata, PropertyTable,
+    Column, Features, InstancedGroup, InstancedMesh, MeshSource, Metadata, PointSet, PropertyTable,
     SharedImpostor, SharedMesh, instanced_glb,
 };
 pub use obj::{to_obj, write_obj};
