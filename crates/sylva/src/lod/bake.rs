@@ -14,9 +14,9 @@ use glam::Vec3;
 
 /// Samples per pixel along each axis.
 const SS: u32 = 2;
-/// The sky's share of a surface's light and the sun's (Sylva's choice: a lit face of a baked
-/// crown comes out as bright as the city view's Lambert-lit meshes under its hemisphere and
-/// sun, measured on its screenshots).
+/// The sky's share of a surface's light and the sun's (Sylva's choice, not calibrated: in the
+/// city view's screenshots the baked crowns come out a little darker than the Lambert-lit
+/// meshes they stand in for).
 const SKY: f32 = 0.55;
 const SUN: f32 = 0.6;
 
