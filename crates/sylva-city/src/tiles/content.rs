@@ -105,34 +105,29 @@ pub fn tile_glb(
         Mesh(SharedMesh),
         Impostor(SharedImpostor),
     }
+    // Each file named from the tile's folder.
+    let from_tile = |uri: &str| format!("{prefix}{uri}");
+    let mesh = |m: &SharedMesh| {
+        let mut m = m.clone();
+        m.uri = from_tile(&m.uri);
+        Drawn::Mesh(m)
+    };
     let mut shared: Vec<(String, Drawn, Materials)> = Vec::with_capacity(groups.len());
     for key in groups.keys() {
-        let (name, drawn, materials) = match key {
+        shared.push(match key {
             Some(k) => {
                 let p = &prototypes[k];
                 let drawn = match &p.impostor {
                     Some(imp) if lod == IMPOSTOR_LEVEL => Drawn::Impostor(SharedImpostor {
-                        uri: format!("{prefix}{}", imp.uri),
+                        uri: from_tile(&imp.uri),
                         frame: imp.frame,
                     }),
-                    _ => Drawn::Mesh(p.lods[lod].clone()),
+                    _ => mesh(&p.lods[lod]),
                 };
                 (format!("{}-L{lod}", k.file_stem()), drawn, p.materials)
             }
-            None => (
-                "stump".to_string(),
-                Drawn::Mesh(stump.clone()),
-                stump_materials(),
-            ),
-        };
-        let drawn = match drawn {
-            Drawn::Mesh(mut mesh) => {
-                mesh.uri = format!("{prefix}{}", mesh.uri);
-                Drawn::Mesh(mesh)
-            }
-            other => other,
-        };
-        shared.push((name, drawn, materials));
+            None => ("stump".to_string(), mesh(stump), stump_materials()),
+        });
     }
     let meshes: Vec<InstancedMesh<'_>> = shared
         .iter()
