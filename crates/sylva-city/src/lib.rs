@@ -1,5 +1,6 @@
 //! A city's street trees: an inventory in, OGC 3D Tiles out.
 
+mod atlas;
 pub mod benefits;
 pub mod cache;
 mod error;

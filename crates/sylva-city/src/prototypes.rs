@@ -58,8 +58,11 @@ pub struct Prototype {
     /// before's. The coarsest level's is its impostor's, where it has one.
     pub errors: [f32; 3],
     /// Its impostor, drawn in place of the coarsest level (`tiles::content`): baked for each
-    /// class's first seed variant, the one coarse levels draw.
+    /// class's first seed variant, the one coarse levels draw. Its picture lies in the city's
+    /// atlas once packed (`atlas::pack`, by `CityJob::lay_out`).
     pub impostor: Option<SharedImpostor>,
+    /// Its impostor's picture (PNG) until the city's atlas takes it.
+    pub impostor_png: Option<Vec<u8>>,
 }
 
 /// One growth task: a species, region and seed variant grown once, its age classes taken on
@@ -131,7 +134,8 @@ pub fn grow(task: &GrowthTask) -> Result<(Vec<Prototype>, Vec<LevelFile>), CityE
     Ok((prototypes, files))
 }
 
-/// Grows every prototype of `keys` and writes their files into `dir` (for tests).
+/// Grows every prototype of `keys` and writes their files into `dir` (for tests), each
+/// impostor's picture a file of its own (`SharedImpostor::uri` as grown).
 #[cfg(test)]
 pub(crate) fn grow_all(
     keys: &[ProtoKey],
@@ -140,7 +144,12 @@ pub(crate) fn grow_all(
 ) -> Result<HashMap<ProtoKey, Prototype>, CityError> {
     let mut out = HashMap::new();
     for task in growth_tasks(keys, seed) {
-        let (prototypes, files) = grow(&task)?;
+        let (prototypes, mut files) = grow(&task)?;
+        for p in &prototypes {
+            if let (Some(imp), Some(png)) = (&p.impostor, &p.impostor_png) {
+                files.push((imp.uri.clone(), png.clone()));
+            }
+        }
         for (name, bytes) in files {
             let path = dir.join(name);
             std::fs::write(&path, bytes).map_err(|e| CityError::write(&path, e))?;
@@ -174,7 +183,7 @@ fn prototype(
         worst = worst.max(distance_to(&whole, mesh));
         errors[k] = worst;
     }
-    let mut files = Vec::with_capacity(4);
+    let mut files = Vec::with_capacity(3);
     let lods = [0, 1, 2].map(|k| {
         let name = format!("{}-L{k}.bin", key.file_stem());
         let (shared, bytes) = SharedMesh::new(&meshes[k], name.clone());
@@ -183,16 +192,18 @@ fn prototype(
     });
     // The impostor is baked from the most detailed level: its leaves keep the crown's area
     // and outline at a tenth of the whole tree's triangles.
-    let impostor = (key.variant == 0).then(|| {
+    let (impostor, impostor_png) = if key.variant == 0 {
         let baked = bake_on_cpu(&meshes[0], &dress.materials(), IMPOSTOR_PIXELS);
-        let name = format!("{}-impostor.png", key.file_stem());
-        files.push((name.clone(), baked.png));
         errors[2] = errors[2].max(off_the_quads(&whole, &baked.frame));
-        SharedImpostor {
-            uri: name,
+        let own = SharedImpostor {
+            uri: format!("{}-impostor.png", key.file_stem()),
             frame: baked.frame,
-        }
-    });
+            rect: [0.0, 0.0, 1.0, 1.0],
+        };
+        (Some(own), Some(baked.png))
+    } else {
+        (None, None)
+    };
     let prototype = Prototype {
         key,
         height: dims.height as f32,
@@ -202,6 +213,7 @@ fn prototype(
         lods,
         errors,
         impostor,
+        impostor_png,
     };
     (prototype, files)
 }

@@ -4,12 +4,12 @@
 //! 1. [`CityJob::prepare`] reads and plans the inventory (one process: cheap).
 //! 2. Its [`GrowthTask`]s grow the trees the city shares ([`prototypes::grow`]): one task a
 //!    species, region and seed variant, a pure function of its fields.
-//! 3. [`CityJob::lay_out`] takes their prototypes, scales every tree and splits each epoch
-//!    into its quadtree of tiles.
+//! 3. [`CityJob::lay_out`] takes their prototypes, packs their impostors' pictures into the
+//!    city's atlas, scales every tree and splits each epoch into its quadtree of tiles.
 //! 4. Its [`TileTask`]s make the tiles' GLB files ([`tiles::make_tile`]): each task carries
 //!    every tree and prototype its tile draws, and is a pure function of them.
-//! 5. [`CityJob::finish`] writes each epoch's `tileset.json` and the run's `summary.json` from
-//!    what the tile tasks report.
+//! 5. [`CityJob::finish`] writes the atlas, each epoch's `tileset.json` and the run's
+//!    `summary.json` from what the tile tasks report.
 //!
 //! Tasks and their results cross processes as bytes ([`to_bytes`], [`from_bytes`]: postcard,
 //! which keeps every float exact). Who writes the files is the caller's choice: each task
@@ -45,6 +45,8 @@ pub struct CityJob {
     prototypes: HashMap<ProtoKey, Prototype>,
     stump: SharedMesh,
     epochs: Vec<EpochTiles>,
+    /// The city's atlas of impostors (`atlas::pack`), written with the tilesets.
+    atlas: Vec<OutFile>,
 }
 
 /// One epoch laid out in tiles.
@@ -95,6 +97,7 @@ impl CityJob {
             options: options.clone(),
             keys,
             prototypes: HashMap::new(),
+            atlas: Vec::new(),
             stump: stump_file().0,
             epochs: Vec::new(),
         })
@@ -129,6 +132,13 @@ impl CityJob {
                 "the grown tree {} is missing: not every growth task's prototypes were added",
                 k.file_stem()
             )));
+        }
+        // The impostors' pictures into the city's atlas (once: packing takes them).
+        if self.prototypes.values().any(|p| p.impostor_png.is_some()) {
+            let pictures = crate::atlas::pack(&mut self.prototypes)?.into_iter();
+            self.atlas = pictures
+                .map(|(name, png)| (format!("{PROTOTYPES_DIR}/{name}"), png))
+                .collect();
         }
         // Each tree scaled to its height.
         for e in &mut self.plan.epochs {
@@ -210,10 +220,11 @@ impl CityJob {
         None
     }
 
-    /// Each epoch's `tileset.json` from the tiles the tasks made (in any order), and the
-    /// run's `summary.json`; the run's account (its seconds left at zero).
+    /// The city's atlas of impostors, each epoch's `tileset.json` from the tiles the tasks
+    /// made (in any order), and the run's `summary.json`; the run's account (its seconds left
+    /// at zero).
     pub fn finish(&self, tiles: &[Tile]) -> Result<(CityRun, Vec<OutFile>), CityError> {
-        let mut files = Vec::new();
+        let mut files = self.atlas.clone();
         let mut epochs = Vec::new();
         for (e, laid) in self.plan.epochs.iter().zip(&self.epochs) {
             let mine: Vec<Tile> = tiles

@@ -302,7 +302,8 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
         );
     }
     // The root, the coarsest level, draws each tree as its grown tree's impostor (16
-    // triangles, its atlas unlit and alpha-masked); the leaf tiles keep the meshes.
+    // triangles, its atlas unlit and alpha-masked), every one from the city's one picture
+    // through one material; the leaf tiles keep the meshes.
     let meshes = doc["meshes"].as_array().unwrap();
     let materials = doc["materials"].as_array().unwrap();
     let textured = |m: &serde_json::Value| {
@@ -314,7 +315,14 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
     let trees = meshes.iter().filter(|m| m["name"] != "stump").count();
     assert!(trees > 0);
     assert_eq!(meshes.iter().filter(|m| textured(m)).count(), trees);
-    assert_eq!(doc["images"].as_array().unwrap().len(), trees);
+    let images = doc["images"].as_array().unwrap();
+    assert_eq!(images.len(), 1, "one picture: {images:?}");
+    let uri = images[0]["uri"].as_str().unwrap();
+    assert!(uri.ends_with("prototypes/impostors-0.png"), "{uri}");
+    let atlas = std::fs::read(out.join("content/0").join(uri)).unwrap();
+    assert!(atlas.starts_with(b"\x89PNG"));
+    let texture = |m: &&serde_json::Value| !m["pbrMetallicRoughness"]["baseColorTexture"].is_null();
+    assert_eq!(materials.iter().filter(texture).count(), 1);
     let depth = run.epochs[0].2.depth;
     let leaf = std::fs::read_dir(out.join(format!("content/{depth}")))
         .unwrap()

@@ -145,8 +145,9 @@ export function combine(root) {
   }
 }
 
-// Impostors' materials by name (each names its grown tree and level): tiles that draw the
-// same trees then share one material, one texture on the GPU and one batch.
+// Impostors' materials by name (each names its picture: a city's, which holds every grown
+// tree's views, or in cities written before it one per tree): tiles that draw the same picture
+// then share one material and one texture on the GPU.
 const impostors = new Map();
 
 function impostorMaterial(material) {

@@ -120,7 +120,7 @@ pub fn tile_glb(
                 let drawn = match &p.impostor {
                     Some(imp) if lod == IMPOSTOR_LEVEL => Drawn::Impostor(SharedImpostor {
                         uri: from_tile(&imp.uri),
-                        frame: imp.frame,
+                        ..imp.clone()
                     }),
                     _ => mesh(&p.lods[lod]),
                 };

@@ -191,11 +191,12 @@ try {
     p.benefits_usd_per_year > 0),
     'trees carry their year\'s CO2 stored and taken up, and its value');
   // i-Tree Streets' typical-position account at the tree's own DBH, by category.
-  check(picked.some((p) => p.typical_benefits_usd_per_year > 0 && p.typical_energy_usd_per_year !== undefined &&
-    p.typical_air_quality_usd_per_year !== undefined &&
-    Math.abs(p.typical_energy_usd_per_year + p.typical_carbon_usd_per_year + p.typical_stormwater_usd_per_year +
-      p.typical_air_quality_usd_per_year - p.typical_benefits_usd_per_year) < 0.05),
-    'trees carry their typical-position benefits, the categories adding up');
+  // i-Tree Streets' five categories since issue V: aesthetics and other benefits is one.
+  const typical = ['energy', 'carbon', 'stormwater', 'air_quality', 'aesthetics']
+    .map((c) => `typical_${c}_usd_per_year`);
+  check(picked.some((p) => p.typical_benefits_usd_per_year > 0 && typical.every((k) => p[k] !== undefined) &&
+    Math.abs(typical.reduce((sum, k) => sum + p[k], 0) - p.typical_benefits_usd_per_year) < 0.05),
+    'trees carry their typical-position benefits, the five categories adding up');
 } finally {
   await browser.close();
   server.close();

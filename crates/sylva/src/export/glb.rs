@@ -8,7 +8,7 @@ use crate::mesh::{Mesh, TreeMesh};
 use gltf_json as json;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::io::Write;
 
 /// Base colours (linear RGBA) of the materials.
@@ -67,6 +67,10 @@ pub(super) struct Builder<'a> {
     /// Bytes of the binary chunk so far.
     bin_len: usize,
     buffer: json::Index<json::Buffer>,
+    /// The material of each impostor picture in a file of its own, by URI: the impostors of
+    /// many trees packed in one picture (a city's atlas) share one image, texture and
+    /// material, so a client decodes the picture and makes its mipmaps once.
+    shared_atlases: HashMap<String, json::Index<json::Material>>,
 }
 
 /// A buffer view's bytes, left where the mesh holds them until the file is written: a GLB is
@@ -359,6 +363,7 @@ impl<'a> Builder<'a> {
             pieces: Vec::new(),
             bin_len: 0,
             buffer: json::Index::new(0),
+            shared_atlases: HashMap::new(),
         };
         b.root.asset = json::Asset {
             generator: Some(format!("Sylva {}", env!("CARGO_PKG_VERSION"))),
@@ -417,17 +422,44 @@ impl<'a> Builder<'a> {
         atlas: Image<'a>,
         quads: &'a Mesh,
     ) -> json::Index<json::Mesh> {
-        // A shared atlas is named by its mesh, so that a viewer can tell the trees' apart.
-        let (buffer_view, uri, label) = match atlas {
-            Image::Embedded(png) => (
-                Some(self.view(Piece::Bytes(png), None)),
-                None,
-                "impostor".to_string(),
-            ),
-            Image::Uri(uri) => (None, Some(uri.to_string()), name.to_string()),
+        let material = match atlas {
+            Image::Embedded(png) => {
+                let view = self.view(Piece::Bytes(png), None);
+                self.impostor_material("impostor".into(), Some(view), None)
+            }
+            Image::Uri(uri) => match self.shared_atlases.get(uri) {
+                Some(&material) => material,
+                None => {
+                    // Named by the picture's file, so that a viewer can tell pictures apart
+                    // (and tiles in other folders name the same one alike).
+                    let file = uri.rsplit('/').next().unwrap_or(uri);
+                    let material =
+                        self.impostor_material(file.to_string(), None, Some(uri.to_string()));
+                    self.shared_atlases.insert(uri.to_string(), material);
+                    material
+                }
+            },
         };
+        let primitive = self.primitive(quads, material);
+        self.root.push(json::Mesh {
+            extensions: None,
+            extras: Default::default(),
+            name: Some(name.into()),
+            primitives: vec![primitive],
+            weights: None,
+        })
+    }
+
+    /// An impostor picture's unlit, alpha-masked material named `label`: the picture in the
+    /// buffer view `view` or in the file at `uri`.
+    fn impostor_material(
+        &mut self,
+        label: String,
+        view: Option<json::Index<json::buffer::View>>,
+        uri: Option<String>,
+    ) -> json::Index<json::Material> {
         let image = self.root.push(json::Image {
-            buffer_view,
+            buffer_view: view,
             mime_type: Some(json::image::MimeType("image/png".into())),
             name: Some(format!("{label} atlas")),
             uri,
@@ -450,7 +482,7 @@ impl<'a> Builder<'a> {
         });
         let mut others = serde_json::Map::new();
         others.insert("KHR_materials_unlit".into(), serde_json::json!({}));
-        let material = self.root.push(json::Material {
+        self.root.push(json::Material {
             name: Some(label),
             alpha_mode: Valid(json::material::AlphaMode::Mask),
             alpha_cutoff: Some(json::material::AlphaCutoff(0.5)),
@@ -468,14 +500,6 @@ impl<'a> Builder<'a> {
             },
             extensions: Some(json::extensions::material::Material { others }),
             ..Default::default()
-        });
-        let primitive = self.primitive(quads, material);
-        self.root.push(json::Mesh {
-            extensions: None,
-            extras: Default::default(),
-            name: Some(name.into()),
-            primitives: vec![primitive],
-            weights: None,
         })
     }
 

@@ -148,15 +148,20 @@ pub enum MeshSource<'a> {
     Impostor(&'a SharedImpostor),
 }
 
-/// A baked impostor ([`crate::lod::impostor`]) whose atlas lies in a PNG file of its own,
-/// which many GLB files refer to: a city's coarse tiles draw each far tree as its 16
-/// triangles and share the picture.
+/// A baked impostor ([`crate::lod::impostor`]) whose atlas lies in a PNG file outside the
+/// GLB, which many GLB files refer to: a city's coarse tiles draw each far tree as its 16
+/// triangles and share the picture. The picture may hold many trees' atlases (a city packs
+/// them all in one, `rect` saying where this tree's lies): the files that draw them then
+/// share one image, texture and material.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SharedImpostor {
     /// The PNG file's URI, relative to the GLB files that refer to it.
     pub uri: String,
     /// Its views' layout and size.
     pub frame: ImpostorFrame,
+    /// Where its atlas lies in the picture, as shares of the picture's width and height: left,
+    /// top, width, height (`[0, 0, 1, 1]`: the whole picture).
+    pub rect: [f32; 4],
 }
 
 /// A mesh of an instanced file: its name, where it comes from and its materials.
@@ -308,7 +313,7 @@ pub fn instanced_glb(
     let quads: Vec<Option<Mesh>> = meshes
         .iter()
         .map(|m| match m.source {
-            MeshSource::Impostor(imp) => Some(imp.frame.quads()),
+            MeshSource::Impostor(imp) => Some(imp.frame.quads_within(imp.rect)),
             _ => None,
         })
         .collect();

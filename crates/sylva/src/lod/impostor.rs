@@ -109,6 +109,14 @@ impl ImpostorFrame {
     /// The quads: one per view, through the trunk axis, facing its view's eye (seen from
     /// behind, a quad is culled and its opposite number shows instead).
     pub fn quads(&self) -> Mesh {
+        self.quads_within([0.0, 0.0, 1.0, 1.0])
+    }
+
+    /// [`ImpostorFrame::quads`] of an atlas that lies at `rect` of a larger picture (left,
+    /// top, width, height, as shares of the picture's): their texture points scaled into it.
+    /// The whole picture's give the same texture points to the bit.
+    pub fn quads_within(&self, rect: [f32; 4]) -> Mesh {
+        let [left, top, width, height] = rect;
         let mut m = Mesh::default();
         let (cols, rows) = (self.columns.max(1) as f32, self.rows().max(1) as f32);
         for k in 0..self.views {
@@ -128,10 +136,10 @@ impl ImpostorFrame {
                 (w + Vec3::Z * self.top, [u1, v0]),
                 (-w + Vec3::Z * self.top, [u0, v0]),
             ];
-            for (p, uv) in corners {
+            for (p, [u, v]) in corners {
                 m.positions.push(p.to_array());
                 m.normals.push(back.to_array());
-                m.uvs.push(uv);
+                m.uvs.push([left + u * width, top + v * height]);
             }
             m.indices
                 .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
