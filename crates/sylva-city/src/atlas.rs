@@ -121,9 +121,11 @@ pub fn pack(
         .map(|(i, page)| {
             let name = file_name(i);
             let mut bytes = Vec::new();
+            // The 100,000-tree demo's atlas (4,072 x 2,108): 11.1 MB in 0.3 s at the fast
+            // level, 8.6 MB in 1.2 s at this one, 8.6 MB in 2.8 s at the best.
             image::codecs::png::PngEncoder::new_with_quality(
                 &mut bytes,
-                CompressionType::Best,
+                CompressionType::Default,
                 FilterType::Adaptive,
             )
             .write_image(
