@@ -7,7 +7,7 @@
 # chains, a forest, grown street trees (GLB, PNG, CSV, charts, comparison sheets), Nagel's
 # fractal, whisk and stick trees (GLB, SVG, PNG, P/L vector files), line drawings of every view,
 # Fields' three species (GLB, .tree, PNG), a street tree on a site (accounts, benefit bars,
-# site pictures), a region's rank, and an Arbaro file. Pictures are drawn on the CPU
+# site pictures), three regions' ranks, and an Arbaro file. Pictures are drawn on the CPU
 # rasteriser, the one backend whose bytes do not depend on the machine's driver.
 set -euo pipefail
 sylva=$(realpath "${1:-target/release/sylva}")
@@ -33,6 +33,9 @@ q render forest.glb --size 480x270 -o forest.png
 q grow PLAC --from 10 --to 20 --step 10 --compare MAGR,CESI4 --size 300x300 -o grown
 q grow PLAC --from 1 --to 8 --site "$repo/sites/narrow-under-wires.toml" --size 300x300 -o street
 "$sylva" rank --region InlVal --years 4 --site "$repo/sites/boulevard.toml" --json > rank.jsonl
+# Three regions' rankings in all, one of them on the narrow site with its pruning cycles.
+"$sylva" rank --region NoEast --years 4 --json > rank-noeast.jsonl
+"$sylva" rank --region PacfNW --years 4 --site "$repo/sites/narrow-under-wires.toml" --json > rank-pacfnw.jsonl
 q fractal --depth 10 --leaves --vary-angle 8 -o fractal.glb -o fractal.svg -o fractal.png -o fractal.vec
 q whisk --profile "$repo/profiles/conifer.csv" --density 4 --rings 6 --spokes 8 -o whisk.glb -o whisk.svg
 q whisk --profile "$repo/profiles/vase.svg" -o vase.glb -o vase.png

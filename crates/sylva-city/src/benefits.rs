@@ -5,7 +5,7 @@
 //! the square of the tree's scale to it), air quality (i-Tree's uptake per m² of leaf on that
 //! leaf area) and aesthetics (its yearly leaf gain), at the region's built-in prices. No
 //! energy figures from the crown: an inventory has no façades. Beside them, the typical
-//! position's account (`sylva::street::typical`): i-Tree Streets' figures for the species at
+//! position's account (`sylva::street::accounts::typical`): i-Tree Streets' figures for the species at
 //! the tree's own inventory DBH, in its categories, at the region's prices, as i-Tree Streets
 //! itself values an inventory. A figure with no model or price is -1 (the property's no-data
 //! value).
@@ -15,9 +15,9 @@ use crate::prototypes::Prototype;
 use std::collections::HashMap;
 use sylva::growth::Measured;
 use sylva::street::Prices;
-use sylva::street::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
-use sylva::street::climate::{climate, interception_m3};
-use sylva::street::typical::Reference;
+use sylva::street::accounts::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
+use sylva::street::accounts::typical::Reference;
+use sylva::street::energy::climate::{climate, interception_m3};
 
 /// A figure no model or price gives.
 pub const NO_DATA: f32 = -1.0;

@@ -14,7 +14,7 @@ use sylva::lod::bake::bake_on_cpu;
 use sylva::lod::impostor::ImpostorFrame;
 use sylva::lod::{Choice, LodTree};
 use sylva::mesh::{MeshOptions, TreeMesh};
-use sylva::street::crown::{Crown, leaves_of};
+use sylva::street::energy::crown::{Crown, leaves_of};
 
 /// Most triangles of a tree at each level of detail (Sylva's choice): a leaf tile's trees
 /// (the nearest) at 10,000, so a leaf tile's 250 trees draw 2.5 million; its parent's at
@@ -49,7 +49,7 @@ pub struct Prototype {
     /// Its materials.
     pub materials: Materials,
     /// Its one-sided leaf area, bark (stem silhouette) area and crown projection, m², as the
-    /// street accounts measure them (`sylva::street::crown::Crown`).
+    /// street accounts measure them (`sylva::street::energy::crown::Crown`).
     pub surfaces: (f64, f64, f64),
     /// Its levels of detail, most detailed first, each in its own file.
     pub lods: [SharedMesh; 3],

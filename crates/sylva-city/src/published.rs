@@ -144,7 +144,7 @@ pub fn compare(published: Published, typical_per_tree: [Option<f64>; 5]) -> Comp
         format!(
             "aesthetics: the yearly leaf-area gain priced by i-Tree Streets' method; {}; the \
              published category also holds 'other' benefits",
-            sylva::street::aesthetics::home_price(&published.region)
+            sylva::street::accounts::aesthetics::home_price(&published.region)
                 .map_or("no home price".into(), |h| h.describe()),
         ),
         "energy: i-Tree Streets prices each tree at its species' usual distances and directions \

@@ -89,7 +89,7 @@ pub struct EpochRow {
     /// i-Tree Streets' typical-position benefits, $ a year.
     pub typical_total_usd: f64,
     /// The share of the first epoch's trees expected to be standing, each by its estimated
-    /// age through its region's survival (`sylva::street::survival`); the tiles draw them all.
+    /// age through its region's survival (`sylva::street::accounts::survival`); the tiles draw them all.
     pub expected_alive_share: f64,
     /// Sylva's own benefits with each tree weighted by its chance of standing, $ a year.
     pub expected_benefits_usd: f64,

@@ -226,7 +226,7 @@ fn rounded(items: &[(&'static str, Option<f64>)]) -> serde_json::Value {
 
 /// `--calibrate`: the site model around the standard house beside i-Tree's figures.
 fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
-    use sylva::street::calibrate::{
+    use sylva::street::accounts::calibrate::{
         STANDARD_HOUSE, TARGETS_CM, add_climate_left_out, calibrate_all, fit_region,
     };
     let mut rows: Vec<_> = calibrate_all(species, &TARGETS_CM, args.seed)
@@ -292,7 +292,7 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
         h.side,
         h.glass * 100.0
     );
-    if let Some((_, Some(why))) = sylva::street::itree::reference_region(&args.region) {
+    if let Some((_, Some(why))) = sylva::street::accounts::itree::reference_region(&args.region) {
         println!("{why}.");
     }
     println!(
@@ -364,7 +364,7 @@ fn pruning_json(r: &sylva::street::rank::Ranked) -> serde_json::Value {
         .iter()
         .enumerate()
         .filter_map(|(i, a)| {
-            let mut year = sylva::street::table::pruning_json(a.pruning.as_ref()?);
+            let mut year = sylva::street::accounts::table::pruning_json(a.pruning.as_ref()?);
             year["age"] = a.age.into();
             year["leaf_area_m2"] = round(a.surfaces.0, 1).into();
             year["benefits_lost_usd"] = lost(i).into();

@@ -11,7 +11,7 @@ use sylva::growth::report;
 use sylva::growth::sweep::{QUANTITIES, growable_pairs, markdown, sweep_all};
 use sylva::growth::{Month, dressed_mesh};
 use sylva::skeleton::Skeleton;
-use sylva::street::crown::leaf_centre;
+use sylva::street::energy::crown::leaf_centre;
 use sylva_render::coverage::{self, Coverage};
 
 pub fn run(args: &SweepArgs) -> Result<()> {
@@ -110,7 +110,7 @@ type Pictured = Option<(Coverage, Coverage)>;
 /// `--beam AGES`: the share of a beam each crown stops, in leaf and bare; with `--picture`,
 /// what its picture covers too.
 fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
-    use sylva::street::opacity::opacity_all;
+    use sylva::street::energy::opacity::opacity_all;
     if let Some(a) = args.beam.iter().find(|a| !a.is_finite() || **a < 1.0) {
         bail!("--beam {a}: ages are years from planting, 1 or more");
     }
@@ -184,7 +184,7 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
     });
     if !args.json {
         println!(
-            "Share of a beam the crown stops over its outline (street::opacity), in leaf and \
+            "Share of a beam the crown stops over its outline (street::energy::opacity), in leaf and \
              bare, seen from the side and along a sun 60 degrees up. Published: 65-80% in leaf, \
              30-40% bare (Heisler 1986, inside street trees' shadows).{}",
             if args.picture.is_some() {
@@ -218,7 +218,7 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
     for (r, pictured) in rows.iter().flatten() {
         let pictured = pictured.as_ref().map_err(|e| anyhow::anyhow!("{e:#}"))?;
         if args.json {
-            let b = |s: sylva::street::crown::BeamStop| serde_json::json!({"stopped": s.stopped, "outline_m2": s.outline_m2});
+            let b = |s: sylva::street::energy::crown::BeamStop| serde_json::json!({"stopped": s.stopped, "outline_m2": s.outline_m2});
             let c = |c: &Coverage| serde_json::json!({"covered": c.covered, "leaf_share": c.leaf_share, "bare_tips": c.bare_tips, "outline_m2": c.outline_px * c.metres_per_px * c.metres_per_px});
             println!(
                 "{}",

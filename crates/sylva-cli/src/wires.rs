@@ -2,7 +2,7 @@
 
 use crate::args::WiresArgs;
 use anyhow::{Result, bail};
-use sylva::street::wires::{ENOUGH, agreement, read_ts3};
+use sylva::street::work::wires::{ENOUGH, agreement, read_ts3};
 
 pub fn run(args: &WiresArgs) -> Result<()> {
     for (flag, v) in [("--height", args.height), ("--clearance", args.clearance)] {

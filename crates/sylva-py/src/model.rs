@@ -13,7 +13,7 @@ use sylva::growth::Database;
 use sylva::growth::report::{self, Cohort};
 use sylva::growth::season::{Month, dressed_mesh};
 use sylva::mesh::{Mesh, MeshOptions, TreeMesh, mesh_tree};
-use sylva::street::{Assessor, Costs, Prices, Site, table};
+use sylva::street::{Assessor, Costs, Prices, Site, accounts::table};
 
 /// A tree's mesh, its materials and what was made.
 #[pyclass(frozen, module = "sylva._sylva")]

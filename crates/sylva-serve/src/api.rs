@@ -16,7 +16,7 @@ use sylva::drawing::{DrawOptions, View, draw_svg};
 use sylva::growth::Measured;
 use sylva::growth::report::{self, AgeRecord};
 use sylva::street::picture::site_picture;
-use sylva::street::{climate::climate, table};
+use sylva::street::{accounts::table, energy::climate::climate};
 
 type Params = AxumQuery<HashMap<String, String>>;
 type Reply = Result<Response, ApiError>;

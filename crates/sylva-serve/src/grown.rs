@@ -12,7 +12,7 @@ use sylva::growth::{Dress, Measured, dressed_mesh};
 use sylva::lod::{LodTree, leaf_shell};
 use sylva::mesh::{MeshOptions, TreeMesh, leaf_template};
 use sylva::skeleton::LeafShape;
-use sylva::street::pruner::Pruner;
+use sylva::street::accounts::pruner::Pruner;
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
 /// A planting site the page offers: its key in the API, what the page calls it, and the site.

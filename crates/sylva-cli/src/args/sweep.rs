@@ -27,7 +27,7 @@ pub struct SweepArgs {
 
     /// Instead of the sweep: grow each species and, at these ages (comma-separated years),
     /// report the share of a beam its crown stops over its outline, in leaf and bare, seen from
-    /// the side and along a sun 60 degrees up (street::opacity).
+    /// the side and along a sun 60 degrees up (street::energy::opacity).
     #[arg(long, value_delimiter = ',', value_name = "AGES")]
     pub beam: Vec<f64>,
 

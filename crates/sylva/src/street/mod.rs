@@ -3,67 +3,46 @@
 //!
 //! Every "this site" figure is driven by the grown tree itself, read from its
 //! [`Skeleton`](crate::Skeleton) and its measured dimensions; the typical-position account
-//! beside it reads i-Tree's tables:
+//! beside it reads i-Tree's tables. The street lies in three rooms by concern, each reading
+//! only the rooms above it in this list:
 //!
-//! - [`carbon`]: CO2 stored and taken up, from the grown DBH by Jenkins et al. (2003).
-//! - [`climate`]: each region's latitude, sunshine and rain; rainfall interception by leaf and
-//!   bark storage.
-//! - [`sun`] and [`shade`]: the sun's path, beam and sky light, and the crown's shadow on the
-//!   site's façade ([`crown`] holds the crown's leaf area density and wood), turned into
-//!   cooling saved and the winter shade's heating penalty (an evergreen's leaves, a deciduous
-//!   tree's bare wood); [`climate_effect`]: the canopy's effect on air
-//!   and wind, which does not depend on the tree's position, calibrated against i-Tree.
-//! - [`prices`] and [`costs`]: what each unit is worth and what a tree costs, built in or
-//!   from TOML.
-//! - [`site`] and [`conflicts`]: a planting site and where the tree runs into it;
-//!   [`pruning`]: how often the street cuts it back, and why; [`pruner`]: those cycles cut on
-//!   the grown tree, their cost and the conflicts they resolve.
-//! - [`itree`] and [`typical`]: i-Tree Streets' per-tree tables, and the typical-position
-//!   account they give a species at the grown DBH; [`calibrate`]: the site model's shade
-//!   around a standard house beside them.
-//! - [`opacity`]: how much of a beam the grown crown stops, in leaf and bare (`sylva sweep
-//!   --beam`).
-//! - [`money`]: a year's dollars in i-Tree's categories; [`ledger`]: one year's account of all
-//!   of these, the grown tree's own and the typical position's; [`rank`]: a region's species side by
-//!   side over the years; [`wires`]: the wire model against the database's own records;
-//!   [`picture`]: the site drawn with the tree and its conflicts.
+//! - [`site`]: the planting site (`site.toml`), which every room reads.
+//! - [`energy`]: light and climate. The sun's path and the crown's shadow on the site's façade
+//!   (`sun`, `shade`, `crown`), turned into cooling saved and the winter shade's heating
+//!   penalty; each region's climate and rainfall interception (`climate`); the canopy's effect
+//!   on air and wind (`climate_effect`); how much of a beam the grown crown stops (`opacity`,
+//!   `sylva sweep --beam`).
+//! - [`work`]: the street's own. Where the tree runs into its site (`conflicts`), how often
+//!   the street cuts it back and why (`pruning`), and the wire model against the database's
+//!   records (`wires`).
+//! - [`accounts`]: money. What each unit is worth and what a tree costs (`prices`, `costs`),
+//!   CO2 stored and taken up (`carbon`), aesthetics and property value (`aesthetics`), the share
+//!   of trees alive (`survival`), the pruning cycles carried out on the grown tree and priced
+//!   (`pruner`), a year's dollars in i-Tree's categories (`money`), one year's account of all
+//!   of these (`ledger`) and its table (`table`); i-Tree Streets' per-tree tables and the
+//!   typical-position account they give (`itree`, `typical`), the site model's shade calibrated
+//!   against them (`calibrate`); McPherson (2003)'s published figures (`published`).
+//!
+//! On top of them, [`rank`] sets a region's species side by side over the years, and
+//! [`picture`] draws the site with the tree and its conflicts.
 //!
 //! A benefit without a sourced model or input is reported as missing, with the reason, never
 //! as zero. `docs/benefits.md` gives every formula and source.
 
-pub mod aesthetics;
-pub mod calibrate;
-pub mod carbon;
-pub mod climate;
-pub mod climate_effect;
-pub mod conflicts;
-pub mod costs;
-pub mod crown;
-pub mod itree;
-pub mod ledger;
-pub mod money;
-pub mod opacity;
+pub mod accounts;
+pub mod energy;
 pub mod picture;
-pub mod prices;
-pub mod pruner;
-pub mod pruning;
-pub mod published;
 pub mod rank;
-pub mod shade;
 pub mod site;
-pub mod sun;
-pub mod survival;
-pub mod table;
-pub mod typical;
-pub mod wires;
+pub mod work;
 
-pub use conflicts::{Conflict, Kind, Part};
-pub use costs::Costs;
-pub use ledger::{Assessor, YearAccount};
-pub use money::{Basis, Money};
-pub use prices::Prices;
+pub use accounts::costs::Costs;
+pub use accounts::ledger::{Assessor, YearAccount};
+pub use accounts::money::{Basis, Money};
+pub use accounts::prices::Prices;
+pub use accounts::survival::Survival;
 pub use site::Site;
-pub use survival::Survival;
+pub use work::conflicts::{Conflict, Kind, Part};
 
 /// What can go wrong reading a site, prices or costs, or assessing a species.
 #[derive(Debug, thiserror::Error)]

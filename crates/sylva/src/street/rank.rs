@@ -1,14 +1,14 @@
 //! A region's species side by side: each grown year by year on the same site, its benefits
 //! and costs summed over the years, and the first year it runs into the street.
 
-use super::conflicts::{Conflict, Kind};
-use super::costs::{Costs, YearCosts};
-use super::ledger::{Assessor, YearAccount};
-use super::money::Basis;
-use super::prices::Prices;
-use super::pruner::{Pruner, PruningYear};
+use super::accounts::costs::{Costs, YearCosts};
+use super::accounts::ledger::{Assessor, YearAccount};
+use super::accounts::money::Basis;
+use super::accounts::prices::Prices;
+use super::accounts::pruner::{Pruner, PruningYear};
+use super::accounts::survival::Survival;
 use super::site::Site;
-use super::survival::Survival;
+use super::work::conflicts::{Conflict, Kind};
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
 use rayon::prelude::*;

@@ -41,11 +41,11 @@
 //! low = 0.9
 //! high = 2.4
 //!
-//! [pruning]                  # optional: the default standard's cycles (`street::pruning`)
+//! [pruning]                  # optional: the default standard's cycles (`street::work::pruning`)
 //! standard = "us-street"
 //! ```
 
-use super::StreetError;
+use crate::street::StreetError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -139,7 +139,7 @@ pub struct SightTriangle {
 #[serde(rename_all = "kebab-case")]
 pub enum Standard {
     /// US street practice, each cycle from a published source (docs/benefits.md; the figures
-    /// are `street::pruning`'s):
+    /// are `street::work::pruning`'s):
     /// - lines every 4 years: utilities clear distribution lines every 3 to 5 years, to a
     ///   clearance that keeps regrowth out of the line until the next cycle (Shenandoah Valley
     ///   Electric Cooperative, clearance specifications; United Electric Cooperative, primary
@@ -198,7 +198,7 @@ pub struct Site {
     pub light: Vec<Light>,
     /// A sight triangle.
     pub sight_triangle: Option<SightTriangle>,
-    /// How the street prunes the tree (`street::pruning`); the default standard where absent.
+    /// How the street prunes the tree (`street::work::pruning`); the default standard where absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pruning: Option<PruningSpec>,
 }

@@ -117,7 +117,7 @@ impl Grower {
     /// Like [`Grower::cut`], but taking at most `most_leaf` m² of leaf: a cut that would take
     /// the visit past it is left for a later visit ([`Cuts::deferred`]), and smaller cuts
     /// further out on the same branch are made instead where they fit. Routine pruning takes
-    /// no more than a quarter of a tree's foliage at one visit (`street::pruner`).
+    /// no more than a quarter of a tree's foliage at one visit (`street::accounts::pruner`).
     pub fn cut_within(&mut self, zone: &(dyn Fn(Vec3, u8) -> bool + Sync), most_leaf: f64) -> Cuts {
         let inside = self.in_zone(zone);
         let mut cuts = Cuts::default();

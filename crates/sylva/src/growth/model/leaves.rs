@@ -307,7 +307,7 @@ impl Grower {
                     let leaf_share = leaves * leaf_area * 0.5 / pieces as f32;
                     // Light comes from the whole sky, as it does to the leaves: a cylinder piece
                     // shows it pi/4 of its silhouette (diameter x length) on average over
-                    // directions, as the shade model's crown counts it (`street::crown::G_WOOD`).
+                    // directions, as the shade model's crown counts it (`street::energy::crown::G_WOOD`).
                     let covered = WOOD_G * 2.0 * r * piece;
                     let passing = grid.passing(covered, leaf_share);
                     out.extend((0..pieces).filter_map(|k| {
@@ -474,7 +474,7 @@ impl Blade {
 /// Why not rolled flat to the sky, as [`leaf_frame`] is: over a crown's shoots this frame
 /// spreads the blades' normals nearly evenly over the sphere, the spherical leaf angle
 /// distribution (projection G = 1/2 from every side) that the shade model
-/// (`street::crown::G`) and the growth's light grid assume. Blades rolled flat showed a side
+/// (`street::energy::crown::G`) and the growth's light grid assume. Blades rolled flat showed a side
 /// view a third of their area (G 0.32 on a London plane at 30 years): the crown drawn from the
 /// street was thinner than the crown that casts the shade, and its twigs showed through (a
 /// third of the picture's covered outline was wood). Measured broadleaf crowns run from

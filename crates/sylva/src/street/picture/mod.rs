@@ -8,9 +8,9 @@
 mod canvas;
 mod plan;
 
-use super::conflicts::{Kind, Zones, flare_radius};
-use super::crown::leaf_centre;
+use super::energy::crown::leaf_centre;
 use super::site::Site;
+use super::work::conflicts::{Kind, Zones, flare_radius};
 use crate::Skeleton;
 use crate::growth::CutMark;
 use canvas::{Canvas, paint};
@@ -306,7 +306,7 @@ mod tests {
     #[test]
     fn a_pruning_picture_shows_the_wire_cleared_and_rings_the_cuts() {
         use crate::growth::{Grower, GrowthOptions};
-        use crate::street::pruner::Pruner;
+        use crate::street::accounts::pruner::Pruner;
         let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
         let mut grower = Grower::new(plane, GrowthOptions::default());
         let street = "[street]\ncurb = -3.5\nsidewalk = [3.0, 5.0]\nroadway_clearance = 0.5\nsidewalk_clearance = 0.5\n";

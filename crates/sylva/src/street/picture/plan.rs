@@ -4,8 +4,8 @@
 use super::canvas::{Canvas, paint};
 use super::{across, leaves};
 use crate::Skeleton;
-use crate::street::conflicts::{Kind, Zones, flare_radius};
 use crate::street::site::Site;
+use crate::street::work::conflicts::{Kind, Zones, flare_radius};
 use tiny_skia::Pixmap;
 
 /// Draws the plan into `panel` of `pixmap`.

@@ -23,7 +23,7 @@
 //! tree cut to a stump); this module resolves them into a [`Regime`]. The clearances are the
 //! site's own: its wires' and lamps' radii, its clear heights.
 
-use super::site::{Site, Standard};
+use crate::street::site::{Site, Standard};
 
 /// Years between line-clearance cycles under [`Standard::UsStreet`]: the middle of the
 /// utilities' 3 to 5.

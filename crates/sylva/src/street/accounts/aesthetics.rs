@@ -54,7 +54,7 @@ pub fn price_per_m2(median_home_price: f64, location_factor: f64) -> f64 {
 pub fn home_price(region: &str) -> Option<&'static HomePrice> {
     static TABLE: OnceLock<Vec<HomePrice>> = OnceLock::new();
     TABLE
-        .get_or_init(|| parse(include_str!("../../data/street/home-prices.csv")))
+        .get_or_init(|| parse(include_str!("../../../data/street/home-prices.csv")))
         .iter()
         .find(|h| h.region == region)
 }
@@ -102,7 +102,7 @@ fn parse(text: &str) -> Vec<HomePrice> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::street::itree::regions;
+    use crate::street::accounts::itree::regions;
 
     #[test]
     fn every_region_has_a_sourced_home_price() {

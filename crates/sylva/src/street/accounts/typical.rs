@@ -3,7 +3,7 @@
 //! buildings, priced at the region's prices.
 //!
 //! This is the reference Sylva's own figures are held to, and the account shown wherever no
-//! site is given. The tables are [`super::itree`]'s; a species finds its row as i-Tree
+//! site is given. The tables are [`crate::street::accounts::itree`]'s; a species finds its row as i-Tree
 //! does (its own, i-Tree's assignment, a relative of the same genus and tree type, or its tree
 //! type's `OTHER` class), and the values are interpolated at the grown tree's DBH.
 //!
@@ -11,10 +11,10 @@
 //! the air in the region, so that energy Sylva computes on a site's façade can be turned into
 //! avoided emissions the way i-Tree turns its own.
 
-use super::itree::{self, DBH_CLASSES_CM, Factor, Match, Region};
-use super::money::Money;
-use super::prices::Prices;
 use crate::growth::Measured;
+use crate::street::accounts::itree::{self, DBH_CLASSES_CM, Factor, Match, Region};
+use crate::street::accounts::money::Money;
+use crate::street::accounts::prices::Prices;
 
 /// Pollutants taken up by the leaves or not emitted by power plants and furnaces, and the
 /// biogenic VOCs the leaves emit, kg a year.
@@ -328,7 +328,7 @@ mod tests {
     #[test]
     fn property_value_is_the_yearly_gain_of_the_lsa_table() {
         use crate::growth::Database;
-        use crate::street::itree::{DBH_CLASSES_CM, Factor, region};
+        use crate::street::accounts::itree::{DBH_CLASSES_CM, Factor, region};
         let db = Database::builtin();
         for name in ["InlVal", "NoEast", "Piedmt"] {
             let tables = region(name).unwrap();

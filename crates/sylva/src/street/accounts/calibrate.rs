@@ -15,12 +15,12 @@
 //! Conservation Code's standard reference design for residential performance rating sets them
 //! (IRC N1102 / IECC R405, "Specifications for the standard reference and proposed designs").
 
-use super::climate_effect::{ClimateEffect, Point, fit};
-use super::crown::Crown;
-use super::shade::{Energy, Sky, Wall, energy_of_walls};
-use super::typical::Reference;
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
+use crate::street::accounts::typical::Reference;
+use crate::street::energy::climate_effect::{ClimateEffect, Point, fit};
+use crate::street::energy::crown::Crown;
+use crate::street::energy::shade::{Energy, Sky, Wall, energy_of_walls};
 
 /// A square one-storey house.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -220,7 +220,7 @@ pub fn calibrate_all(species: &[Measured], targets: &[f64], seed: u64) -> Vec<Ve
     species
         .par_iter()
         .filter_map(|m| {
-            let c = super::climate::climate(&m.region.code)?;
+            let c = crate::street::energy::climate::climate(&m.region.code)?;
             Some(calibrate(m, targets, seed, &Sky::of(c)))
         })
         .collect()
@@ -308,7 +308,7 @@ mod tests {
     #[test]
     fn a_west_tree_saves_more_cooling_than_a_north_tree() {
         // A block of leaves in front of the tree's trunk, towards the wall.
-        let tree = super::super::crown::leaf_block(
+        let tree = crate::street::energy::crown::leaf_block(
             glam::Vec3::new(-3.0, -1.5, 1.0),
             [12, 6, 8],
             glam::Vec3::splat(0.5),

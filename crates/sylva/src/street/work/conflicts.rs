@@ -6,9 +6,9 @@
 //! zone is in the way; the zones are the fixtures of `site.rs` grown by the clearance each
 //! asks for.
 
-use super::crown::leaves_of;
-use super::site::Site;
 use crate::Skeleton;
+use crate::street::energy::crown::leaves_of;
+use crate::street::site::Site;
 use glam::Vec3;
 
 /// The kinds of conflict a site can hold, in report order.

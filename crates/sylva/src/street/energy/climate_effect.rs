@@ -6,10 +6,10 @@
 //! climate effects of its canopy (cooler air from evapotranspiration, slower wind, so less
 //! infiltration in winter), which GTR-171 computes from the canopy cover the tree adds and so
 //! does not depend on its position. Sylva computes the shade from the crown itself
-//! (`street::shade`). GTR-171's climate-effect coefficients were not reachable, so the climate
+//! (`street::energy::shade`). GTR-171's climate-effect coefficients were not reachable, so the climate
 //! term is calibrated instead: per region, per square metre of the crown's projection, it is
 //! what i-Tree's figures hold beyond Sylva's own shade, with each tree at i-Tree's typical
-//! positions around a standard house (`street::calibrate`).
+//! positions around a standard house (`street::accounts::calibrate`).
 //!
 //! - Cooling: a least-squares fit through the origin of (i-Tree's electricity − Sylva's shade)
 //!   against the crown projection, over the region's species at 20, 30 and 40 cm DBH.
@@ -143,7 +143,7 @@ pub fn fit(region: &str, points: &[Point]) -> Option<ClimateEffect> {
     })
 }
 
-const CSV: &str = include_str!("../../data/itree-streets/climate-effect.csv");
+const CSV: &str = include_str!("../../../data/itree-streets/climate-effect.csv");
 
 /// Reads `climate-effect.csv`: comment lines (`#`), a header `region, cooling_kwh_per_m2,
 /// heating_kbtu_per_m2, useful_winter_share, points, deciduous_points, evergreen_points`, then
@@ -259,7 +259,7 @@ mod tests {
 
     #[test]
     fn every_region_is_fitted_and_a_damaged_table_is_refused() {
-        for c in &super::super::climate::CLIMATES {
+        for c in &crate::street::energy::climate::CLIMATES {
             let e = climate_effect(c.region).unwrap_or_else(|| panic!("{}", c.region));
             assert!(e.points.0 >= 3 && e.points.1 >= 1, "{e:?}");
         }

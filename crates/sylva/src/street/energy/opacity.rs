@@ -7,10 +7,10 @@
 //! the crown's outline seen along a beam ([`Crown::beam`]): from the side (level), as a
 //! picture's covered outline is measured, and along a high sun (60 degrees up), as a shadow is.
 
-use super::crown::{BeamStop, Crown, leaves_of};
 use crate::growth::Measured;
 use crate::growth::report::Cohort;
 use crate::skeleton::Skeleton;
+use crate::street::energy::crown::{BeamStop, Crown, leaves_of};
 use glam::DVec3;
 
 /// One species at one age.

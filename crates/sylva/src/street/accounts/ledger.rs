@@ -14,21 +14,21 @@
 //! assert!(year.energy.is_none()); // no site, no façade to shade
 //! ```
 
-use super::StreetError;
-use super::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
-use super::climate::{Climate, climate, interception_m3};
-use super::climate_effect::climate_effect;
-use super::conflicts::{Conflict, conflicts_with, leaf_outside_zones};
-use super::costs::{Costs, YearCosts};
-use super::crown::{Crown, leaves_of};
-use super::money::{Basis, Money};
-use super::prices::Prices;
-use super::shade::{Energy, Sky, energy};
-use super::site::Site;
-use super::survival::{Cohort, Survival};
-use super::typical::{AirQuality, EmissionFactors, Reference, Typical};
 use crate::Skeleton;
 use crate::growth::{Dimensions, Measured};
+use crate::street::StreetError;
+use crate::street::accounts::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
+use crate::street::accounts::costs::{Costs, YearCosts};
+use crate::street::accounts::money::{Basis, Money};
+use crate::street::accounts::prices::Prices;
+use crate::street::accounts::survival::{Cohort, Survival};
+use crate::street::accounts::typical::{AirQuality, EmissionFactors, Reference, Typical};
+use crate::street::energy::climate::{Climate, climate, interception_m3};
+use crate::street::energy::climate_effect::climate_effect;
+use crate::street::energy::crown::{Crown, leaves_of};
+use crate::street::energy::shade::{Energy, Sky, energy};
+use crate::street::site::Site;
+use crate::street::work::conflicts::{Conflict, conflicts_with, leaf_outside_zones};
 
 /// One year of one tree.
 #[derive(Clone, Debug, PartialEq)]
@@ -67,10 +67,10 @@ pub struct YearAccount {
     /// Leaf area outside every zone the site keeps clear, m² (none without a site).
     pub leaf_outside_zones_m2: Option<f64>,
     /// This year's pruning, where a cycle fell due and the tree was grown with the site's
-    /// regime ([`super::pruner`]).
-    pub pruning: Option<super::pruner::PruningYear>,
+    /// regime ([`crate::street::accounts::pruner`]).
+    pub pruning: Option<crate::street::accounts::pruner::PruningYear>,
     /// The share of the trees planted that stand through this year, and that die in it
-    /// ([`super::survival`]): every other figure is a living tree's.
+    /// ([`crate::street::accounts::survival`]): every other figure is a living tree's.
     pub cohort: Cohort,
 }
 
@@ -110,7 +110,11 @@ impl YearAccount {
     /// cost where the account has costs, a year's share of it, the city's crews apart from
     /// the utility's line clearance. The cycles replace the cost table's own pruning
     /// ([`Assessor::charge_cycles`]).
-    pub fn record_pruning(&mut self, cycle: Option<super::pruner::PruningYear>, span: f64) {
+    pub fn record_pruning(
+        &mut self,
+        cycle: Option<crate::street::accounts::pruner::PruningYear>,
+        span: f64,
+    ) {
         if let Some(costs) = &mut self.costs {
             let span = span.max(1.0);
             let (all, line) = cycle.as_ref().map_or((0.0, 0.0), |c| (c.cost, c.line_cost));

@@ -1,12 +1,12 @@
 //! Yearly accounts as CSV columns and JSON, for `sylva grow`, `sylva rank` and anything that
 //! serves them (an empty cell or `null` where a model or a price is missing, never a zero).
 
-use super::conflicts::{Conflict, Kind};
-use super::ledger::YearAccount;
-use super::money::{Basis, Money};
-use super::pruner::PruningYear;
-use super::typical::Typical;
 use crate::growth::CutKind;
+use crate::street::accounts::ledger::YearAccount;
+use crate::street::accounts::money::{Basis, Money};
+use crate::street::accounts::pruner::PruningYear;
+use crate::street::accounts::typical::Typical;
+use crate::street::work::conflicts::{Conflict, Kind};
 use std::fmt::Write as _;
 
 /// A column: its name and how a cell is written from an account.

@@ -29,10 +29,10 @@
 //! sun kept out of the rooms must be replaced by a gas furnace at 80% AFUE (10 CFR 430.32(e)).
 //! Seasons are the meteorological ones: summer June to August, winter December to February.
 
-use super::climate::Climate;
-use super::crown::Crown;
-use super::site::Facade;
-use super::sun::{MONTH_STARTS, beam_irradiance, diffuse_horizontal, position};
+use crate::street::energy::climate::Climate;
+use crate::street::energy::crown::Crown;
+use crate::street::energy::sun::{MONTH_STARTS, beam_irradiance, diffuse_horizontal, position};
+use crate::street::site::Facade;
 use glam::DVec3;
 
 /// Solar heat gain coefficient of the windows.
@@ -84,7 +84,7 @@ impl Sky {
     /// the table's test rules out for every built-in region).
     pub fn of(climate: &Climate) -> Sky {
         let mut sky = Sky::clear(climate.latitude);
-        if let Some(s) = super::climate::sunshine(climate.region) {
+        if let Some(s) = crate::street::energy::climate::sunshine(climate.region) {
             sky.sunshine = s.share;
         }
         sky
@@ -315,7 +315,7 @@ impl Energy {
 
 impl FacadeSun {
     /// Adds `o` divided by `n` (1: a second wall; n: one of n positions averaged).
-    pub(super) fn add_share(&mut self, o: FacadeSun, n: f64) {
+    pub(in crate::street) fn add_share(&mut self, o: FacadeSun, n: f64) {
         self.incident_kwh += o.incident_kwh / n;
         self.blocked_kwh += o.blocked_kwh / n;
         self.diffuse_blocked_kwh += o.diffuse_blocked_kwh / n;
@@ -409,7 +409,7 @@ mod tests {
     #[test]
     fn energy_follows_the_blocked_heat() {
         // A dense block of leaves between trunk and wall, 2-6 m up.
-        let crown_tree = super::super::crown::leaf_block(
+        let crown_tree = crate::street::energy::crown::leaf_block(
             glam::Vec3::new(-4.0, 1.0, 2.0),
             [16, 8, 8],
             glam::Vec3::new(0.5, 0.35, 0.5),
@@ -437,7 +437,7 @@ mod tests {
 
     #[test]
     fn cloud_takes_beam_but_not_the_sky_and_the_crown_hides_sky() {
-        let crown = Crown::of(&super::super::crown::leaf_block(
+        let crown = Crown::of(&crate::street::energy::crown::leaf_block(
             glam::Vec3::new(-4.0, 1.0, 2.0),
             [16, 8, 8],
             glam::Vec3::new(0.5, 0.35, 0.5),

@@ -10,12 +10,12 @@
 //! the utility pays: [`PruningYear::line_cost`]) and the city's raising, building clearance
 //! and training (its own crew) are a visit each, charged when the crew finds something to cut.
 
-use super::conflicts::{Conflict, Kind, Zones, conflicts};
-use super::costs::Costs;
-use super::pruning::{Regime, due};
-use super::site::Site;
 use crate::Skeleton;
 use crate::growth::{CutKind, CutMark, Cuts, Grower};
+use crate::street::accounts::costs::Costs;
+use crate::street::site::Site;
+use crate::street::work::conflicts::{Conflict, Kind, Zones, conflicts};
+use crate::street::work::pruning::{Regime, due};
 
 /// Most of a tree's height that crown raising may clear of branches: the street's clear heights
 /// are reached over the years, as the tree grows, never by stripping a young tree's crown.
@@ -317,7 +317,7 @@ impl Pruner {
 mod tests {
     use super::*;
     use crate::growth::Database;
-    use crate::street::costs::YearCosts;
+    use crate::street::accounts::costs::YearCosts;
     use crate::street::rank::{Pruning, Study, run};
 
     fn narrow() -> Site {

@@ -14,11 +14,11 @@
 //! share and no cut is paid for twice.
 //!
 //! Every figure is per *living* tree: a tree that dies costs its removal, charged as the
-//! year's chance of dying (street::survival) times the removal price at its DBH, so that
+//! year's chance of dying (street::accounts::survival) times the removal price at its DBH, so that
 //! weighting a year by the share alive gives the cost per tree planted.
 
-use super::StreetError;
-use super::prices::{non_negative, parse, read, value};
+use crate::street::StreetError;
+use crate::street::accounts::prices::{non_negative, parse, read, value};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -124,7 +124,7 @@ pub struct YearCosts {
     /// cycles are charged).
     pub average: f64,
     /// The city's pruning cycles the site's regime cut this year, where the tree was grown
-    /// with it (`street::pruner`): they replace `pruning` and the average's pruning share.
+    /// with it (`street::accounts::pruner`): they replace `pruning` and the average's pruning share.
     pub cycles: f64,
     /// The utility's line clearance this year: not the city's money, but a cost of the tree.
     pub utility: f64,
@@ -156,7 +156,7 @@ impl YearCosts {
 }
 
 /// The built-in table, embedded.
-const BUILTIN: &str = include_str!("../../data/street/costs.toml");
+const BUILTIN: &str = include_str!("../../../data/street/costs.toml");
 
 impl Costs {
     /// The built-in costs, the same table for every region (see the module's notes).
@@ -325,7 +325,7 @@ impl Costs {
     }
 
     /// The costs of one living tree of `dbh_cm` in the year that ends at `age`, whose chance
-    /// of dying in that year is `death_chance` (street::survival; a table's own
+    /// of dying in that year is `death_chance` (street::accounts::survival; a table's own
     /// `removal_chance_per_year` takes its place). `cycles_charged`: a site's pruning cycles
     /// are charged apart, so the table's own pruning (or the average's pruning share) is not.
     pub fn year(

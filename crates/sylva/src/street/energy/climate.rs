@@ -5,7 +5,7 @@
 //! to 0.01 degree). Sunshine is NOAA's percent of possible sunshine at the nearest station of its
 //! Comparative Climatic Data (`data/climate/possible-sunshine.csv`, whose README names the file
 //! and its version). Rainfall is given only where a source was found; elsewhere the crown's own
-//! interception falls back on i-Tree's (`street::ledger`).
+//! interception falls back on i-Tree's (`street::accounts::ledger`).
 
 use std::sync::OnceLock;
 
@@ -160,7 +160,7 @@ pub struct Sunshine {
     pub share: [f64; 12],
 }
 
-const SUNSHINE_CSV: &str = include_str!("../../data/climate/possible-sunshine.csv");
+const SUNSHINE_CSV: &str = include_str!("../../../data/climate/possible-sunshine.csv");
 
 /// Reads `possible-sunshine.csv`: a header, then one row per region (`region, reference_city,
 /// station, wban, period, jan … dec, km`), each month a whole percent from 0 to 100.

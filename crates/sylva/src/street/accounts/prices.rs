@@ -15,13 +15,13 @@
 //! OpenTreeMap leaves BVOCs unpriced and says it is unsure).
 //!
 //! Aesthetics and property value are priced per m² of leaf area gained in a year from the
-//! region's median home price (`street::aesthetics`, McPherson 2007's method); a prices file
+//! region's median home price (`street::accounts::aesthetics`, McPherson 2007's method); a prices file
 //! gives its own `median_home_price` (and `location_factor`) or `leaf_gain_per_m2`.
 //!
 //! Costs are in `costs.rs`.
 
-use super::StreetError;
-use super::aesthetics;
+use crate::street::StreetError;
+use crate::street::accounts::aesthetics;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -52,7 +52,7 @@ pub struct Prices {
     /// VOCs not emitted (and biogenic VOCs emitted, as a cost), $/kg.
     pub voc_per_kg: Option<f64>,
     /// Aesthetics and property value: a square metre of leaf area gained in a year, $/m²
-    /// (`street::aesthetics`).
+    /// (`street::accounts::aesthetics`).
     pub leaf_gain_per_m2: Option<f64>,
 }
 
@@ -204,7 +204,7 @@ impl Prices {
     /// i-Tree does not cover, those of the region whose tables stand in for it (the Inland
     /// Valleys), saying so in `source`.
     pub fn builtin(region: &str) -> Option<Prices> {
-        let (reference, why) = super::itree::reference_region(region)?;
+        let (reference, why) = crate::street::accounts::itree::reference_region(region)?;
         let t = ITREE.iter().find(|t| t.region == reference)?;
         let per_kg = |i: usize| Some(t.lb[i] * LB_PER_KG);
         let home = aesthetics::home_price(region);
@@ -238,7 +238,7 @@ impl Prices {
     pub fn builtin_shared(region: &str) -> Option<&'static Prices> {
         static ALL: std::sync::OnceLock<Vec<(&'static str, Prices)>> = std::sync::OnceLock::new();
         ALL.get_or_init(|| {
-            (super::itree::regions().keys().copied())
+            (crate::street::accounts::itree::regions().keys().copied())
                 .chain(["SacVal"])
                 .filter_map(|r| Some((r, Prices::builtin(r)?)))
                 .collect()

@@ -322,7 +322,7 @@ fn parse_values(name: &str, text: &str) -> Region {
 
 macro_rules! region_files {
     ($($name:literal),*) => {
-        [$(($name, include_str!(concat!("../../data/itree-streets/", $name, ".csv")))),*]
+        [$(($name, include_str!(concat!("../../../data/itree-streets/", $name, ".csv")))),*]
     };
 }
 
@@ -330,7 +330,7 @@ const FILES: [(&str, &str); 16] = region_files!(
     "CenFla", "GulfCo", "InlEmp", "InlVal", "InterW", "LoMidW", "MidWst", "NMtnPr", "NoCalC",
     "NoEast", "PacfNW", "Piedmt", "SWDsrt", "SoCalC", "TpIntW", "Tropic"
 );
-const SPECIES: &str = include_str!("../../data/itree-streets/species.csv");
+const SPECIES: &str = include_str!("../../../data/itree-streets/species.csv");
 
 #[cfg(test)]
 mod tests {

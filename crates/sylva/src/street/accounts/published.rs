@@ -17,7 +17,7 @@ pub struct Species {
 /// McPherson (2003)'s species on Modesto's streets, as its abstract gives them.
 pub fn mcpherson_2003() -> Vec<Species> {
     let cell = |v: Option<&str>| v.and_then(|v| v.trim().parse::<f64>().ok());
-    include_str!("../../data/street/mcpherson-2003.csv")
+    include_str!("../../../data/street/mcpherson-2003.csv")
         .lines()
         .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
         .skip(1)
