@@ -4,6 +4,8 @@
 # one of its own ancestors is no edge (the ancestor declares it and may re-export it), so what
 # is reported are circles between siblings or cousins. Exits non-zero when there is one.
 #   tools/import-circles.py crates/*/src
+# It also holds the rooms of a folder to their order (ROOMS below): a room may read the rooms
+# before it in its list, never one after it (no import back up). Test files count too.
 import os,re,sys
 def modules(src):
     mods={}
@@ -54,10 +56,35 @@ def sccs(E):
     for v in E:
         if v not in index: sc(v)
     return out
-bad=0
+# Each folder's rooms, lowest first (ARCHITECTURE.md draws them).
+ROOMS={
+    'crates/sylva/src': [
+        ('street', ['site','energy','work','accounts','study','rank','records','picture']),
+        ('growth', ['data','model','survey','season']),
+    ],
+    'crates/sylva-city/src': [
+        ('', ['error','geo','inventory','demo','trees','tiles','report','tasks','cache','run','bench']),
+    ],
+}
+def backwards(crate, E):
+    out=[]
+    for parent,order in ROOMS.get(os.path.normpath(crate),[]):
+        pre=tuple(parent.split('::')) if parent else ()
+        def room(m):
+            if m[:len(pre)]!=pre or len(m)<=len(pre) or m[len(pre)] not in order: return None
+            return order.index(m[len(pre)])
+        for m,ts in E.items():
+            for t in ts:
+                a,b=room(m),room(t)
+                if a is not None and b is not None and b>a: out.append((m,t))
+    return out
+bad=0; up=0
 for crate in sys.argv[1:]:
     mods=modules(crate)
-    for comp in sccs(edges(mods)):
+    E=edges(mods)
+    for comp in sccs(E):
         bad+=1; print(crate, 'circle:', sorted('::'.join(c) or 'lib' for c in comp))
-print('import circles:',bad)
-sys.exit(1 if bad else 0)
+    for m,t in backwards(crate, E):
+        up+=1; print(crate, 'import back up:', '::'.join(m), '->', '::'.join(t))
+print('import circles:',bad, ' imports back up:', up)
+sys.exit(1 if bad or up else 0)

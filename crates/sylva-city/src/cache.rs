@@ -13,8 +13,8 @@
 //! - **Never in the way.** A file that cannot be read, decoded or written is grown again, and
 //!   the run goes on.
 
-use crate::prototypes::{GrowthTask, Prototype};
 use crate::tasks::{OutFile, from_bytes, to_bytes};
+use crate::trees::prototypes::{GrowthTask, Prototype};
 use std::hash::Hasher;
 use std::path::{Path, PathBuf};
 

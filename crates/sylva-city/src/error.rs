@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 /// A city run that cannot go on. Rows that cannot be read are not errors: they are counted and
-/// reported ([`crate::plan::Summary`]), and the run goes on without them.
+/// reported in the run's summary, and the run goes on without them.
 #[derive(Debug, thiserror::Error)]
 pub enum CityError {
     /// The inventory cannot be opened or read at all.

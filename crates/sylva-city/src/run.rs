@@ -5,10 +5,10 @@
 use crate::CityError;
 use crate::cache::GrowthCache;
 use crate::inventory::Layout;
-use crate::plan::CityOptions;
-use crate::prototypes::Prototype;
 use crate::tasks::{CityJob, CityRun, OutFile, PROTOTYPES_DIR, run_growth, run_tile, stump_file};
 use crate::tiles::Tile;
+use crate::trees::plan::CityOptions;
+use crate::trees::prototypes::Prototype;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;

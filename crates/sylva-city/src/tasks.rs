@@ -16,14 +16,14 @@
 //! returns its files' paths (relative to the run's output folder) and bytes.
 
 use crate::CityError;
-use crate::benefits::{self, TreeYear};
 use crate::inventory::{self, Inventory, Layout};
-use crate::plan::Summary;
-use crate::plan::{self, CityOptions, Kind, Plan, ProtoKey};
-use crate::prototypes::{self, GrowthTask, Prototype};
 use crate::report;
 use crate::tiles::quadtree::{self, Node};
 use crate::tiles::{self, LEAF_TREES, Tile, TileTask, TilesetReport, content};
+use crate::trees::benefits::{self, TreeYear};
+use crate::trees::plan::Summary;
+use crate::trees::plan::{self, CityOptions, Kind, Plan, ProtoKey};
+use crate::trees::prototypes::{self, GrowthTask, Prototype};
 use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 use std::path::PathBuf;
@@ -135,7 +135,7 @@ impl CityJob {
         }
         // The impostors' pictures into the city's atlas (once: packing takes them).
         if self.prototypes.values().any(|p| p.impostor_png.is_some()) {
-            let pictures = crate::atlas::pack(&mut self.prototypes)?.into_iter();
+            let pictures = crate::tiles::atlas::pack(&mut self.prototypes)?.into_iter();
             self.atlas = pictures
                 .map(|(name, png)| (format!("{PROTOTYPES_DIR}/{name}"), png))
                 .collect();

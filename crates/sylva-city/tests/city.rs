@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use std::path::Path;
 use sylva_city::demo::{DemoCity, DemoLayout, demo_city};
 use sylva_city::inventory::{self, Layout};
-use sylva_city::plan::{CityOptions, Kind, Plan, plan};
 use sylva_city::tiles::check::check_tileset;
+use sylva_city::trees::plan::{CityOptions, Kind, Plan, plan};
 use sylva_city::{Quiet, tile_city};
 
 fn planned(path: &Path, layout: &Layout) -> Plan {
@@ -372,7 +372,7 @@ fn epochs_age_every_tree_and_plant_the_planned_ones() {
     assert!(now.not_yet_planted > 0, "{}", now.not_yet_planted);
     assert_eq!(later.not_yet_planted, 0);
     assert_eq!(later.trees.len(), now.trees.len() + now.not_yet_planted);
-    let by_row: HashMap<usize, &sylva_city::plan::Planned> =
+    let by_row: HashMap<usize, &sylva_city::trees::plan::Planned> =
         later.trees.iter().map(|t| (t.row, t)).collect();
     for t in &now.trees {
         let Kind::Tree(k) = &t.kind else { continue };

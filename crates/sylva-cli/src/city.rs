@@ -2,33 +2,11 @@
 //! progress bar and the summary.
 
 use crate::args::{CityArgs, CityDemoArgs, DemoLayoutArg};
+use crate::shared::StageBar;
 use anyhow::{Result, bail};
 use sylva_city::cache::GrowthCache;
 use sylva_city::demo::{DemoLayout, demo_city};
-use sylva_city::{CityOptions, Layout, LengthUnit, Progress, tile_city};
-
-/// A progress bar per stage.
-struct Bar {
-    bar: indicatif::ProgressBar,
-    stage: std::sync::Mutex<String>,
-}
-
-impl Progress for Bar {
-    fn step(&self, stage: &str, done: usize, total: usize) {
-        let mut s = self.stage.lock().unwrap_or_else(|e| e.into_inner());
-        if *s != stage {
-            *s = stage.to_string();
-            self.bar.reset();
-            self.bar.set_message(stage.to_string());
-        }
-        if total > 0 {
-            self.bar.set_length(total as u64);
-        } else {
-            self.bar.set_length(done as u64);
-        }
-        self.bar.set_position(done as u64);
-    }
-}
+use sylva_city::{CityOptions, Layout, LengthUnit, tile_city};
 
 pub fn run(args: &CityArgs) -> Result<()> {
     let unit = |flag: &str, v: &Option<String>| -> Result<Option<LengthUnit>> {
@@ -81,14 +59,7 @@ pub fn run(args: &CityArgs) -> Result<()> {
         },
         report: args.report,
     };
-    let bar = Bar {
-        bar: indicatif::ProgressBar::new(0),
-        stage: std::sync::Mutex::new(String::new()),
-    };
-    bar.bar.set_style(
-        indicatif::ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} [{elapsed}]")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
+    let bar = StageBar::new();
     let started = std::time::Instant::now();
     let run = tile_city(
         &args.inventory,
@@ -98,7 +69,7 @@ pub fn run(args: &CityArgs) -> Result<()> {
         &args.output,
         &bar,
     )?;
-    bar.bar.finish_and_clear();
+    bar.finish();
     let seconds = started.elapsed().as_secs_f64();
     let s = &run.summary;
     println!(
@@ -183,7 +154,7 @@ pub fn demo(args: &CityDemoArgs) -> Result<()> {
         "wrote {}: {} rows around {} ({}), positions also in EPSG:{}",
         args.output.display(),
         city.trees.len(),
-        sylva_city::regions::REFERENCE_CITIES
+        sylva_city::inventory::regions::REFERENCE_CITIES
             .iter()
             .find(|r| r.0 == city.region)
             .map_or("", |r| r.1),

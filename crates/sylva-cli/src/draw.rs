@@ -7,7 +7,7 @@ use anyhow::{Context, Result, bail};
 use std::path::Path;
 use sylva::drawing::{MeshLook, Meshable, plan, wants_mesh, write_outputs};
 use sylva::export::Materials;
-use sylva::growth::report::{MAX_AGE, MESH};
+use sylva::growth::survey::report::{MAX_AGE, MESH};
 use sylva::growth::{Database, Grower, GrowthOptions};
 use sylva::mesh::MeshOptions;
 

@@ -6,6 +6,7 @@ use crate::shared::{forest_species, with_progress};
 use anyhow::{Context, Result, bail};
 use sylva::export::write_atomically;
 use sylva::forest::{ForestSpec, grow_meshes, plant};
+use sylva::record::to_json;
 
 fn parse_area(text: &str) -> Result<[f32; 2]> {
     let (w, d) = text
@@ -61,19 +62,9 @@ pub fn run(args: &ForestArgs) -> Result<()> {
     let count = forest.planting.trees.len();
     let per_second = variants as f64 / forest.seconds;
     if args.json {
-        println!(
-            "{}",
-            serde_json::json!({
-                "trees": count,
-                "variants": variants,
-                "triangles_stored": stored,
-                "triangles_placed": placed,
-                "grow_ms": (forest.seconds * 1e3).round(),
-                "trees_per_second": (per_second * 10.0).round() / 10.0,
-                "threads": rayon::current_num_threads(),
-                "output": args.output.display().to_string(),
-            })
-        );
+        let mut record = to_json(&forest.record());
+        record["output"] = args.output.display().to_string().into();
+        println!("{record}");
     } else {
         println!(
             "{count} trees ({variants} distinct) on {}x{} m: {stored} triangles stored, {placed} placed",

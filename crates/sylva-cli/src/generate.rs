@@ -5,9 +5,10 @@ use crate::args::{GenerateArgs, RenderView};
 use crate::shared::{headless, load_params, picture_of, save_picture};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
-use std::time::Instant;
 use sylva::export::{Materials, write_atomically, write_glb, write_obj};
-use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::mesh::TreeMesh;
+use sylva::record::to_json;
+use sylva::weber_penn::made::{Made, MakeError, make};
 use sylva::{GenerateOptions, TreeParams};
 
 #[derive(Clone, Copy, PartialEq)]
@@ -52,25 +53,15 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
     if args.tree.levels == Some(0) {
         bail!("--levels 0: expected 1 (trunk only) or more");
     }
-    let t0 = Instant::now();
-    let skeleton =
-        sylva::generate(&params, &options).with_context(|| format!("species {}", args.species))?;
-    let generate_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let t1 = Instant::now();
-    let mesh_options = MeshOptions::for_species(&params, args.tree.quality);
-    let mesh = mesh_tree(&skeleton, &mesh_options);
-    let mesh_ms = t1.elapsed().as_secs_f64() * 1e3;
-    if mesh.triangle_count() as u64 > args.max_triangles {
-        bail!(
-            "the mesh has {} triangles, over the budget of {} (--max-triangles)",
-            mesh.triangle_count(),
-            args.max_triangles
-        );
-    }
+    let made = match make(&params, &options, args.tree.quality) {
+        Err(MakeError::OverBudget(e)) => bail!("{e} (--max-triangles)"),
+        made => made.with_context(|| format!("species {}", args.species))?,
+    };
+    let (skeleton, mesh) = (&made.skeleton, &made.mesh);
     let materials = Materials::from_srgb(params.bark_color, params.leaf_color);
     match format {
         Format::Glb if args.lod_chain => {
-            let lod = sylva::lod::LodTree::build(&skeleton, &mesh_options);
+            let lod = sylva::lod::LodTree::build(skeleton, &made.mesh_options);
             let renderer = headless()
                 .inspect_err(|e| {
                     eprintln!("sylva: warning: {e}; writing the LOD chain without its impostor")
@@ -82,34 +73,22 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
                 println!("LOD chain: {}", chain.summary);
             }
         }
-        Format::Glb => write_glb(&args.output, &mesh, &params.name, &materials)?,
+        Format::Glb => write_glb(&args.output, mesh, &params.name, &materials)?,
         Format::Obj if args.lod_chain => {
             bail!("--lod-chain: LOD chains are written as GLB; use a .glb file name")
         }
-        Format::Obj => write_obj(&args.output, &mesh, &params.name, &materials)?,
+        Format::Obj => write_obj(&args.output, mesh, &params.name, &materials)?,
     }
     // The model and its summary come first: a picture that fails cannot take them away.
-    let stats = skeleton.stats();
     if args.json {
-        let summary = serde_json::json!({
-            "species": params.name,
-            "seed": args.tree.seed,
-            "stems_per_level": stats.stems_per_level,
-            "leaves": stats.leaves,
-            "vertices": mesh.vertex_count(),
-            "triangles": mesh.triangle_count(),
-            "height_m": round3(stats.height),
-            "crown_width_m": round3(stats.crown_width),
-            "generate_ms": round3(generate_ms as f32),
-            "mesh_ms": round3(mesh_ms as f32),
-            "output": args.output.display().to_string(),
-        });
+        let mut summary = to_json(&made.record(&params, args.tree.seed));
+        summary["output"] = args.output.display().to_string().into();
         println!("{summary}");
     } else {
-        print_summary(&params, args, &stats, &mesh, generate_ms, mesh_ms);
+        print_summary(&params, args, &made);
     }
     if let Some(png) = &args.preview {
-        write_preview(png, &mesh, &params, args.view)?;
+        write_preview(png, mesh, &params, args.view)?;
         if !args.json {
             println!("  picture          {}", png.display());
         }
@@ -128,18 +107,9 @@ fn write_preview(
     save_picture(path, &picture)
 }
 
-fn round3(x: f32) -> f64 {
-    (x as f64 * 1000.0).round() / 1000.0
-}
-
-fn print_summary(
-    params: &TreeParams,
-    args: &GenerateArgs,
-    stats: &sylva::SkeletonStats,
-    mesh: &TreeMesh,
-    generate_ms: f64,
-    mesh_ms: f64,
-) {
+fn print_summary(params: &TreeParams, args: &GenerateArgs, made: &Made) {
+    let (stats, mesh) = (made.skeleton.stats(), &made.mesh);
+    let (generate_ms, mesh_ms) = (made.generate_ms, made.mesh_ms);
     let levels: Vec<String> = stats
         .stems_per_level
         .iter()

@@ -3,21 +3,21 @@
 //! against measured dimensions, and species side by side; or watched growing in a window.
 
 use crate::args::{GrowArgs, parse_size};
-use crate::shared::{database, headless, load_street, save_picture};
+use crate::shared::{database, headless, save_picture};
 use anyhow::{Context, Result, bail};
 use sylva::export::{to_glb, write_atomically};
-use sylva::growth::report::{self, Cohort, age_label, run_ages};
-use sylva::growth::{CutKind, Grower};
+use sylva::growth::survey::report::{self, age_label, extent, run_ages};
 use sylva::growth::{Measured, dressed_mesh};
 use sylva::mesh::MeshOptions;
-use sylva::street::accounts::pruner::{Pruner, PruningYear};
-use sylva::street::picture::{pruning_picture, site_picture};
+use sylva::street::accounts::table::{self, net_words};
 use sylva::street::rank::first_conflicts;
-use sylva::street::work::conflicts::conflicts;
-use sylva::street::{Assessor, Basis, Kind, Site, YearAccount, accounts::table};
-use sylva_render::Picture;
+use sylva::street::records::{YearRecord, to_json};
+use sylva::street::study::{Spread, StreetTree};
+use sylva::street::{Basis, YearAccount};
 use sylva_render::caption::with_caption;
-use sylva_render::street::{comparison_picture, tree_picture};
+use sylva_render::chart::{benefit_chart, growth_chart};
+use sylva_render::site::{first_conflicts_picture, grown_tree_picture, pruning_cycle_picture};
+use sylva_render::street::comparison_picture;
 
 pub fn run(args: &GrowArgs) -> Result<()> {
     let (width, height) = parse_size(&args.size, 8192).map_err(anyhow::Error::msg)?;
@@ -31,22 +31,11 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     let first = &species[0];
     let ages = run_ages(first, args.from, args.to, args.step).map_err(anyhow::Error::msg)?;
     // Every input is read and checked before anything is written.
-    let (site, prices, costs) = load_street(&args.street)?;
-    let survival = crate::shared::survival(&args.street)?;
-    let mut assessors: Vec<Assessor> = species
-        .iter()
-        .map(|m| {
-            let a = Assessor::new(m, site.clone(), prices.clone(), costs.clone());
-            match &survival {
-                Some(s) => a.with_survival(s.clone()),
-                None => a,
-            }
-        })
-        .collect();
+    let study = crate::shared::study(&args.street, ages[ages.len() - 1], args.seed)?;
     if args.street.prices.is_some() || args.street.costs.is_some() {
         // Money was asked for: every benefit model must be there.
-        for a in &assessors {
-            a.require_carbon()?;
+        for m in &species {
+            study.assessor(m).require_carbon()?;
         }
     }
     if args.view {
@@ -84,7 +73,8 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             args.to.unwrap_or(first.ages.1.floor())
         );
     }
-    let mut cohort = Cohort::new(species, args.seed);
+    let site = study.site.as_ref();
+    let mut trees: Vec<StreetTree> = species.iter().map(|m| StreetTree::new(m, &study)).collect();
     // A season names the files and captions: `PLAC-age-30-winter.glb`, "age 30 in winter".
     let season = args
         .season
@@ -93,169 +83,88 @@ pub fn run(args: &GrowArgs) -> Result<()> {
         .season
         .map_or(String::new(), |m| format!(" in {}", m.label()));
     // One frame for every age and species: the tallest and widest they reach.
-    let extent = cohort.extent(&ages);
-    let mut accounts: Vec<Vec<YearAccount>> = cohort.species.iter().map(|_| Vec::new()).collect();
-    let mut seen: Vec<Vec<Kind>> = cohort.species.iter().map(|_| Vec::new()).collect();
-    // The site's pruning regime cuts every tree as its cycles fall due, year by year.
-    let pruner = (site.as_ref())
-        .filter(|_| !args.street.no_pruning)
-        .and_then(|s| Pruner::new(s, costs.as_ref()));
-    if pruner.is_some() {
-        assessors.iter_mut().for_each(Assessor::charge_cycles);
-    }
-    // Each record's cycles are those since the record before (since planting for the first):
-    // with --step 10 ten years' visits, charged as a tenth a year beside one year's benefits.
-    let mut last_age: Option<f64> = None;
+    let extent = extent(&species, &ages);
+    let mut accounts: Vec<Vec<YearAccount>> = species.iter().map(|_| Vec::new()).collect();
     for &age in &ages {
-        let span = last_age.map_or(age, |a| age - a);
-        last_age = Some(age);
-        let mut cycles: Vec<Option<PruningYear>> = cohort.species.iter().map(|_| None).collect();
-        if let (Some(pruner), Some(site)) = (&pruner, &site) {
-            for (i, grower) in cohort.growers.iter_mut().enumerate() {
-                let m = &cohort.species[i];
-                let mut failed = None;
-                cycles[i] = pruner.advance(grower, age, |year, cycle, before, after| {
-                    if !args.no_pictures && failed.is_none() && !cycle.cuts.marks.is_empty() {
-                        let size = (width * 2, height);
-                        let picture = cycle_picture(m, year, cycle, &before, after, site, size);
-                        let name = format!("{}-pruned-age-{}.png", m.species.code, age_label(year));
-                        failed = save_picture(&output.join(name), &picture).err();
-                    }
-                });
-                if let Some(e) = failed {
-                    return Err(e);
-                }
-            }
-        }
-        let skeletons = cohort.advance_to(age);
         let (mut meshes, mut dresses) = (Vec::new(), Vec::new());
-        for (i, skeleton) in skeletons.iter().enumerate() {
-            let m = &cohort.species[i];
-            let grown = cohort.history[i].last().context("an age was recorded")?;
-            let mut account = assessors[i].year(age, &grown.model, skeleton);
-            if pruner.is_some() {
-                account.record_pruning(cycles[i].take(), span);
+        for (i, tree) in trees.iter_mut().enumerate() {
+            let m = &species[i];
+            // Each record's cycles are those since the record before (since planting for the
+            // first): with --step 10 ten years' visits, charged as a tenth a year beside one
+            // year's benefits.
+            let mut failed = None;
+            let mut year = tree.grow_to(age, Spread::PerYear, |year, cycle, before, after| {
+                if !args.no_pictures && failed.is_none() && !cycle.cuts.marks.is_empty() {
+                    let (after, site) = (after.skeleton(), site.expect("a pruned tree has a site"));
+                    let size = (width * 2, height);
+                    let picture =
+                        pruning_cycle_picture(m, year, cycle, &before, &after, site, size);
+                    let name = format!("{}-pruned-age-{}.png", m.species.code, age_label(year));
+                    failed = save_picture(&output.join(name), &picture).err();
+                }
+            });
+            if let Some(e) = failed {
+                return Err(e);
             }
             // A bare crown's short twigs go into the model as copies of one twig.
             let options = MeshOptions {
                 twig_copies: !args.twigs_in_bark,
                 ..report::MESH
             };
-            let (mesh, dress) = dressed_mesh(skeleton, m, args.season, &options);
+            let (mesh, dress) = dressed_mesh(&year.skeleton, m, args.season, &options);
             let stem = format!("{}-age-{}{season}", m.species.code, age_label(age));
             // The site at the year each kind of conflict first happens, marked.
-            let new: Vec<_> = account
-                .conflicts
-                .iter()
-                .filter(|c| !seen[i].contains(&c.kind))
-                .copied()
-                .collect();
-            seen[i].extend(new.iter().map(|c| c.kind));
-            if let (Some(site), false, false) = (&site, new.is_empty(), args.no_pictures) {
-                let kinds: Vec<Kind> = new.iter().map(|c| c.kind).collect();
-                let (w, h, rgba) = site_picture(skeleton, site, &kinds, (width * 2, height));
-                let picture = Picture {
-                    width: w,
-                    height: h,
-                    rgba,
-                    stats: Default::default(),
-                };
-                let said: Vec<String> = new.iter().map(|c| c.describe()).collect();
-                let lines = [
-                    format!(
-                        "{}, age {}: first {}",
-                        m.label(),
-                        age_label(age),
-                        said.join(", ")
-                    ),
-                    "left: across the street; right: from above (bar: 5 m); a 1.8 m person"
-                        .to_string(),
-                    "red: in the way; red outline: the zone entered this year; shaded: clear \
-                     heights; circles and bands: wire and lamp clearances"
-                        .to_string(),
-                ];
-                let picture = with_caption(&picture, &lines, 18.0);
+            let new = &year.new_conflicts;
+            if let (Some(site), false, false) = (site, new.is_empty(), args.no_pictures) {
+                let size = (width * 2, height);
+                let picture = first_conflicts_picture(m, age, &year.skeleton, site, new, size);
                 let name = format!("{}-site-age-{}.png", m.species.code, age_label(age));
                 save_picture(&output.join(name), &picture)?;
             }
             let glb = to_glb(&mesh, &m.label(), &dress.materials())?;
             write_atomically(&output.join(format!("{stem}.glb")), &glb)?;
-            let model = &grown.model;
+            let model = &year.record.model;
             if let Some(r) = &renderer {
-                let picture = tree_picture(r, &mesh, &dress, (width, height), extent)?;
-                let lines = [format!(
-                    "{}, age {}{in_season}: height {:.1} m (measured {:.1}), crown {:.1} m",
-                    m.label(),
-                    age_label(age),
-                    model.height,
-                    grown.measured.height,
-                    model.crown_diameter
-                )];
-                let picture = with_caption(&picture, &lines, 18.0);
+                let drawn = (&mesh, &dress);
+                let size = (width, height);
+                let picture =
+                    grown_tree_picture(r, drawn, m, &year.record, &in_season, size, extent)?;
                 save_picture(&output.join(format!("{stem}.png")), &picture)?;
             }
             if args.json {
-                let mut record = report::record_json(m, grown);
-                record["street"] = table::json(&account);
-                println!("{record}");
+                println!("{}", to_json(&YearRecord::of(m, &year)));
             } else {
-                let conflicts = if new.is_empty() {
-                    String::new()
-                } else {
-                    let said: Vec<String> = new.iter().map(|c| c.describe()).collect();
-                    format!("  new conflicts: {}", said.join(", "))
-                };
-                let pruned = account.pruning.as_ref().map_or(String::new(), |p| {
-                    format!(
-                        "  pruned ({}): {} cuts, {:.0} m2 of leaf, ${:.0}",
-                        p.reasons
-                            .iter()
-                            .map(|r| r.name())
-                            .collect::<Vec<_>>()
-                            .join(", "),
-                        p.cuts.marks.len(),
-                        p.leaf_m2(),
-                        p.cost
-                    )
-                });
                 println!(
-                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments  {}{conflicts}{pruned}",
+                    "  {:<28} age {:>5}  H {:5.1} m  CD {:5.1} m  DBH {:5.1} cm  LA {:6.0} m2  {} segments  {}{}{}",
                     m.label(),
                     age_label(age),
                     model.height,
                     model.crown_diameter,
                     model.dbh,
                     model.leaf_area,
-                    cohort.growers[i].segment_count(),
-                    nets(&account, site.is_some())
+                    tree.segment_count(),
+                    net_words(&year.accounts[0], site.is_some()),
+                    said_conflicts(new),
+                    said_pruning(&year.accounts[0]),
                 );
             }
-            accounts[i].push(account);
+            accounts[i].push(year.accounts.remove(0));
             meshes.push(mesh);
             dresses.push(dress);
         }
-        if cohort.species.len() > 1
+        if species.len() > 1
             && let Some(r) = &renderer
         {
-            let picture = comparison_picture(
-                r,
-                &meshes,
-                &dresses,
-                &cohort.species,
-                (width, height),
-                extent,
-            )?;
-            let heights: Vec<String> = cohort
-                .species
-                .iter()
-                .zip(&cohort.history)
-                .zip(&accounts)
-                .map(|((m, h), a)| {
+            let picture =
+                comparison_picture(r, &meshes, &dresses, &species, (width, height), extent)?;
+            let heights: Vec<String> = (species.iter().zip(&trees).zip(&accounts))
+                .map(|((m, t), a)| {
                     format!(
                         "{} {:.1} m, {}",
                         m.species.common,
-                        h.last().map_or(0.0, |g| g.model.height),
-                        a.last().map_or(String::new(), |a| nets(a, site.is_some()))
+                        t.history().last().map_or(0.0, |g| g.model.height),
+                        a.last()
+                            .map_or(String::new(), |a| net_words(a, site.is_some()))
                     )
                 })
                 .collect();
@@ -269,19 +178,21 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             save_picture(&output.join(name), &picture)?;
         }
     }
-    for (i, (m, h)) in cohort.species.iter().zip(&cohort.history).enumerate() {
-        let code = &m.species.code;
+    for (i, (m, tree)) in species.iter().zip(&trees).enumerate() {
+        let (code, h) = (&m.species.code, tree.history());
         let csv = table::join_csv(&report::csv(h), &accounts[i]);
         write_atomically(&output.join(format!("{code}.csv")), csv.as_bytes())?;
-        let chart = crate::chart::growth_chart(m, h)?;
-        save_picture(&output.join(format!("{code}-chart.png")), &chart)?;
-        let missing = assessors[i].missing();
+        save_picture(
+            &output.join(format!("{code}-chart.png")),
+            &growth_chart(m, h)?,
+        )?;
+        let missing = tree.assessor(0).missing();
         let basis = Basis::default_for(site.is_some());
-        let bars = crate::chart::benefit_chart(m, &accounts[i], missing, basis)?;
+        let bars = benefit_chart(m, &accounts[i], missing, basis)?;
         save_picture(&output.join(format!("{code}-benefits.png")), &bars)?;
         if basis == Basis::Site {
             // The reference beside the site's own figures.
-            let bars = crate::chart::benefit_chart(m, &accounts[i], missing, Basis::Typical)?;
+            let bars = benefit_chart(m, &accounts[i], missing, Basis::Typical)?;
             save_picture(&output.join(format!("{code}-benefits-typical.png")), &bars)?;
         }
         if args.json {
@@ -304,7 +215,7 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                 }
             );
         }
-        if let Some(r) = assessors[i].reference() {
+        if let Some(r) = tree.assessor(0).reference() {
             println!("{}: typical position from {}", m.species.code, r.describe());
         }
         for note in missing {
@@ -328,78 +239,25 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     Ok(())
 }
 
-/// A year's net as a line of text: at typical position, and on the site where there is one.
-fn nets(a: &YearAccount, has_site: bool) -> String {
-    let typical = a
-        .typical
-        .as_ref()
-        .map(|_| format!("net ${:.0}/yr at typical position", a.net(Basis::Typical)));
-    let site = has_site.then(|| format!("${:.0}/yr on this site", a.net(Basis::Site)));
-    match (typical, site) {
-        (Some(t), Some(s)) => format!("{t}, {s}"),
-        (Some(t), None) => t,
-        (None, Some(s)) => format!("net {s}"),
-        (None, None) => format!("net ${:.0}/yr (own crown, no site)", a.net(Basis::Site)),
+/// The conflicts met for the first time this year, as the end of a line.
+fn said_conflicts(new: &[sylva::street::Conflict]) -> String {
+    if new.is_empty() {
+        return String::new();
     }
+    let said: Vec<String> = new.iter().map(|c| c.describe()).collect();
+    format!("  new conflicts: {}", said.join(", "))
 }
 
-/// A pruning cycle's picture, captioned: the tree across the street before and after the
-/// year's cuts.
-fn cycle_picture(
-    m: &Measured,
-    year: f64,
-    cycle: &PruningYear,
-    before: &sylva::Skeleton,
-    after: &Grower,
-    site: &Site,
-    size: (u32, u32),
-) -> Picture {
-    let after = after.skeleton();
-    let (w, h, rgba) = pruning_picture(before, &after, site, cycle.marks(), size);
-    let left: Vec<Kind> = conflicts(&after, site).iter().map(|c| c.kind).collect();
-    let picture = Picture {
-        width: w,
-        height: h,
-        rgba,
-        stats: Default::default(),
-    };
-    let kinds = |k: &[Kind]| {
-        let names: Vec<&str> = k.iter().map(|k| k.name()).collect();
-        if names.is_empty() {
-            "none".to_string()
-        } else {
-            names.join(", ")
-        }
-    };
-    let reasons: Vec<&str> = cycle.reasons.iter().map(|r| r.name()).collect();
-    let lines = [
+/// The year's pruning, as the end of a line.
+fn said_pruning(a: &YearAccount) -> String {
+    a.pruning.as_ref().map_or(String::new(), |p| {
+        let reasons: Vec<&str> = p.reasons.iter().map(|r| r.name()).collect();
         format!(
-            "{}, age {}: {}: {} removal and {} reduction cuts (largest {:.0} cm across), \
-             {:.1} m2 of leaf and {:.3} m3 of wood taken, {} visit(s), ${:.2}",
-            m.label(),
-            age_label(year),
+            "  pruned ({}): {} cuts, {:.0} m2 of leaf, ${:.0}",
             reasons.join(", "),
-            cycle.count(CutKind::Removal),
-            cycle.count(CutKind::Reduction),
-            100.0 * cycle.cuts.largest_diameter(),
-            cycle.leaf_m2(),
-            cycle.wood_m3(),
-            cycle.visits,
-            cycle.cost
-        ),
-        format!(
-            "in the way before the cuts: {}; after: {}{}",
-            kinds(&cycle.before),
-            kinds(&left),
-            if cycle.cuts.left_in_zone {
-                " (a trunk with no lateral to cut back to is left)"
-            } else {
-                ""
-            }
-        ),
-        "left: before the cuts; right: after, at one scale; blue rings: the cuts; red: in the \
-         way; circles: wire and lamp clearances; a 1.8 m person"
-            .to_string(),
-    ];
-    with_caption(&picture, &lines, 18.0)
+            p.cuts.marks.len(),
+            p.leaf_m2(),
+            p.cost
+        )
+    })
 }

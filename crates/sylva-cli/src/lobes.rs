@@ -6,46 +6,11 @@ use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
 use sylva::drawing::{MeshLook, Meshable, plan, write_outputs};
 use sylva::export::{Materials, write_atomically};
+use sylva::fields::TreeFile;
 use sylva::fields::points::Up;
-use sylva::fields::{Lobe, TreeFile, TreeRules};
+use sylva::fields::source::{Lobes, Planted, parse_lobe};
 use sylva::mesh::{MeshOptions, mesh_tree};
 use sylva_render::{View, ViewKind};
-
-fn rules_for(name: &str) -> Result<TreeRules> {
-    if let Some(r) = sylva::fields::builtin(name) {
-        return Ok(r);
-    }
-    let path = Path::new(name);
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
-    {
-        let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {name}"))?;
-        return Ok(sylva::fields::from_toml(&text, name)?);
-    }
-    let known: Vec<&str> = sylva::fields::rules::builtin_names().collect();
-    bail!(
-        "no lobe species `{name}` and no such rules file; built in: {}",
-        known.join(", ")
-    )
-}
-
-fn parse_lobe(text: &str) -> Result<Lobe> {
-    let v: Vec<f32> = text
-        .split(',')
-        .map(|s| s.trim().parse::<f32>())
-        .collect::<Result<_, _>>()
-        .ok()
-        .filter(|v: &Vec<f32>| v.len() == 4 && v.iter().all(|x| x.is_finite()))
-        .with_context(|| format!("--lobe {text}: expected X,Y,Z,R in metres"))?;
-    if v[3] <= 0.0 || v[2] - v[3] < -1e-6 {
-        bail!("--lobe {text}: the radius must be positive and the lobe above the ground");
-    }
-    Ok(Lobe {
-        centre: glam::Vec3::new(v[0], v[1], v[2]),
-        radius: v[3],
-    })
-}
 
 fn has_extension(path: &Path, ext: &str) -> bool {
     path.extension()
@@ -73,10 +38,7 @@ pub fn run(args: &LobesArgs) -> Result<()> {
     if !(args.scale.is_finite() && args.scale > 0.0 && args.scale <= 100.0) {
         bail!("--scale {}: expected more than 0, at most 100", args.scale);
     }
-    let is_tree_file = Path::new(&args.input)
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("tree"));
-    let (rules, seed, placement, source) = if is_tree_file {
+    let planted = if has_extension(Path::new(&args.input), "tree") {
         if args.points.is_some() || !args.lobes.is_empty() {
             bail!(
                 "{}: a .tree file brings its own trunk and lobes; leave out --points and --lobe",
@@ -85,64 +47,38 @@ pub fn run(args: &LobesArgs) -> Result<()> {
         }
         let text = std::fs::read_to_string(&args.input)
             .with_context(|| format!("cannot read {}", args.input))?;
-        let file = TreeFile::parse(&text, &args.input)?;
-        let kind = file.tree_type.trim();
-        let rules = match sylva::fields::builtin(kind) {
-            Some(r) => r,
-            None => rules_for(kind).with_context(|| {
-                format!(
-                    "{}: tree type `{kind}` is neither a built-in lobe species nor a rules file",
-                    args.input
-                )
-            })?,
-        };
-        let seed = args.seed.unwrap_or(file.seed as u64);
-        (
-            rules,
-            seed,
-            file.placement(),
-            "from the .tree file".to_string(),
-        )
-    } else {
-        let rules = rules_for(&args.input)?;
-        let seed = args.seed.unwrap_or(0);
-        if let Some(cloud) = &args.points {
-            if !args.lobes.is_empty() {
-                bail!("--points and --lobe: choose one way of placing lobes");
-            }
-            if args.fit_lobes.is_some_and(|k| !(1..=32).contains(&k)) {
-                bail!("--fit-lobes {}: expected 1..32", args.fit_lobes.unwrap());
-            }
-            let name = cloud.display().to_string();
-            let bytes = std::fs::read(cloud).with_context(|| format!("cannot read {name}"))?;
-            let up = match args.up {
-                UpAxis::Z => Up::Z,
-                UpAxis::Y => Up::Y,
-            };
-            let points = sylva::fields::points::read_points(&name, &bytes, up)?;
-            let fit = sylva::fields::points::fit(&points, args.fit_lobes, seed);
-            let cover = sylva::fields::points::coverage(&fit.canopy, &fit.placement.lobes);
-            let note = format!(
-                "fitted to {} points: crown base {:.2} m, {} lobes holding {:.0}% of the canopy's points",
-                points.len(),
-                fit.crown_base,
-                fit.placement.lobes.len(),
-                100.0 * cover
-            );
-            (rules, seed, fit.placement, note)
-        } else if args.lobes.is_empty() {
-            let p = sylva::fields::auto_placement(&rules, seed);
-            (rules, seed, p, "placed automatically".to_string())
-        } else {
-            let lobes = args
-                .lobes
-                .iter()
-                .map(|l| parse_lobe(l))
-                .collect::<Result<Vec<_>>>()?;
-            let p = sylva::fields::placement_for_lobes(&rules, seed, lobes);
-            (rules, seed, p, "lobes as given".to_string())
+        Planted::from_tree_file(&args.input, &text, args.seed)?
+    } else if let Some(cloud) = &args.points {
+        if !args.lobes.is_empty() {
+            bail!("--points and --lobe: choose one way of placing lobes");
         }
+        let name = cloud.display().to_string();
+        let bytes = std::fs::read(cloud).with_context(|| format!("cannot read {name}"))?;
+        let up = match args.up {
+            UpAxis::Z => Up::Z,
+            UpAxis::Y => Up::Y,
+        };
+        let lobes = Lobes::Points {
+            name: &name,
+            bytes: &bytes,
+            up,
+            count: args.fit_lobes,
+        };
+        Planted::new(&args.input, lobes, args.seed)?
+    } else if args.lobes.is_empty() {
+        Planted::new(&args.input, Lobes::Automatic, args.seed)?
+    } else {
+        let lobes = (args.lobes.iter())
+            .map(|l| parse_lobe(l))
+            .collect::<Result<Vec<_>, _>>()?;
+        Planted::new(&args.input, Lobes::Given(lobes), args.seed)?
     };
+    let Planted {
+        rules,
+        seed,
+        placement,
+        source,
+    } = planted;
     let sides = match args.tessellation {
         Some(t) if !(3..=64).contains(&t) => bail!("--tessellation {t}: expected 3..64 sides"),
         Some(t) => t,

@@ -4,7 +4,6 @@
 
 mod args;
 mod bench;
-mod chart;
 mod city;
 mod draw;
 mod forest;

@@ -2,119 +2,45 @@
 //! over the years, with the year each first runs into the street.
 
 use crate::args::{RankArgs, RankBy};
-use crate::shared::{database, load_street, with_progress};
+use crate::shared::{database, with_progress};
 use anyhow::{Result, bail};
 use sylva::growth::Measured;
-use sylva::street::rank::{Pruning, Study, first_conflicts, rank};
-use sylva::street::{Basis, Kind};
+use sylva::street::Basis;
+use sylva::street::rank::{Pruning, RankRequest, rank};
+use sylva::street::records::{CalibrationRecord, RankRow, to_json};
 
 pub fn run(args: &RankArgs) -> Result<()> {
-    if !(1.0..=sylva::growth::report::MAX_AGE).contains(&args.years) {
+    if !(1.0..=sylva::growth::survey::report::MAX_AGE).contains(&args.years) {
         bail!(
             "--years {}: expected 1 to {} years",
             args.years,
-            sylva::growth::report::MAX_AGE
+            sylva::growth::survey::report::MAX_AGE
         );
     }
-    let (site, prices, costs) = load_street(&args.street)?;
-    let survival = crate::shared::survival(&args.street)?;
-    let basis = match args.by {
-        Some(RankBy::Typical) => Basis::Typical,
-        Some(RankBy::Site) => Basis::Site,
-        None => Basis::default_for(site.is_some()),
+    let mut study = crate::shared::study(&args.street, args.years, args.seed)?;
+    if study.pruning == Pruning::Regime && args.pruning_losses {
+        study.pruning = Pruning::Compare;
+    }
+    let site = study.site.clone();
+    let request = RankRequest {
+        region: args.region.clone(),
+        species: args.species.clone(),
+        study,
+        basis: args.by.map(|b| match b {
+            RankBy::Typical => Basis::Typical,
+            RankBy::Site => Basis::Site,
+        }),
     };
+    let basis = request.basis();
     let db = database(args.database.as_ref())?;
-    let mut species: Vec<Measured> = db
-        .growable(&args.region)
-        .iter()
-        .map(|s| db.find(&args.region, &s.code))
-        .collect::<Result<_, _>>()?;
-    for code in &args.species {
-        if !species
-            .iter()
-            .any(|m| m.species.code.eq_ignore_ascii_case(code))
-        {
-            bail!(
-                "--species {code}: not a growable species of {}; see `sylva species --region {}`",
-                args.region,
-                args.region
-            );
-        }
-    }
-    if !args.species.is_empty() {
-        species.retain(|m| {
-            args.species
-                .iter()
-                .any(|c| c.eq_ignore_ascii_case(&m.species.code))
-        });
-    }
-    if species.is_empty() {
-        let known: Vec<&str> = db.regions().iter().map(|r| r.code.as_str()).collect();
-        bail!(
-            "--region {}: no such region with growable species; regions: {}",
-            args.region,
-            known.join(", ")
-        );
-    }
+    let species = request.species(&db)?;
     if args.calibrate {
         return calibration(&species, args);
     }
-    let count = species.len();
-    let ranked = with_progress(count, |tick| {
-        let study = Study {
-            years: args.years,
-            seed: args.seed,
-            site: site.clone(),
-            prices: prices.clone(),
-            costs: costs.clone(),
-            survival: survival.clone(),
-            pruning: match (args.street.no_pruning, args.pruning_losses) {
-                (true, _) => Pruning::Off,
-                (false, true) => Pruning::Compare,
-                (false, false) => Pruning::Regime,
-            },
-        };
-        rank(species, &study, basis, &|_| tick())
-    });
+    let ranked = with_progress(species.len(), |tick| rank(&request, &db, &|_| tick()))?;
     if args.json {
         for r in &ranked {
-            let first: Vec<serde_json::Value> = first_conflicts(&r.accounts)
-                .iter()
-                .map(|(age, c)| {
-                    serde_json::json!({"kind": c.kind.name(), "age": age, "part": c.part.name(),
-                        "leaf_share": (c.leaf_share * 1e3).round() / 1e3})
-                })
-                .collect();
-            println!(
-                "{}",
-                serde_json::json!({
-                    "species": r.species.species.code,
-                    "name": r.species.species.common,
-                    "years": r.last_age(),
-                    "ranked_by": basis.name(),
-                    "benefits_usd": (r.benefits(basis) * 100.0).round() / 100.0,
-                    "costs_usd": r.accounts.iter().any(|a| a.costs.is_some())
-                        .then(|| (r.costs() * 100.0).round() / 100.0),
-                    "net_usd": (r.net(basis) * 100.0).round() / 100.0,
-                    "per_tree_planted": true,
-                    "alive_at_end": (r.alive_at_end() * 1e4).round() / 1e4,
-                    "survival": r.survival,
-                    "costs_by_item_usd": rounded(&r.costs_by_item()),
-                    "typical": {
-                        "benefits_usd": (r.benefits(Basis::Typical) * 100.0).round() / 100.0,
-                        "net_usd": (r.net(Basis::Typical) * 100.0).round() / 100.0,
-                        "by_category_usd": rounded(&r.by_category(Basis::Typical)),
-                    },
-                    "site": {
-                        "benefits_usd": (r.benefits(Basis::Site) * 100.0).round() / 100.0,
-                        "net_usd": (r.net(Basis::Site) * 100.0).round() / 100.0,
-                        "by_category_usd": rounded(&r.by_category(Basis::Site)),
-                    },
-                    "first_conflicts": first,
-                    "pruning": pruning_json(r),
-                    "not_computed": r.missing,
-                })
-            );
+            println!("{}", to_json(&RankRow::of(r, basis)));
         }
         return Ok(());
     }
@@ -152,22 +78,10 @@ pub fn run(args: &RankArgs) -> Result<()> {
         "", "", "", "this site", "position", "", "this site", "position"
     );
     for (i, r) in ranked.iter().enumerate() {
-        // Growing into the clear heights over roadway and sidewalk is met by raising the
-        // crown; fixtures (wall, awnings, signs, lines, lamps, sight lines, curb) are not.
-        let first = first_conflicts(&r.accounts);
-        let earliest = |clearance: bool| {
-            first
-                .iter()
-                .filter(|(_, c)| matches!(c.kind, Kind::Roadway | Kind::Sidewalk) == clearance)
-                .min_by(|a, b| a.0.total_cmp(&b.0))
-                .map(|(age, c)| format!("{} at {age:.0}", c.kind.name()))
-                .unwrap_or_else(|| {
-                    if site.is_some() {
-                        "none".into()
-                    } else {
-                        "(no --site)".into()
-                    }
-                })
+        let earliest = |clearance: bool| match r.earliest(clearance) {
+            Some((age, kind)) => format!("{} at {age:.0}", kind.name()),
+            None if site.is_some() => "none".into(),
+            None => "(no --site)".into(),
         };
         let (pruning, conflict) = (earliest(true), earliest(false));
         let carbon_missing = if r.accounts.iter().any(|a| a.co2_stored_kg.is_none()) {
@@ -212,18 +126,6 @@ pub fn run(args: &RankArgs) -> Result<()> {
     Ok(())
 }
 
-/// Named dollar figures as a JSON object, to the cent (`null` where not computed).
-fn rounded(items: &[(&'static str, Option<f64>)]) -> serde_json::Value {
-    let mut out = serde_json::Map::new();
-    for (name, v) in items {
-        out.insert(
-            name.to_string(),
-            serde_json::json!(v.map(|x| (x * 100.0).round() / 100.0)),
-        );
-    }
-    out.into()
-}
-
 /// `--calibrate`: the site model around the standard house beside i-Tree's figures.
 fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
     use sylva::street::accounts::calibrate::{
@@ -257,25 +159,7 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
     add_climate_left_out(&mut rows);
     if args.json {
         for r in &rows {
-            println!(
-                "{}",
-                serde_json::json!({
-                    "species": r.code, "dbh_target_cm": r.target_cm,
-                    "age": r.reached.map(|x| x.0), "dbh_cm": r.reached.map(|x| x.1),
-                    "projection_m2": r.reached.map(|_| r.projection_m2),
-                    "shade_cooling_kwh": r.reached.map(|_| r.shade.0),
-                    "shade_gas_kbtu": r.reached.map(|_| r.shade.1),
-                    "climate_cooling_kwh": r.climate.map(|c| c.0),
-                    "climate_gas_kbtu": r.climate.map(|c| c.1),
-                    "useful_winter_share": r.useful_share,
-                    "cooling_kwh": r.reached.map(|_| r.cooling_kwh),
-                    "itree_electricity_kwh": r.reached.map(|_| r.itree.0),
-                    "gas_kbtu": r.reached.map(|_| r.gas_kbtu),
-                    "itree_natural_gas_kbtu": r.reached.map(|_| r.itree.1),
-                    "cooling_in_bounds": r.reached.map(|_| r.cooling_in_bounds()),
-                    "heating_in_bounds": r.reached.map(|_| r.heating_in_bounds()),
-                })
-            );
+            println!("{}", to_json(&CalibrationRecord::of(r)));
         }
         return Ok(());
     }
@@ -348,38 +232,4 @@ fn calibration(species: &[Measured], args: &RankArgs) -> Result<()> {
     }
     println!("in bounds: cooling {cool} of {n}, heating {heat} of {n}");
     Ok(())
-}
-
-/// A run's pruning as JSON: its totals and each year a cycle fell due (`null` where the run
-/// was not pruned: no site, `--no-pruning`, or a regime that cuts nothing).
-fn pruning_json(r: &sylva::street::rank::Ranked) -> serde_json::Value {
-    let Some(total) = r.pruning() else {
-        return serde_json::Value::Null;
-    };
-    let kinds = |k: &[Kind]| k.iter().map(|k| k.name()).collect::<Vec<_>>();
-    let round = |v: f64, places: i32| (v * 10f64.powi(places)).round() / 10f64.powi(places);
-    let lost = |i: usize| r.benefits_lost.as_ref().map(|l| round(l[i], 2));
-    let years: Vec<serde_json::Value> = r
-        .accounts
-        .iter()
-        .enumerate()
-        .filter_map(|(i, a)| {
-            let mut year = sylva::street::accounts::table::pruning_json(a.pruning.as_ref()?);
-            year["age"] = a.age.into();
-            year["leaf_area_m2"] = round(a.surfaces.0, 1).into();
-            year["benefits_lost_usd"] = lost(i).into();
-            Some(year)
-        })
-        .collect();
-    serde_json::json!({
-        "cycles_with_cuts": total.cycles,
-        "visits": total.visits,
-        "wood_removed_m3": round(total.wood_m3, 4),
-        "leaf_removed_m2": round(total.leaf_m2, 1),
-        "cost_usd": round(total.cost, 2),
-        "benefits_lost_usd": total.benefits_lost.map(|v| round(v, 2)),
-        "resolved": kinds(&total.resolved),
-        "unresolved": kinds(&total.unresolved),
-        "years": years,
-    })
 }

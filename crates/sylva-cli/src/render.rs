@@ -10,10 +10,11 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use sylva::forest::{ForestSpec, is_forest_file};
 use sylva::growth::dressed_mesh;
-use sylva::growth::report::{self, Cohort};
+use sylva::growth::survey::report;
 use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::street::study::{Pruning, Spread, StreetTree, Study};
 use sylva::{GenerateOptions, Wind};
-use sylva_render::caption::{grouped, side_by_side, tile, with_caption};
+use sylva_render::caption::{grouped, lod_comparison};
 use sylva_render::glb_scene::{UploadedScene, read_glb_scene};
 use sylva_render::{Camera, ForestOnGpu, Picture, Renderer, Scene, View};
 
@@ -24,12 +25,6 @@ fn numbered(path: &Path, index: u32) -> PathBuf {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
     path.with_file_name(format!("{stem}-{index:04}.png"))
-}
-
-/// Lays `pictures` out in a grid on one sheet, as square as it can be.
-fn contact_sheet(pictures: &[Picture]) -> Picture {
-    let columns = (pictures.len() as f64).sqrt().ceil() as u32;
-    tile(pictures, columns, 0, 255)
 }
 
 /// The wind the flags ask for at `time`.
@@ -147,9 +142,14 @@ fn street_tree(args: &RenderArgs, age: f64) -> Result<(TreeMesh, sylva::growth::
             last.floor()
         );
     }
-    let mut cohort = Cohort::new(vec![m.clone()], args.tree.seed);
-    let skeleton = cohort.advance_to(age).pop().context("one tree grown")?;
-    Ok(dressed_mesh(&skeleton, &m, args.season, &report::MESH))
+    // Grown straight to its age, never cut, through the street's study pipeline.
+    let study = Study {
+        seed: args.tree.seed,
+        pruning: Pruning::Off,
+        ..Study::new(age)
+    };
+    let year = StreetTree::new(&m, &study).grow_to(age, Spread::Whole, |_, _, _, _| {});
+    Ok(dressed_mesh(&year.skeleton, &m, args.season, &report::MESH))
 }
 
 /// One view of `scene`, or a turntable sheet of several, as the flags ask.
@@ -165,18 +165,7 @@ fn draw(
     let mut base = args.view.to_view();
     base.fov_y = args.fov;
     Ok(match args.turntable {
-        Some(n) => {
-            let views: Result<Vec<Picture>> = (0..n)
-                .map(|i| {
-                    let view = View {
-                        azimuth: base.azimuth + 360.0 * i as f32 / n as f32,
-                        ..base
-                    };
-                    Ok(renderer.render(&scene, &view, width, height)?)
-                })
-                .collect();
-            contact_sheet(&views?)
-        }
+        Some(n) => renderer.turntable(&scene, &base, n, (width, height))?,
         None => renderer.render(&scene, &base, width, height)?,
     })
 }
@@ -275,19 +264,6 @@ fn render_forest(
         LodMode::Compare => {
             let (with, with_ms) = frame(true)?;
             let (without, without_ms) = frame(false)?;
-            let size = (width as f32 / 48.0).clamp(11.0, 22.0);
-            let caption =
-                |title: &str, p: &Picture, ms: f64| vec![title.to_string(), p.stats.describe(ms)];
-            let left = with_caption(
-                &with,
-                &caption("with range degradation (LOD)", &with, with_ms),
-                size,
-            );
-            let right = with_caption(
-                &without,
-                &caption("full detail (no LOD)", &without, without_ms),
-                size,
-            );
             println!("with LOD:    {}", with.stats.describe(with_ms));
             println!("without LOD: {}", without.stats.describe(without_ms));
             if let Some(d) = with.mean_difference(&without) {
@@ -297,7 +273,7 @@ fn render_forest(
                     without_ms / with_ms.max(1e-3)
                 );
             }
-            side_by_side(&[left, right], 8)
+            lod_comparison((&with, with_ms), (&without, without_ms), width)
         }
     };
     save_picture(&args.output, &picture)?;

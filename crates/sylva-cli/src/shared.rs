@@ -14,6 +14,7 @@ use sylva::forest::{Forest, ForestSpec, ForestSpecies};
 use sylva::growth::Database;
 use sylva::lod::LodTree;
 use sylva::nagel::WhiskParams;
+use sylva::street::study::{Pruning, Study};
 use sylva::street::{Costs, Prices, Site, Survival};
 use sylva::{Skeleton, TreeParams};
 use sylva_render::{Picture, Renderer};
@@ -87,16 +88,52 @@ pub fn forest_species(spec: &ForestSpec) -> Result<Vec<ForestSpecies>> {
     Ok(species)
 }
 
-/// Runs `grow` with a progress bar on stderr (hidden when stderr is not a terminal), passing
-/// it the tick to call as each tree is done.
+/// A progress bar on stderr (hidden when stderr is not a terminal), restarted at each stage
+/// a library run reports.
+pub struct StageBar {
+    bar: indicatif::ProgressBar,
+    stage: std::sync::Mutex<String>,
+}
+
+impl StageBar {
+    pub fn new() -> StageBar {
+        let bar = indicatif::ProgressBar::new(0);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} [{elapsed}<{eta}]")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        StageBar {
+            bar,
+            stage: Default::default(),
+        }
+    }
+
+    pub fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+impl sylva_city::Progress for StageBar {
+    fn step(&self, stage: &str, done: usize, total: usize) {
+        let mut s = self.stage.lock().unwrap_or_else(|e| e.into_inner());
+        if *s != stage {
+            *s = stage.to_string();
+            self.bar.reset();
+            self.bar.set_message(stage.to_string());
+        }
+        self.bar
+            .set_length(if total > 0 { total } else { done } as u64);
+        self.bar.set_position(done as u64);
+    }
+}
+
+/// Runs `grow` with a progress bar, passing it the tick to call as each of `count` trees is
+/// done.
 pub fn with_progress<T>(count: usize, grow: impl FnOnce(&(dyn Fn() + Sync)) -> T) -> T {
-    let bar = indicatif::ProgressBar::new(count as u64).with_message("growing trees");
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} [{elapsed}<{eta}]")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    let grown = grow(&|| bar.inc(1));
-    bar.finish_and_clear();
+    let bar = StageBar::new();
+    sylva_city::Progress::step(&bar, "growing trees", 0, count);
+    let grown = grow(&|| bar.bar.inc(1));
+    bar.finish();
     grown
 }
 
@@ -204,19 +241,22 @@ pub fn database(dir: Option<&PathBuf>) -> Result<Cow<'static, Database>> {
     })
 }
 
-/// The site, prices and costs the flags name, each read and checked.
-pub fn load_street(args: &StreetArgs) -> Result<(Option<Site>, Option<Prices>, Option<Costs>)> {
-    let site = args.site.as_deref().map(Site::load).transpose()?;
-    let prices = args.prices.as_deref().map(Prices::load).transpose()?;
-    let costs = args.costs.as_deref().map(Costs::load).transpose()?;
-    survival(args)?;
-    Ok((site, prices, costs))
-}
-
-/// `--survival`, checked; none for the region's built-in.
-pub fn survival(args: &StreetArgs) -> Result<Option<Survival>> {
-    Ok(args
-        .survival
-        .map(|s| Survival::constant(s, "--survival"))
-        .transpose()?)
+/// The street's flags as a study of `years` from `seed`: the site, prices, costs and survival
+/// read and checked, and the site's pruning regime carried out unless `--no-pruning`.
+pub fn study(args: &StreetArgs, years: f64, seed: u64) -> Result<Study> {
+    Ok(Study {
+        years,
+        seed,
+        site: args.site.as_deref().map(Site::load).transpose()?,
+        prices: args.prices.as_deref().map(Prices::load).transpose()?,
+        costs: args.costs.as_deref().map(Costs::load).transpose()?,
+        survival: (args.survival)
+            .map(|s| Survival::constant(s, "--survival"))
+            .transpose()?,
+        pruning: if args.no_pruning {
+            Pruning::Off
+        } else {
+            Pruning::Regime
+        },
+    })
 }

@@ -7,12 +7,11 @@ use crate::shared::{headless, save_picture, with_progress};
 use anyhow::{Context, Result, bail};
 use sylva::export::write_atomically;
 use sylva::growth::Database;
-use sylva::growth::report;
-use sylva::growth::sweep::{QUANTITIES, growable_pairs, markdown, sweep_all};
-use sylva::growth::{Month, dressed_mesh};
+use sylva::growth::survey::sweep::{SweepRecord, growable_pairs, markdown, sweep_all};
+use sylva::record::to_json;
 use sylva::skeleton::Skeleton;
-use sylva::street::energy::crown::leaf_centre;
-use sylva_render::coverage::{self, Coverage};
+use sylva::street::energy::opacity::{CoverageRecord, LeafAndBare, OpacityRecord};
+use sylva_render::coverage;
 
 pub fn run(args: &SweepArgs) -> Result<()> {
     let db = Database::builtin();
@@ -44,37 +43,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     });
     for r in &rows {
         if args.json {
-            let misses: Vec<_> = r
-                .misses()
-                .iter()
-                .map(|&(k, worst, age)| {
-                    serde_json::json!({"quantity": QUANTITIES[k], "worst": worst, "age": age})
-                })
-                .collect();
-            let adjusted: Vec<_> = r
-                .adjustments
-                .iter()
-                .map(|a| {
-                    serde_json::json!({
-                        "quantity": QUANTITIES[a.quantity],
-                        "ages": [a.ages.0, a.ages.1],
-                        "shift": a.shift,
-                        "why": a.why,
-                    })
-                })
-                .collect();
-            let line = serde_json::json!({
-                "region": r.region,
-                "species": r.code,
-                "ages": [r.ages.0, r.ages.1],
-                "worst": r.worst,
-                "at": r.at,
-                "within": r.within(),
-                "misses": misses,
-                "adjusted": adjusted,
-                "seconds": r.seconds,
-            });
-            println!("{line}");
+            println!("{}", to_json(&SweepRecord::of(r)));
         } else {
             let worst: Vec<String> = (0..5)
                 .map(|k| format!("{} {:+5.1}%@{:<3}", short(k), r.worst[k] * 100.0, r.at[k]))
@@ -105,7 +74,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
 }
 
 /// A crown's picture measured in leaf and bare (`--picture`).
-type Pictured = Option<(Coverage, Coverage)>;
+type Pictured = Option<LeafAndBare<CoverageRecord>>;
 
 /// `--beam AGES`: the share of a beam each crown stops, in leaf and bare; with `--picture`,
 /// what its picture covers too.
@@ -156,28 +125,17 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
             let (Some(renderer), Some(px)) = (&renderer, args.picture) else {
                 return Ok(None);
             };
-            let (mesh, _) = dressed_mesh(skeleton, m, Some(Month::SUMMER), &report::MESH);
-            // The crown's heights, as the model's beam takes them: its leaves'.
-            let crown = skeleton
-                .leaves
-                .iter()
-                .map(|l| leaf_centre(l).z)
-                .fold((f32::MAX, f32::MIN), |(lo, hi), z| (lo.min(z), hi.max(z)));
-            let (leaf, leaf_png) = coverage::measure(renderer, &mesh, 0.0, px, true, crown)?;
-            // Bare, the crown shows the short twigs its leaves hid (`Skeleton::short_twigs`).
-            let leafless = Skeleton {
-                leaves: Vec::new(),
-                ..skeleton.clone()
-            };
-            let (bare_mesh, _) = dressed_mesh(&leafless, m, Some(Month::SUMMER), &report::MESH);
-            let (bare, bare_png) = coverage::measure(renderer, &bare_mesh, 0.0, px, false, crown)?;
+            let drawn = coverage::crown_coverage(renderer, m, skeleton, px)?;
             if let Some(dir) = &args.pictures {
-                for (what, png) in [("leaf", leaf_png), ("bare", bare_png)] {
+                for (what, (_, png)) in [("leaf", &drawn.leaf), ("bare", &drawn.bare)] {
                     let name = format!("{}-{}-{age}-{what}.png", m.region.code, m.species.code);
-                    save_picture(&dir.join(name), &png)?;
+                    save_picture(&dir.join(name), png)?;
                 }
             }
-            Ok(Some((leaf, bare)))
+            Ok(Some(LeafAndBare {
+                leaf: drawn.leaf.0.record(),
+                bare: drawn.bare.0.record(),
+            }))
         };
     let rows = with_progress(pairs.len(), |tick| {
         opacity_all(pairs, &ages, args.seed, &picture, &tick)
@@ -218,18 +176,7 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
     for (r, pictured) in rows.iter().flatten() {
         let pictured = pictured.as_ref().map_err(|e| anyhow::anyhow!("{e:#}"))?;
         if args.json {
-            let b = |s: sylva::street::energy::crown::BeamStop| serde_json::json!({"stopped": s.stopped, "outline_m2": s.outline_m2});
-            let c = |c: &Coverage| serde_json::json!({"covered": c.covered, "leaf_share": c.leaf_share, "bare_tips": c.bare_tips, "outline_m2": c.outline_px * c.metres_per_px * c.metres_per_px});
-            println!(
-                "{}",
-                serde_json::json!({
-                    "region": r.region, "species": r.code, "age": r.age,
-                    "leaf_area_m2": r.leaf_area_m2, "bark_area_m2": r.bark_area_m2,
-                    "side": {"leaf": b(r.side.0), "bare": b(r.side.1)},
-                    "sun": {"leaf": b(r.sun.0), "bare": b(r.sun.1)},
-                    "picture": pictured.as_ref().map(|(l, w)| serde_json::json!({"leaf": c(l), "bare": c(w)})),
-                })
-            );
+            println!("{}", to_json(&OpacityRecord::of(r, *pictured)));
         } else {
             print!(
                 "{:<7} {:<7} {:>4.0} {:>7.0} {:>7.0}  {:>5.0}% {:>5.0}%  {:>5.0}% {:>5.0}%  {:>6.1} m2",
@@ -244,7 +191,7 @@ fn beam(pairs: &[sylva::growth::Measured], args: &SweepArgs) -> Result<()> {
                 r.sun.1.stopped * 100.0,
                 r.side.0.outline_m2
             );
-            if let Some((l, w)) = pictured {
+            if let Some(LeafAndBare { leaf: l, bare: w }) = pictured {
                 print!(
                     "   {:>5.0}% {:>5.0}% {:>5.0}% {:>5.1}%",
                     l.covered * 100.0,

@@ -9,9 +9,9 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use sylva_city::geo::Projection;
-use sylva_city::prototypes::{GrowthTask, Prototype};
 use sylva_city::tasks::{self, CityJob, from_bytes, to_bytes};
 use sylva_city::tiles::{Tile, TileTask};
+use sylva_city::trees::prototypes::{GrowthTask, Prototype};
 use sylva_city::{CityOptions, Layout, LengthUnit, Quiet};
 
 /// A city's settings as the `sylva` package passes them (JSON): the inventory and its columns,

@@ -7,6 +7,7 @@
 
 mod city;
 mod model;
+mod street;
 
 use pyo3::create_exception;
 use pyo3::prelude::*;
@@ -38,5 +39,6 @@ fn _sylva(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     model::register(m)?;
     city::register(m)?;
+    street::register(m)?;
     Ok(())
 }

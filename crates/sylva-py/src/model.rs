@@ -10,10 +10,14 @@ use std::collections::BTreeMap;
 use sylva::GenerateOptions;
 use sylva::export::{Materials, to_glb};
 use sylva::growth::Database;
-use sylva::growth::report::{self, Cohort};
 use sylva::growth::season::{Month, dressed_mesh};
-use sylva::mesh::{Mesh, MeshOptions, TreeMesh, mesh_tree};
-use sylva::street::{Assessor, Costs, Prices, Site, accounts::table};
+use sylva::growth::survey::report;
+use sylva::mesh::{Mesh, TreeMesh};
+use sylva::record::to_json;
+use sylva::street::records::YearRecord;
+use sylva::street::study::{Pruning, Spread, StreetTree, Study};
+use sylva::street::{Costs, Prices, Site};
+use sylva::weber_penn::made::{MakeError, make};
 
 /// A tree's mesh, its materials and what was made.
 #[pyclass(frozen, module = "sylva._sylva")]
@@ -164,31 +168,17 @@ fn generate(
             max_triangles,
             ..Default::default()
         };
-        let skeleton = sylva::generate(&params, &options)
-            .map_err(|e| error(format!("species {species}: {e}")))?;
-        let mesh = mesh_tree(&skeleton, &MeshOptions::for_species(&params, quality));
-        if mesh.triangle_count() as u64 > max_triangles {
-            return Err(error(format!(
-                "the mesh has {} triangles, over the budget of {max_triangles} (max_triangles)",
-                mesh.triangle_count()
-            )));
-        }
-        let stats = skeleton.stats();
-        let summary = serde_json::json!({
-            "species": params.name,
-            "seed": seed,
-            "stems_per_level": stats.stems_per_level,
-            "leaves": stats.leaves,
-            "vertices": mesh.vertex_count(),
-            "triangles": mesh.triangle_count(),
-            "height_m": stats.height,
-            "crown_width_m": stats.crown_width,
-            "notes": params.notes,
-        });
+        // The same tree and summary as `sylva generate --json` (less its output file).
+        let made = make(&params, &options, quality).map_err(|e| match e {
+            MakeError::OverBudget(e) => error(format!("{e} (max_triangles)")),
+            e => error(format!("species {species}: {e}")),
+        })?;
+        let mut summary = to_json(&made.record(&params, seed));
+        summary["notes"] = serde_json::json!(params.notes);
         Ok(Model {
             materials: Materials::from_srgb(params.bark_color, params.leaf_color),
             name: params.name.clone(),
-            mesh,
+            mesh: made.mesh,
             summary,
         })
     })
@@ -238,24 +228,29 @@ fn grow(
             .map(Costs::load)
             .transpose()
             .map_err(error)?;
-        let mut assessor = Assessor::new(&m, site, prices, costs);
+        // The wheel's tree is grown straight to its age and never cut: its summary is the
+        // study pipeline's year, as `sylva grow --json` writes it.
+        let study = Study {
+            seed,
+            site,
+            prices,
+            costs,
+            pruning: Pruning::Off,
+            ..Study::new(ages[0])
+        };
+        let assessor = study.assessor(&m);
         if money {
             assessor.require_carbon().map_err(error)?;
         }
-        let mut cohort = Cohort::new(vec![m.clone()], seed);
-        let skeletons = cohort.advance_to(ages[0]);
-        let skeleton = &skeletons[0];
-        let record = *cohort.history[0]
-            .last()
-            .ok_or_else(|| error("the tree was not grown"))?;
-        let account = assessor.year(ages[0], &record.model, skeleton);
+        let mut tree = StreetTree::new(&m, &study);
+        let year = tree.grow_to(ages[0], Spread::Whole, |_, _, _, _| {});
+        let skeleton = &year.skeleton;
         let (mesh, dress) = dressed_mesh(skeleton, &m, month, &report::MESH);
-        let mut summary = report::record_json(&m, &record);
+        let mut summary = to_json(&YearRecord::of(&m, &year));
         summary["region"] = serde_json::json!(m.region.code);
         summary["common_name"] = serde_json::json!(m.species.common);
         summary["scientific_name"] = serde_json::json!(m.species.scientific);
-        summary["street"] = table::json(&account);
-        summary["missing"] = serde_json::json!(assessor.missing());
+        summary["missing"] = serde_json::json!(tree.assessor(0).missing());
         Ok(Model {
             materials: dress.materials(),
             name: m.label(),

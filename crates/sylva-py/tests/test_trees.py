@@ -79,6 +79,28 @@ def test_grow_holds_the_equations_and_reports_the_street():
     assert sylva.grow("PLAC", region="InlVal", age=40).summary["dbh_cm"] > s["dbh_cm"]
 
 
+def test_rank_gives_the_clis_rows(sylva_bin, tmp_path):
+    """`sylva.rank` and `sylva rank --json` make the same request of the same library and write
+    the same record: the rows are equal, field for field."""
+    import os
+    import subprocess
+
+    repo = os.path.join(os.path.dirname(__file__), "..", "..", "..")
+    site = os.path.join(repo, "sites", "narrow-under-wires.toml")
+    rows = sylva.rank("InlVal", years=6, species=["PLAC", "LAIN"], site=site)
+    run = subprocess.run(
+        [sylva_bin, "rank", "--region", "InlVal", "--years", "6", "--species", "PLAC",
+         "--species", "LAIN", "--site", site, "--json"],
+        check=True, capture_output=True, text=True,
+    )
+    cli = [json.loads(line) for line in run.stdout.splitlines()]
+    assert [r["species"] for r in rows] == [r["species"] for r in cli]
+    assert rows == cli
+    assert rows[0]["ranked_by"] == "this site" and rows[0]["per_tree_planted"]
+    with pytest.raises(sylva.SylvaError, match="pruning `sometimes`"):
+        sylva.rank("InlVal", years=2, pruning="sometimes")
+
+
 def test_errors_are_sylva_errors_naming_what_is_wrong():
     with pytest.raises(sylva.SylvaError, match="nope"):
         sylva.generate("nope")

@@ -132,6 +132,22 @@ pub fn tile(pictures: &[Picture], columns: u32, gap: u32, fill: u8) -> Picture {
     out
 }
 
+/// Two frames of one forest side by side, captioned: with range degradation (LOD) on the left,
+/// at full detail on the right, each with what it drew and how long it took.
+pub fn lod_comparison(with: (&Picture, f64), without: (&Picture, f64), width: u32) -> Picture {
+    let size = (width as f32 / 48.0).clamp(11.0, 22.0);
+    let side = |title: &str, (p, ms): (&Picture, f64)| {
+        with_caption(p, &[title.to_string(), p.stats.describe(ms)], size)
+    };
+    side_by_side(
+        &[
+            side("with range degradation (LOD)", with),
+            side("full detail (no LOD)", without),
+        ],
+        8,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,8 +11,13 @@
 
 use crate::{Picture, RenderError, Renderer, Scene, View};
 use std::ops::Range;
+use sylva::Skeleton;
 use sylva::colour::srgb_to_linear;
+use sylva::growth::survey::report::MESH;
+use sylva::growth::{Measured, Month, dressed_mesh};
 use sylva::mesh::TreeMesh;
+use sylva::street::energy::crown::leaf_centre;
+use sylva::street::energy::opacity::{CoverageRecord, LeafAndBare};
 
 /// Lens of the measuring view, degrees: the tree seen from about 14 of its heights away, so
 /// rays through its near and far sides part by under 4 degrees.
@@ -38,6 +43,41 @@ pub struct Coverage {
     pub bare_tips: f64,
     /// Metres a pixel spans at the tree, about.
     pub metres_per_px: f64,
+}
+
+impl Coverage {
+    /// As output: the outline in square metres.
+    pub fn record(&self) -> CoverageRecord {
+        CoverageRecord {
+            covered: self.covered,
+            leaf_share: self.leaf_share,
+            bare_tips: self.bare_tips,
+            outline_m2: self.outline_px * self.metres_per_px * self.metres_per_px,
+        }
+    }
+}
+
+/// A grown street tree's crown measured from the side in summer, in leaf and bare (the short
+/// twigs its leaves hid showing), in pictures `side` pixels across, with the pictures.
+pub fn crown_coverage(
+    renderer: &Renderer,
+    m: &Measured,
+    skeleton: &Skeleton,
+    side: u32,
+) -> Result<LeafAndBare<(Coverage, Picture)>, RenderError> {
+    let (mesh, _) = dressed_mesh(skeleton, m, Some(Month::SUMMER), &MESH);
+    // The crown's heights, as the model's beam takes them: its leaves'.
+    let crown = (skeleton.leaves.iter())
+        .map(|l| leaf_centre(l).z)
+        .fold((f32::MAX, f32::MIN), |(lo, hi), z| (lo.min(z), hi.max(z)));
+    let leaf = measure(renderer, &mesh, 0.0, side, true, crown)?;
+    let leafless = Skeleton {
+        leaves: Vec::new(),
+        ..skeleton.clone()
+    };
+    let (bare_mesh, _) = dressed_mesh(&leafless, m, Some(Month::SUMMER), &MESH);
+    let bare = measure(renderer, &bare_mesh, 0.0, side, false, crown)?;
+    Ok(LeafAndBare { leaf, bare })
 }
 
 /// Draws `mesh` level from `azimuth` degrees (0: from the south, looking north, as the model's

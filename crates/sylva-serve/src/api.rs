@@ -14,9 +14,13 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use sylva::drawing::{DrawOptions, View, draw_svg};
 use sylva::growth::Measured;
-use sylva::growth::report::{self, AgeRecord};
+use sylva::growth::survey::report::{self, AgeRecord};
+use sylva::street::accounts::table;
 use sylva::street::picture::site_picture;
-use sylva::street::{accounts::table, energy::climate::climate};
+use sylva::street::records::{
+    GrowableRecord, PageConflict, PageGrowth, PageRow, RegionLabel, RegionRecord, SpeciesLabel,
+    to_json,
+};
 
 type Params = AxumQuery<HashMap<String, String>>;
 type Reply = Result<Response, ApiError>;
@@ -32,19 +36,8 @@ fn regions_json(state: &State) -> serde_json::Value {
     let mut regions: Vec<_> = db.regions().iter().collect();
     // Modesto (the seeds' city) first, the rest as the database lists them.
     regions.sort_by_key(|r| r.code != "InlVal");
-    let list: Vec<_> = regions
-        .iter()
-        .map(|r| {
-            serde_json::json!({
-                "code": r.code,
-                "name": r.name,
-                "city": r.city,
-                "latitude": climate(&r.code).map(|c| c.latitude),
-                "species": db.growable(&r.code).len(),
-            })
-        })
-        .collect();
-    serde_json::Value::Array(list)
+    let list: Vec<_> = regions.iter().map(|r| RegionRecord::of(r, db)).collect();
+    to_json(&list)
 }
 
 /// A JSON answer made once and kept.
@@ -85,15 +78,10 @@ fn species_json(state: &State, region: &str) -> serde_json::Value {
             continue;
         };
         let ages = grown::ages_of(&m);
-        list.push(serde_json::json!({
-            "code": s.code,
-            "common": s.common,
-            "scientific": s.scientific,
-            "type": s.tree_type,
-            "ages": [ages.first(), ages.last()],
-        }));
+        let shown = [ages.first().copied(), ages.last().copied()];
+        list.push(GrowableRecord::of(&m, shown));
     }
-    serde_json::Value::Array(list)
+    to_json(&list)
 }
 
 /// `GET /api/status`: what the cache holds against its bound.
@@ -117,28 +105,6 @@ pub async fn site_list() -> Json<serde_json::Value> {
         .map(|s| serde_json::json!({"key": s.key, "label": s.label, "site": s.site}))
         .collect();
     Json(serde_json::Value::Array(list))
-}
-
-fn dims(model: &sylva::growth::Dimensions) -> serde_json::Value {
-    let r = |v: f64, k: f64| (v * k).round() / k;
-    serde_json::json!({
-        "height": r(model.height, 100.0),
-        "crown_height": r(model.crown_height, 100.0),
-        "crown_diameter": r(model.crown_diameter, 100.0),
-        "dbh": r(model.dbh, 10.0),
-        "leaf_area": r(model.leaf_area, 10.0),
-    })
-}
-
-fn measured_dims(r: &AgeRecord) -> serde_json::Value {
-    let t = &r.measured;
-    dims(&sylva::growth::Dimensions {
-        height: t.height,
-        crown_height: t.crown_height,
-        crown_diameter: t.crown_diameter,
-        dbh: t.dbh,
-        leaf_area: t.leaf_area,
-    })
 }
 
 impl State {
@@ -210,39 +176,22 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
     }
     let growth = state.growth(&region, m, seed, pruned)?;
     let entries = growth.all().await;
-    let rows: Vec<_> = entries
-        .iter()
-        .map(|e| {
-            serde_json::json!({
-                "age": e.record.age,
-                "model": dims(&e.record.model),
-                "measured": measured_dims(&e.record),
-                "street": table::json(&e.accounts[site]),
+    let body = to_json(&PageGrowth {
+        species: SpeciesLabel::of(m),
+        region: RegionLabel::of(m),
+        seed,
+        site: sites()[site].key.to_string(),
+        pruning: pruned.is_some(),
+        rows: (entries.iter())
+            .map(|e| PageRow::of(&e.record, &e.accounts[site]))
+            .collect(),
+        first_conflicts: (first_conflicts(&entries, site).into_iter())
+            .map(|(age, kind)| PageConflict {
+                kind: kind.name().to_string(),
+                age,
             })
-        })
-        .collect();
-    let first: Vec<_> = first_conflicts(&entries, site)
-        .into_iter()
-        .map(|(age, kind)| serde_json::json!({"kind": kind.name(), "age": age}))
-        .collect();
-    let (bark, leaves) = m.colours();
-    let body = serde_json::json!({
-        "species": {
-            "code": m.species.code,
-            "common": m.species.common,
-            "scientific": m.species.scientific,
-            "type": m.species.tree_type,
-            "label": m.label(),
-            "bark": bark,
-            "leaves": leaves,
-        },
-        "region": {"code": m.region.code, "name": m.region.name, "city": m.region.city},
-        "seed": seed,
-        "site": sites()[site].key,
-        "pruning": pruned.is_some(),
-        "rows": rows,
-        "first_conflicts": first,
-        "missing": grown::missing(m, site),
+            .collect(),
+        missing: grown::missing(m, site),
     });
     let json = axum::body::Bytes::from(body.to_string());
     // Kept only whole: a growth that stopped short is asked again next time.

@@ -48,6 +48,11 @@ const FILES: &[(&str, &str, &[u8])] = &[
         include_bytes!("../assets/gl.js"),
     ),
     (
+        "/city-ground.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("../assets/city-ground.js"),
+    ),
+    (
         "/city-trees.js",
         "text/javascript; charset=utf-8",
         include_bytes!("../assets/city-trees.js"),

@@ -7,12 +7,12 @@ use std::sync::OnceLock;
 use sylva::ExportError;
 use sylva::Skeleton;
 use sylva::export::{Materials, shelled_glb, to_glb};
-use sylva::growth::report::{AgeRecord, Cohort, MESH};
+use sylva::growth::survey::report::{AgeRecord, MESH};
 use sylva::growth::{Dress, Measured, dressed_mesh};
 use sylva::lod::{LodTree, leaf_shell};
 use sylva::mesh::{MeshOptions, TreeMesh, leaf_template};
 use sylva::skeleton::LeafShape;
-use sylva::street::accounts::pruner::Pruner;
+use sylva::street::study::{Spread, StreetTree, StudyYear};
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
 /// A planting site the page offers: its key in the API, what the page calls it, and the site.
@@ -121,16 +121,8 @@ pub fn grow_all(
     pruned: Option<usize>,
     mut done: impl FnMut(AgeEntry) -> bool,
 ) {
-    let pruner = pruned.and_then(|s| Some((s, Pruner::new(&sites().get(s)?.site, None)?)));
-    let mut assessors: Vec<Assessor> = sites()
-        .iter()
-        .map(|s| Assessor::new(m, Some(s.site.clone()), None, None))
-        .collect();
-    // The pruned site's account charges its cycles in place of the cost table's own pruning.
-    if let Some((s, _)) = &pruner {
-        assessors[*s].charge_cycles();
-    }
-    let mut cohort = Cohort::new(vec![m.clone()], seed);
+    let on: Vec<Site> = sites().iter().map(|s| s.site.clone()).collect();
+    let mut tree = StreetTree::on_sites(m, seed, &on, pruned);
     // The page draws no bark pattern (its rings are too coarse to carry one), but a species
     // whose twigs are darker than its bark (the white birch's) shows them so.
     let web_mesh = MeshOptions {
@@ -138,23 +130,12 @@ pub fn grow_all(
         ..WEB_MESH
     };
     for age in ages_of(m) {
-        let age = f64::from(age);
-        let cycle = (pruner.as_ref())
-            .and_then(|(_, p)| p.advance(&mut cohort.growers[0], age, |_, _, _, _| {}));
-        let skeleton = cohort
-            .advance_to(age)
-            .pop()
-            .expect("a cohort of one gives one skeleton");
-        let record = *cohort.history[0]
-            .last()
-            .expect("advance_to records the age");
-        let mut accounts: Vec<YearAccount> = assessors
-            .iter_mut()
-            .map(|a| a.year(age, &record.model, &skeleton))
-            .collect();
-        if let Some((s, _)) = &pruner {
-            accounts[*s].record_pruning(cycle, 1.0);
-        }
+        let StudyYear {
+            record,
+            accounts,
+            skeleton,
+            ..
+        } = tree.grow_to(f64::from(age), Spread::Whole, |_, _, _, _| {});
         // The page draws crowns in leaf, which hide the short twigs: each age keeps its frame
         // and leaves, and the memory the twigs would take goes to more growths held (the
         // accounts above read the whole tree, twigs' wood included).

@@ -5,7 +5,7 @@ use crate::grown::{AgeEntry, ages_of, full_mesh};
 use crate::params::ApiError;
 use std::sync::{Arc, Mutex};
 use sylva::growth::Measured;
-use sylva::growth::report::age_label;
+use sylva::growth::survey::report::age_label;
 use sylva_render::caption::with_caption;
 use sylva_render::street::comparison_picture;
 use sylva_render::{Choice, Renderer};

@@ -210,7 +210,7 @@ impl GrowthViewer {
         if self.uploaded == Some(self.age) || self.age >= self.ready() {
             return;
         }
-        let options = sylva::growth::report::MESH;
+        let options = sylva::growth::survey::report::MESH;
         self.trees = self
             .grown
             .iter()

@@ -7,7 +7,7 @@
 //! ```
 
 use sylva::export::{Materials, to_glb, write_atomically};
-use sylva::growth::report::{MAX_AGE, MESH};
+use sylva::growth::survey::report::{MAX_AGE, MESH};
 use sylva::growth::{Database, Grower, GrowthOptions, measure};
 use sylva::mesh::mesh_tree;
 

@@ -8,7 +8,7 @@
 //! assert!(t.triangles > 0 && t.warm_ms() > 0.0 && t.copy_ms > 0.0);
 //! ```
 
-use crate::growth::report::MESH;
+use crate::growth::survey::report::MESH;
 use crate::growth::{Database, Grower, GrowthError, GrowthOptions};
 use crate::lod::{LodTree, Viewer};
 use crate::mesh::{MeshOptions, TreeMesh, mesh_tree, mesh_tree_into};
@@ -375,7 +375,7 @@ pub fn street_times(
     code: &str,
     years: f64,
 ) -> Result<StreetTimes, crate::street::StreetError> {
-    use crate::growth::report::Cohort;
+    use crate::growth::survey::report::Cohort;
     use crate::street::{Assessor, Site};
     let measured = Database::builtin().find(region, code)?;
     let site = Site::parse(BENCH_SITE, "the benchmark's site")?;
@@ -457,7 +457,7 @@ pub fn branching_at(
     region: &str,
     code: &str,
     ages: &[f64],
-) -> Result<Vec<(f64, crate::growth::twigs::Branching)>, GrowthError> {
+) -> Result<Vec<(f64, crate::growth::survey::twigs::Branching)>, GrowthError> {
     let measured = Database::builtin().find(region, code)?;
     let last = measured.ages.1;
     let mut grower = Grower::new(measured, GrowthOptions::default());
@@ -468,7 +468,10 @@ pub fn branching_at(
             grower.step_once(dt);
         }
         let skeleton = grower.skeleton();
-        out.push((age, crate::growth::twigs::measure_branching(&skeleton)));
+        out.push((
+            age,
+            crate::growth::survey::twigs::measure_branching(&skeleton),
+        ));
     }
     Ok(out)
 }

@@ -17,9 +17,9 @@
 //! - [`forest::grow_meshes`] (or [`forest::grow_lod`] for range rendering) plants a
 //!   [`forest::ForestSpec`] and grows its variants in parallel; [`forest::Forest::to_glb`]
 //!   writes it with every tree a node sharing its variant's mesh.
-//! - [`growth::report::Cohort`] grows street trees side by side through a run of ages and
-//!   records each against the Urban Tree Database's equations ([`growth::report::csv`], the
-//!   chart data in [`growth::report::CHARTED`]).
+//! - [`growth::survey::report::Cohort`] grows street trees side by side through a run of ages and
+//!   records each against the Urban Tree Database's equations ([`growth::survey::report::csv`], the
+//!   chart data in [`growth::survey::report::CHARTED`]).
 //! - [`lod::LodTree`] stores a tree for range rendering (Weber & Penn section 5);
 //!   [`lod::LodTree::engine_chain`] makes an engine's LOD meshes.
 //! - [`drawing::write_outputs`] writes any line-drawable tree to every file asked for, by
@@ -60,6 +60,7 @@ pub mod mesh;
 pub mod nagel;
 pub mod params;
 pub mod preview;
+pub mod record;
 pub mod rng;
 pub mod skeleton;
 pub mod species;

@@ -5,9 +5,12 @@
 //! read are kept with their line and the reason ([`Rejected`]), never dropped silently.
 
 mod csv_file;
+pub mod families;
 mod geojson_file;
 mod gpkg_file;
 mod layout;
+pub mod regions;
+pub mod species;
 
 pub use layout::{Layout, LengthUnit};
 

@@ -3,9 +3,9 @@
 //! prototype files), each tree a feature with a row of attributes (`EXT_instance_features`,
 //! `EXT_structural_metadata`).
 
-use crate::benefits::TreeYear;
-use crate::plan::{Kind, Planned, ProtoKey};
-use crate::prototypes::Prototype;
+use crate::trees::benefits::TreeYear;
+use crate::trees::plan::{Kind, Planned, ProtoKey};
+use crate::trees::prototypes::Prototype;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
@@ -44,7 +44,7 @@ pub fn schema() -> serde_json::Value {
     // -1 where no model or price gives the figure.
     let benefit = |description: &str| {
         json!({ "type": "SCALAR", "componentType": "FLOAT32", "description": description,
-                "noData": crate::benefits::NO_DATA })
+                "noData": crate::trees::benefits::NO_DATA })
     };
     json!({
         "id": "sylva_city",

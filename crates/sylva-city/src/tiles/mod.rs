@@ -4,14 +4,15 @@
 //! coarser level (REPLACE refinement), and its geometric error is how far that level's
 //! surfaces lie from the whole trees'.
 
+pub(crate) mod atlas;
 pub mod check;
 pub mod content;
 pub mod quadtree;
 
 use crate::CityError;
-use crate::benefits::TreeYear;
-use crate::plan::{Kind, Planned, ProtoKey};
-use crate::prototypes::Prototype;
+use crate::trees::benefits::TreeYear;
+use crate::trees::plan::{Kind, Planned, ProtoKey};
+use crate::trees::prototypes::Prototype;
 use content::TileTree;
 use glam::{DMat4, DVec3};
 use quadtree::Node;

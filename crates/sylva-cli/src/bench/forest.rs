@@ -7,43 +7,25 @@ use anyhow::{Context, Result};
 use glam::Vec3;
 use std::time::Instant;
 use sylva::GenerateOptions;
-use sylva::bench::{APPENDIX_SPECIES, fastest_ms};
+use sylva::bench::APPENDIX_SPECIES;
 use sylva::forest::ForestSpec;
 use sylva::lod::LodTree;
 use sylva::mesh::MeshOptions;
+use sylva_render::bench::{FOV, SIZE, empty_frame_ms, range_frames, stand_frames};
 use sylva_render::caption::grouped;
-use sylva_render::{Camera, ForestOnGpu, Renderer, Scene, View};
-
-const RANGES: [f32; 7] = [10.0, 30.0, 100.0, 300.0, 1000.0, 2000.0, 3000.0];
-const SIZE: (u32, u32) = (1280, 720);
-const FOV: f32 = 45.0;
+use sylva_render::{ForestOnGpu, Renderer, Scene};
 
 /// Frames of `scene` from each range along a low view towards `target`, with and without LOD.
 fn table(renderer: &Renderer, scene: &mut Scene, target: Vec3, runs: u32) -> Result<()> {
-    // The impostors are baked once per scene, as trees are grown once: not part of a frame.
-    renderer.prepare(scene)?;
     println!(
         "{:>8} {:>13} {:>10} {:>10} {:>9} | {:>13} {:>9} | {:>8}",
         "range m", "LOD prims", "lines", "points", "frame ms", "full prims", "frame ms", "x faster"
     );
-    for range in RANGES {
-        let eye = target + Camera::direction(30.0, 8.0) * range;
-        let view = View::look_at(eye, target, FOV);
-        let mut frame = |use_lod: bool, runs: u32| -> Result<_> {
-            scene.use_lod = use_lod;
-            let mut stats = Default::default();
-            let ms = fastest_ms(runs, || {
-                stats = renderer.render(scene, &view, SIZE.0, SIZE.1)?.stats;
-                Ok::<_, sylva_render::RenderError>(())
-            })?;
-            Ok((stats, ms))
-        };
-        let (lod, lod_ms) = frame(true, runs)?;
-        // Full-detail frames of a whole forest take seconds on a CPU rasteriser: once is enough.
-        let (full, full_ms) = frame(false, 1)?;
+    for f in range_frames(renderer, scene, target, runs)? {
+        let ((lod, lod_ms), (full, full_ms)) = (f.lod, f.full);
         println!(
             "{:>8} {:>13} {:>10} {:>10} {:>9.1} | {:>13} {:>9.1} | {:>8.1}",
-            range,
+            f.range,
             grouped(lod.primitives()),
             grouped(lod.lines),
             grouped(lod.points),
@@ -67,14 +49,7 @@ pub fn bench_forest(runs: u32) -> Result<()> {
         SIZE.1
     );
     // Baseline in the same run: an empty scene.
-    let empty = renderer.upload(&Default::default());
-    let mut empty_scene = Scene::new(&empty, [0.5; 3], [0.5; 3]);
-    empty_scene.show_person = false;
-    let base = fastest_ms(runs, || {
-        renderer
-            .render(&empty_scene, &View::orbit(0.0, 10.0), SIZE.0, SIZE.1)
-            .map(drop)
-    })?;
+    let base = empty_frame_ms(&renderer, runs)?;
     println!("empty frame (ground, shadow pass, read-back): {base:.1} ms");
     fir_stand(&renderer, runs, base)?;
 
@@ -140,25 +115,11 @@ fn fir_stand(renderer: &Renderer, runs: u32, empty_ms: f64) -> Result<()> {
          {} triangles placed, seen whole from 70 m; x empty = frame / empty frame",
         grouped(forest.triangles_placed)
     );
-    let target = Vec3::new(0.0, 0.0, 6.0);
-    let view = View::look_at(target + Camera::direction(30.0, 12.0) * 70.0, target, FOV);
     println!(
         "{:>12} {:>13} {:>9} {:>8}",
         "", "primitives", "frame ms", "x empty"
     );
-    for (use_lod, leaves, label) in [
-        (false, true, "full, leaves"),
-        (false, false, "full, bare"),
-        (true, true, "LOD, leaves"),
-        (true, false, "LOD, bare"),
-    ] {
-        scene.use_lod = use_lod;
-        scene.show_leaves = leaves;
-        let mut stats = Default::default();
-        let ms = fastest_ms(runs, || {
-            stats = renderer.render(&scene, &view, SIZE.0, SIZE.1)?.stats;
-            Ok::<_, sylva_render::RenderError>(())
-        })?;
+    for (label, stats, ms) in stand_frames(renderer, &mut scene, runs)? {
         println!(
             "{label:>12} {:>13} {ms:>9.1} {:>8.1}",
             grouped(stats.primitives()),

@@ -9,11 +9,10 @@ mod growth;
 use crate::args::BenchArgs;
 use crate::shared::headless;
 use anyhow::{Context, Result};
-use std::time::Instant;
 use sylva::GenerateOptions;
-use sylva::bench::{APPENDIX_SPECIES, edit_ms, fastest_ms, generate_times, lod_times};
+use sylva::bench::{APPENDIX_SPECIES, edit_ms, generate_times, lod_times};
 use sylva::lod::Viewer;
-use sylva::mesh::{MeshOptions, TreeMesh, mesh_tree};
+use sylva::mesh::{MeshOptions, mesh_tree};
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     // The README's build (dev profile) optimises the engine but not the GPU, window and HTTP
@@ -185,15 +184,8 @@ fn bench_lod() -> Result<()> {
 
 /// Frame times at 1280x720 and the cost of an edit: what the viewer feels.
 fn bench_render(runs: u32) -> Result<()> {
-    use sylva_render::{Scene, View, ViewKind};
     let renderer = headless()?;
-    let view = View::named(ViewKind::Front);
-    // Baseline in the same run: a frame of an empty tree (ground, person, shadow pass, readback).
-    let empty = renderer.upload(&TreeMesh::default());
-    let empty_scene = Scene::new(&empty, [0.5; 3], [0.5; 3]);
-    let base = fastest_ms(runs, || {
-        renderer.render(&empty_scene, &view, 1280, 720).map(drop)
-    })?;
+    let (base, frames) = sylva_render::bench::species_frames(&renderer, runs)?;
     println!();
     println!(
         "rendering on {} at 1280x720 (fastest of {runs}; frame includes read-back)",
@@ -207,24 +199,14 @@ fn bench_render(runs: u32) -> Result<()> {
         "{:<15} {:>9} {:>10} {:>9.1} {:>9.1}",
         "(empty)", 0, "-", base, 1.0
     );
-    for id in APPENDIX_SPECIES {
-        let params = sylva::species::builtin(id).context("built-in species")?;
-        let mesh = mesh_tree(
-            &sylva::generate(&params, &GenerateOptions::default())?,
-            &MeshOptions::for_species(&params, 1.0),
-        );
-        let t = Instant::now();
-        let tree = renderer.upload(&mesh);
-        let upload = t.elapsed().as_secs_f64() * 1e3;
-        let scene = Scene::new(&tree, params.bark_color, params.leaf_color);
-        let frame = fastest_ms(runs, || renderer.render(&scene, &view, 1280, 720).map(drop))?;
+    for f in frames {
         println!(
             "{:<15} {:>9} {:>10.1} {:>9.1} {:>9.1}",
-            id,
-            mesh.triangle_count(),
-            upload,
-            frame,
-            frame / base
+            f.id,
+            f.triangles,
+            f.upload_ms,
+            f.frame_ms,
+            f.frame_ms / base
         );
     }
     // An edit in the editor: change one parameter, regenerate and re-mesh into warm buffers.

@@ -9,6 +9,7 @@ mod generate;
 mod grow;
 mod lobes;
 mod nagel;
+mod records;
 mod regrowth;
 mod render;
 mod street;

@@ -29,6 +29,7 @@ __all__ = [
     "city_settings",
     "generate",
     "grow",
+    "rank",
     "species",
     "street_species",
 ]
@@ -87,6 +88,41 @@ def grow(
         _path(site),
         _path(prices),
         _path(costs),
+    )
+
+
+def rank(
+    region: str,
+    *,
+    years: float = 40,
+    species: Optional[Iterable[str]] = None,
+    seed: int = 0,
+    site: Optional[PathLike] = None,
+    prices: Optional[PathLike] = None,
+    costs: Optional[PathLike] = None,
+    pruning: str = "regime",
+    by: Optional[str] = None,
+) -> list:
+    """``region``'s species grown yearly for ``years`` and ranked by net benefit per tree
+    planted, best first, as ``sylva rank --json`` writes them: one dict per species
+    (``net_usd``, ``benefits_usd``, ``costs_usd``, ``typical`` and ``site`` sums by i-Tree's
+    categories, ``first_conflicts``, ``pruning``, ``not_computed``).
+
+    ``species`` limits the ranking to those codes; ``site``, ``prices`` and ``costs`` are TOML
+    files as ``sylva rank`` reads them; ``pruning`` is ``"regime"`` (the site's cycles cut
+    the tree), ``"compare"`` (also the benefits each year's cuts cost) or ``"off"``; ``by`` is
+    ``"typical"`` or ``"site"`` (default: the site's net where a site is given).
+    """
+    return _sylva.rank(
+        str(region),
+        float(years),
+        [str(c) for c in (species or [])],
+        int(seed),
+        _path(site),
+        _path(prices),
+        _path(costs),
+        str(pruning),
+        by,
     )
 
 

@@ -54,6 +54,17 @@ def grow(
     prices: Optional[str] = None,
     costs: Optional[str] = None,
 ) -> Model: ...
+def rank(
+    region: str,
+    years: float,
+    species: List[str],
+    seed: int,
+    site: Optional[str],
+    prices: Optional[str],
+    costs: Optional[str],
+    pruning: str,
+    by: Optional[str],
+) -> List[Dict[str, Any]]: ...
 def species() -> List[str]: ...
 def street_species() -> List[Dict[str, str]]: ...
 def city(settings: str, out: str) -> Dict[str, Any]: ...

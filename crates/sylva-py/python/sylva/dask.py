@@ -162,7 +162,7 @@ def estimate(
     # Prototypes: the measured city's, and at most every class of every species it grows.
     tasks = max(1, len(growth))
     classes_now = int(summary["prototypes"]) / tasks
-    # Sylva's 15 age classes (`sylva_city::plan::AGE_CLASSES`).
+    # Sylva's 15 age classes (`sylva_city::trees::plan::AGE_CLASSES`).
     classes_full = 15.0
     scale = max(1.0, classes_full / max(classes_now, 1.0))
     growth_total = sum(growth) * scale

@@ -10,6 +10,7 @@ pub mod lobe;
 pub mod pipeline;
 pub mod points;
 pub mod rules;
+pub mod source;
 pub mod tree_file;
 mod values;
 mod widths;
@@ -23,6 +24,8 @@ pub use tree_file::TreeFile;
 /// Bark colour of every lobe species (sRGB 0..1): the paper's rules give none.
 pub const BARK_COLOR: [f32; 3] = [0.36, 0.28, 0.22];
 
+#[cfg(test)]
+mod file_tests;
 #[cfg(test)]
 mod form_tests;
 #[cfg(test)]

@@ -177,6 +177,35 @@ impl Forest<TreeMesh> {
             .sum();
         (stored, placed)
     }
+
+    /// What was grown (`sylva forest --json`).
+    pub fn record(&self) -> ForestRecord {
+        let (stored, placed) = self.triangles();
+        let variants = self.planting.variants.len();
+        ForestRecord {
+            trees: self.planting.trees.len(),
+            variants,
+            triangles_stored: stored,
+            triangles_placed: placed,
+            grow_ms: (self.seconds * 1e3).round(),
+            trees_per_second: (variants as f64 / self.seconds * 10.0).round() / 10.0,
+            threads: rayon::current_num_threads(),
+        }
+    }
+}
+
+/// A forest grown, as output: trees placed and distinct, triangles stored and placed, and how
+/// fast it grew on how many threads.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[allow(missing_docs)]
+pub struct ForestRecord {
+    pub trees: usize,
+    pub variants: usize,
+    pub triangles_stored: usize,
+    pub triangles_placed: usize,
+    pub grow_ms: f64,
+    pub trees_per_second: f64,
+    pub threads: usize,
 }
 
 #[cfg(test)]

@@ -25,8 +25,8 @@
 //!   of the lit leaves' places on a bare or unfolding tree and one in five among full leaves.
 
 use super::Measured;
-use super::foliage::{self, BarkPattern, Persistence};
 use crate::export::Materials;
+use crate::growth::data::foliage::{self, BarkPattern, Persistence};
 use crate::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use crate::rng::mix64;
 use crate::skeleton::{Leaf, LeafShape, Skeleton};
@@ -398,7 +398,7 @@ mod tests {
         let mut grower = Grower::new(birch.clone(), GrowthOptions::default());
         grower.advance_to(12.0);
         let skeleton = grower.skeleton();
-        let options = super::super::report::MESH;
+        let options = crate::growth::survey::report::MESH;
         let (mesh, _) = dressed_mesh(&skeleton, &birch, Some(Month::WINTER), &options);
         let bark = &mesh.bark;
         assert_eq!(bark.shades.len(), bark.vertex_count());
@@ -430,12 +430,18 @@ mod tests {
         let mut grower = Grower::new(cherry.clone(), GrowthOptions::default());
         grower.advance_to(8.0);
         let skeleton = grower.skeleton();
-        let summer = dressed_mesh(&skeleton, &cherry, None, &super::super::report::MESH).0;
+        let summer = dressed_mesh(
+            &skeleton,
+            &cherry,
+            None,
+            &crate::growth::survey::report::MESH,
+        )
+        .0;
         let winter = dressed_mesh(
             &skeleton,
             &cherry,
             Some(Month::WINTER),
-            &super::super::report::MESH,
+            &crate::growth::survey::report::MESH,
         )
         .0;
         assert!(summer.leaves.triangle_count() > 1000);
@@ -459,7 +465,7 @@ mod tests {
             &skeleton,
             &cherry,
             Some(Month::SPRING),
-            &super::super::report::MESH,
+            &crate::growth::survey::report::MESH,
         );
         assert_eq!(dress.state, LeafState::Unfolding);
         assert!(dress.flowers.is_some());

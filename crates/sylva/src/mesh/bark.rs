@@ -6,7 +6,7 @@
 //! the same bark at any mesh resolution, though never finer than the ring's vertices.
 //!
 //! The scales below (plates a decimetre across, bands of lenticels every few centimetres) are
-//! Sylva's drawing of the sources' words (see `growth/foliage.csv`), not measurements; the
+//! Sylva's drawing of the sources' words (see `growth/data/foliage.csv`), not measurements; the
 //! darkest tone of each pattern is what makes it read at a street's distance.
 
 use crate::rng::mix64;

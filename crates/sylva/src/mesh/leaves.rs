@@ -348,7 +348,7 @@ fn build(shape: LeafShape) -> LeafTemplate {
         }
         LeafShape::Sphere => sphere(),
         // The outlines grown street trees wear, drawn with few corners: a crown carries tens
-        // of thousands of them (see growth::foliage). Palmately five-lobed, as a plane's or a
+        // of thousands of them (see growth::data::foliage). Palmately five-lobed, as a plane's or a
         // maple's: two basal lobes, two side lobes, the middle lobe.
         LeafShape::Lobed5 => star(
             Vec2::new(0.0, 0.42),

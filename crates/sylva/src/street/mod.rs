@@ -33,7 +33,9 @@ pub mod accounts;
 pub mod energy;
 pub mod picture;
 pub mod rank;
+pub mod records;
 pub mod site;
+pub mod study;
 pub mod work;
 
 pub use accounts::costs::Costs;

@@ -1,17 +1,17 @@
 //! A region's species side by side: each grown year by year on the same site, its benefits
 //! and costs summed over the years, and the first year it runs into the street.
 
-use super::accounts::costs::{Costs, YearCosts};
-use super::accounts::ledger::{Assessor, YearAccount};
+use super::StreetError;
+use super::accounts::costs::YearCosts;
+use super::accounts::ledger::YearAccount;
 use super::accounts::money::Basis;
-use super::accounts::prices::Prices;
-use super::accounts::pruner::{Pruner, PruningYear};
-use super::accounts::survival::Survival;
-use super::site::Site;
+use super::accounts::pruner::PruningYear;
+use super::study::{Spread, StreetTree};
 use super::work::conflicts::{Conflict, Kind};
-use crate::growth::Measured;
-use crate::growth::report::Cohort;
+use crate::growth::{Database, Measured};
 use rayon::prelude::*;
+
+pub use super::study::{Pruning, Study};
 
 /// One species' run.
 #[derive(Clone, Debug)]
@@ -113,6 +113,18 @@ impl Ranked {
         self.accounts.last().map_or(0.0, |a| a.age)
     }
 
+    /// The earliest first conflict that clearance pruning meets (growing into the clear
+    /// heights over roadway and sidewalk: the crown is raised) with `clearance`, or that it
+    /// does not (a fixture: wall, awnings, signs, lines, lamps, sight lines, curb): its age and
+    /// kind.
+    pub fn earliest(&self, clearance: bool) -> Option<(f64, Kind)> {
+        first_conflicts(&self.accounts)
+            .into_iter()
+            .filter(|(_, c)| matches!(c.kind, Kind::Roadway | Kind::Sidewalk) == clearance)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(age, c)| (age, c.kind))
+    }
+
     /// Its pruning over the years, where it was grown with a regime (no cycle may have
     /// fallen due yet: then it is all zeros).
     pub fn pruning(&self) -> Option<PruningSummary> {
@@ -197,63 +209,80 @@ pub fn ages(m: &Measured, years: f64) -> Vec<f64> {
     out
 }
 
-/// How a run treats the site's pruning regime.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Pruning {
-    /// The site's regime cuts the tree as its cycles fall due (the default).
-    Regime,
-    /// The regime cuts the tree, and the same tree is grown uncut beside it, so that each
-    /// year's benefits lost to pruning are known (it takes both growths' time).
-    Compare,
-    /// Nothing is ever cut: the tree grows on through the street's zones.
-    Off,
-}
-
-/// What a run of street trees is asked: how long, which seed, on which site, at which prices
-/// and costs, with which survival, and how the site's pruning regime is treated. `None`s are
-/// the built-in defaults (no site: typical position only).
+/// A ranking asked for: a region's growable species (or those of them named), grown as
+/// `study` says, ranked by the net on `basis` (default: the site's where there is one, else
+/// typical position's).
 #[derive(Clone, Debug)]
-pub struct Study {
-    /// Years each tree is grown (or as long as its data reach).
-    pub years: f64,
-    /// The growth's seed.
-    pub seed: u64,
-    /// The planting site.
-    pub site: Option<Site>,
-    /// Prices (default: the region's built-in ones).
-    pub prices: Option<Prices>,
-    /// Costs (default: the built-in sized table).
-    pub costs: Option<Costs>,
-    /// Survival (default: the region's built-in).
-    pub survival: Option<Survival>,
-    /// How the site's pruning regime is treated.
-    pub pruning: Pruning,
+pub struct RankRequest {
+    /// The Urban Tree Database region.
+    pub region: String,
+    /// Species codes to rank (any case); empty: every growable species of the region.
+    pub species: Vec<String>,
+    /// How each is grown and accounted.
+    pub study: Study,
+    /// The net the ranking is by.
+    pub basis: Option<Basis>,
 }
 
-impl Study {
-    /// A run of `years` on typical position, with every default.
-    pub fn new(years: f64) -> Study {
-        Study {
-            years,
-            seed: 0,
-            site: None,
-            prices: None,
-            costs: None,
-            survival: None,
-            pruning: Pruning::Regime,
+impl RankRequest {
+    /// Every growable species of `region`, grown as `study` says.
+    pub fn new(region: &str, study: Study) -> RankRequest {
+        RankRequest {
+            region: region.to_string(),
+            species: Vec::new(),
+            study,
+            basis: None,
         }
+    }
+
+    /// The basis ranked by.
+    pub fn basis(&self) -> Basis {
+        self.basis
+            .unwrap_or_else(|| Basis::default_for(self.study.site.is_some()))
+    }
+
+    /// The species the request names, from `db`, in the database's order: an error names a
+    /// code that is not a growable species of the region, or a region without any.
+    pub fn species(&self, db: &Database) -> Result<Vec<Measured>, StreetError> {
+        let region = &self.region;
+        let mut species: Vec<Measured> = (db.growable(region).iter())
+            .map(|s| db.find(region, &s.code))
+            .collect::<Result<_, _>>()
+            .map_err(|e| StreetError::Missing(e.to_string()))?;
+        for code in &self.species {
+            if !(species.iter()).any(|m| m.species.code.eq_ignore_ascii_case(code)) {
+                return Err(StreetError::Missing(format!(
+                    "--species {code}: not a growable species of {region}; see `sylva species \
+                     --region {region}`"
+                )));
+            }
+        }
+        if !self.species.is_empty() {
+            species
+                .retain(|m| (self.species.iter()).any(|c| c.eq_ignore_ascii_case(&m.species.code)));
+        }
+        if species.is_empty() {
+            let known: Vec<&str> = db.regions().iter().map(|r| r.code.as_str()).collect();
+            return Err(StreetError::Missing(format!(
+                "--region {region}: no such region with growable species; regions: {}",
+                known.join(", ")
+            )));
+        }
+        Ok(species)
     }
 }
 
-/// Grows every species yearly as `study` asks, in parallel, and returns them by net benefit
-/// per tree planted on `basis`, best first. `done` is called as each species finishes.
+/// Grows every species of `request` yearly, in parallel, and returns them by net benefit per
+/// tree planted on its basis, best first. `done` is called as each species finishes.
 pub fn rank(
-    species: Vec<Measured>,
-    study: &Study,
-    basis: Basis,
+    request: &RankRequest,
+    db: &Database,
     done: &(dyn Fn(&Measured) + Sync),
-) -> Vec<Ranked> {
-    let mut out: Vec<Ranked> = species
+) -> Result<Vec<Ranked>, StreetError> {
+    let basis = request.basis();
+    let study = &request.study;
+    let mut out: Vec<Ranked> = request
+        .species(db)?
         .into_par_iter()
         .map(|m| {
             let r = run(&m, study);
@@ -262,7 +291,7 @@ pub fn rank(
         })
         .collect();
     out.sort_by(|a, b| b.net(basis).total_cmp(&a.net(basis)));
-    out
+    Ok(out)
 }
 
 /// One species grown and accounted yearly, pruned as `study.pruning` says where there is a
@@ -285,44 +314,21 @@ pub fn run(m: &Measured, study: &Study) -> Ranked {
         });
         return cut;
     }
-    let site = study.site.as_ref();
-    let mut assessor = Assessor::new(
-        m,
-        study.site.clone(),
-        study.prices.clone(),
-        study.costs.clone(),
-    );
-    if let Some(s) = &study.survival {
-        assessor = assessor.with_survival(s.clone());
-    }
-    let mut cohort = Cohort::new(vec![m.clone()], study.seed);
-    let pruner = match (site, study.pruning) {
-        (Some(site), Pruning::Regime) => Pruner::new(site, study.costs.as_ref()),
-        _ => None,
-    };
-    if pruner.is_some() {
-        assessor.charge_cycles();
-    }
-    let mut accounts = Vec::new();
-    for age in ages(m, study.years) {
-        let cycle =
-            (pruner.as_ref()).and_then(|p| p.advance(&mut cohort.growers[0], age, |_, _, _, _| {}));
-        let skeleton = cohort.advance_to(age).remove(0);
-        let dims = cohort.history[0]
-            .last()
-            .map(|r| r.model)
-            .unwrap_or_default();
-        let mut account = assessor.year(age, &dims, &skeleton);
-        if pruner.is_some() {
-            account.record_pruning(cycle, 1.0);
-        }
-        accounts.push(account);
-    }
+    let mut tree = StreetTree::new(m, study);
+    let accounts = ages(m, study.years)
+        .into_iter()
+        .map(|age| {
+            (tree.grow_to(age, Spread::Whole, |_, _, _, _| {}).accounts)
+                .pop()
+                .expect("a study's tree is accounted on one site")
+        })
+        .collect();
+    let assessor = tree.assessor(0);
     Ranked {
         species: m.clone(),
         accounts,
         missing: assessor.missing().to_vec(),
-        pruned: pruner.is_some(),
+        pruned: tree.pruned(),
         benefits_lost: None,
         survival: assessor.survival().source.clone(),
     }

@@ -8,6 +8,7 @@
 mod apart;
 mod children;
 pub mod equations;
+pub mod made;
 mod trace;
 
 use crate::error::GenerateError;
@@ -460,3 +461,5 @@ fn stretch_vertically(skeleton: &mut Skeleton, z: f32) {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod wind_tests;

@@ -2,7 +2,8 @@
 //! (monotone) rises, and the vigour and the envelope's spread are corrected every step so
 //! that the crown's measured diameter follows f_CD.
 
-use super::buds::{Plan, sag_at, sag_down, within};
+use super::buds::Plan;
+use super::directions::{sag_at, sag_down, within};
 use super::*;
 use glam::Vec2;
 

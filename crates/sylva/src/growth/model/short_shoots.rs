@@ -133,7 +133,7 @@ impl Grower {
             let along =
                 s.length * (0.1 + 0.6 * (k as f32 + 0.5 + 0.3 * rng.var(1.0) as f32) / n as f32);
             let tilt = (angle + rng.var(10.0) as f32).to_radians();
-            let direction = buds::leaning_out(axis, azimuth, tilt);
+            let direction = directions::leaning_out(axis, azimuth, tilt);
             // Log-normal by Box-Muller from two uniform draws.
             let (u1, u2) = (rng.unit().max(1e-12), rng.unit());
             let z = (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos();

@@ -85,7 +85,7 @@ impl Grower {
             let azimuth = self.branches[b].next_azimuth;
             self.branches[b].next_azimuth = (azimuth + DIVERGENCE) % 360.0;
             let tilt = (angle + self.rng.var(5.0) as f32).to_radians();
-            let direction = buds::leaning_out(seg.direction, azimuth, tilt);
+            let direction = directions::leaning_out(seg.direction, azimuth, tilt);
             let along = from + (at - from) * (k as f32 + 0.5) / n as f32;
             self.buds.push(buds::Bud {
                 branch: b as u32,

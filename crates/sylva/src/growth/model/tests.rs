@@ -425,44 +425,6 @@ fn a_cut_clears_its_zone_at_unions_and_the_tree_grows_back() {
 }
 
 #[test]
-fn most_of_a_crowns_twigs_are_short_and_each_bears_leaves() {
-    // The published crowns: most twigs 1-4 cm, numbers falling steeply through 6-10 cm
-    // ("Tree branches as populations of twigs"). Before short twigs the grown plane's median
-    // twig was 1.6-2.8 m and under 1% were shorter than 4 cm.
-    let g = grown("InlVal", "PLAC", 12.0);
-    let skeleton = g.skeleton();
-    let b = crate::growth::twigs::measure_branching(&skeleton);
-    assert!(b.share_under(4.0) > 0.4, "{b:?}");
-    assert!(b.median_twig_cm.unwrap() < 6.0, "{b:?}");
-    assert!(b.share_from(10.0) < 0.15, "{b:?}");
-    // No more short twigs than the leaves they bear, and none in the dark.
-    let leaves: usize = g.leaves_on.iter().map(|&n| n as usize).sum();
-    let twigs = g.short_shoot_count();
-    assert!(
-        twigs > 1000 && twigs <= leaves + leaves / 2,
-        "{twigs} twigs, {leaves} leaves"
-    );
-    // The growth is the same without them: they draw their own random streams and take no
-    // part in the light (the same tree's frame, grown again, is the same).
-    let again = grown("InlVal", "PLAC", 12.0).skeleton();
-    assert!(again == skeleton);
-    // In leaf they are hidden: the crown meshes the same with them or without them; bare,
-    // they are drawn.
-    let mut frame = skeleton.clone();
-    frame.drop_short_twigs();
-    assert_eq!(frame.stems.len(), skeleton.frame_stems().len());
-    assert!(frame.sections.len() < skeleton.sections.len());
-    let options = crate::mesh::MeshOptions::default();
-    let mesh = |s: &Skeleton| crate::mesh::mesh_tree(s, &options).bark;
-    assert!(mesh(&frame) == mesh(&skeleton));
-    let bare = |s: &Skeleton| Skeleton {
-        leaves: Vec::new(),
-        ..s.clone()
-    };
-    assert!(mesh(&bare(&skeleton)).vertex_count() > mesh(&bare(&frame)).vertex_count());
-}
-
-#[test]
 fn a_cut_plane_sprouts_below_its_cuts_and_a_pine_does_not() {
     // A slab through the middle of the crown, cleared as a wire's zone would be.
     let cut_and_count = |code: &str| {
@@ -577,4 +539,36 @@ fn crowns_measured_with_inner_leaves_passed_over_are_the_same() {
             assert!(fast.0 > 0.5, "{code}: a crown {} m wide", fast.0);
         }
     }
+}
+
+#[test]
+fn each_short_twig_bears_leaves_and_changes_no_growth() {
+    // (The growth-level `a_grown_crowns_twigs_are_mostly_short` measures their lengths.)
+    let g = grown("InlVal", "PLAC", 12.0);
+    let skeleton = g.skeleton();
+    // No more short twigs than the leaves they bear, and none in the dark.
+    let leaves: usize = g.leaves_on.iter().map(|&n| n as usize).sum();
+    let twigs = g.short_shoot_count();
+    assert!(
+        twigs > 1000 && twigs <= leaves + leaves / 2,
+        "{twigs} twigs, {leaves} leaves"
+    );
+    // The growth is the same without them: they draw their own random streams and take no
+    // part in the light (the same tree's frame, grown again, is the same).
+    let again = grown("InlVal", "PLAC", 12.0).skeleton();
+    assert!(again == skeleton);
+    // In leaf they are hidden: the crown meshes the same with them or without them; bare,
+    // they are drawn.
+    let mut frame = skeleton.clone();
+    frame.drop_short_twigs();
+    assert_eq!(frame.stems.len(), skeleton.frame_stems().len());
+    assert!(frame.sections.len() < skeleton.sections.len());
+    let options = crate::mesh::MeshOptions::default();
+    let mesh = |s: &Skeleton| crate::mesh::mesh_tree(s, &options).bark;
+    assert!(mesh(&frame) == mesh(&skeleton));
+    let bare = |s: &Skeleton| Skeleton {
+        leaves: Vec::new(),
+        ..s.clone()
+    };
+    assert!(mesh(&bare(&skeleton)).vertex_count() > mesh(&bare(&frame)).vertex_count());
 }

@@ -16,7 +16,7 @@
 //! (IRC N1102 / IECC R405, "Specifications for the standard reference and proposed designs").
 
 use crate::growth::Measured;
-use crate::growth::report::Cohort;
+use crate::growth::survey::report::Cohort;
 use crate::street::accounts::typical::Reference;
 use crate::street::energy::climate_effect::{ClimateEffect, Point, fit};
 use crate::street::energy::crown::Crown;

@@ -2,7 +2,7 @@
 //!
 //! ```
 //! use sylva::growth::{Database, measure};
-//! use sylva::growth::report::Cohort;
+//! use sylva::growth::survey::report::Cohort;
 //! use sylva::street::Assessor;
 //! let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
 //! let mut assessor = Assessor::new(&plane, None, None, None);

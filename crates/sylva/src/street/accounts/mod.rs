@@ -13,6 +13,7 @@ pub mod money;
 pub mod prices;
 pub mod pruner;
 pub mod published;
+pub mod records;
 pub mod survival;
 pub mod table;
 pub mod typical;

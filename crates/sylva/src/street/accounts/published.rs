@@ -38,7 +38,7 @@ mod tests {
     use super::*;
     use crate::growth::Database;
     use crate::street::Basis;
-    use crate::street::rank::{Study, rank};
+    use crate::street::rank::{RankRequest, Study, rank};
 
     /// Sylva's typical-position account of the paper's species over 40 years, per tree
     /// planted, beside the paper (docs/benefits.md sets the figures side by side and says why
@@ -50,10 +50,12 @@ mod tests {
         let paper = mcpherson_2003();
         assert_eq!(paper.len(), 8);
         let db = Database::builtin();
-        let species = (paper.iter())
-            .map(|p| db.find("InlVal", &p.code).unwrap())
-            .collect();
-        let ranked = rank(species, &Study::new(40.0), Basis::Typical, &|_| {});
+        let request = RankRequest {
+            species: paper.iter().map(|p| p.code.clone()).collect(),
+            basis: Some(Basis::Typical),
+            ..RankRequest::new("InlVal", Study::new(40.0))
+        };
+        let ranked = rank(&request, db, &|_| {}).unwrap();
         let net = |code: &str| {
             let r = ranked
                 .iter()

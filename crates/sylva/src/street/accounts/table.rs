@@ -1,9 +1,9 @@
-//! Yearly accounts as CSV columns and JSON, for `sylva grow`, `sylva rank` and anything that
+//! Yearly accounts as CSV columns, for `sylva grow`, `sylva rank` and anything that
 //! serves them (an empty cell or `null` where a model or a price is missing, never a zero).
 
 use crate::growth::CutKind;
 use crate::street::accounts::ledger::YearAccount;
-use crate::street::accounts::money::{Basis, Money};
+use crate::street::accounts::money::Basis;
 use crate::street::accounts::pruner::PruningYear;
 use crate::street::accounts::typical::Typical;
 use crate::street::work::conflicts::{Conflict, Kind};
@@ -195,26 +195,6 @@ fn kinds_cell(kinds: &[Kind]) -> String {
     kinds.iter().map(|k| k.name()).collect::<Vec<_>>().join(";")
 }
 
-/// A year's pruning as JSON: its reasons, cuts, what they took, visits and cost, and the
-/// conflicts they resolved and left.
-pub fn pruning_json(p: &PruningYear) -> serde_json::Value {
-    let round = |v: f64, k: f64| (v * k).round() / k;
-    let kinds = |k: &[Kind]| k.iter().map(|k| k.name()).collect::<Vec<_>>();
-    serde_json::json!({
-        "reasons": p.reasons.iter().map(|r| r.name()).collect::<Vec<_>>(),
-        "removal_cuts": p.count(CutKind::Removal),
-        "reduction_cuts": p.count(CutKind::Reduction),
-        "largest_cut_cm": round(100.0 * p.cuts.largest_diameter() as f64, 10.0),
-        "wood_removed_m3": round(p.wood_m3(), 1e4),
-        "leaf_removed_m2": round(p.leaf_m2(), 10.0),
-        "visits": p.visits,
-        "cost_usd": round(p.cost, 100.0),
-        "deferred_cuts": p.cuts.deferred,
-        "resolved": kinds(&p.resolved()),
-        "unresolved": kinds(&p.unresolved),
-    })
-}
-
 /// The account's CSV columns, after a growth report's own: `net_usd` is the grown tree's on
 /// this site, `typical_net_usd` i-Tree's typical position's.
 pub fn header() -> String {
@@ -264,90 +244,27 @@ pub fn join_csv(growth_csv: &str, accounts: &[YearAccount]) -> String {
     out
 }
 
-fn money_json(m: &Money) -> serde_json::Value {
-    let round = |v: Option<f64>| v.map(|v| (v * 100.0).round() / 100.0);
-    m.categories()
-        .iter()
-        .map(|(name, v)| (name.to_string(), serde_json::json!(round(*v))))
-        .collect::<serde_json::Map<_, _>>()
-        .into()
-}
-
-/// One account as JSON: the grown tree on this site, with i-Tree's typical position under
-/// `typical`.
-pub fn json(a: &YearAccount) -> serde_json::Value {
-    let round = |v: Option<f64>, k: f64| v.map(|v| (v * k).round() / k);
-    let e = a.energy;
-    let typical = a.typical.as_ref().map(|t| {
-        let m = &t.amounts;
-        serde_json::json!({
-            "region": t.region,
-            "row": t.row,
-            "held": t.held,
-            "electricity_kwh": round(Some(m.electricity_kwh), 10.0),
-            "natural_gas_kbtu": round(Some(m.natural_gas_kbtu), 10.0),
-            "stormwater_m3": round(Some(m.stormwater_m3), 1e3),
-            "co2_sequestered_kg": round(Some(m.co2_sequestered_kg), 100.0),
-            "co2_avoided_kg": round(Some(m.co2_avoided_kg), 100.0),
-            "air_removed_kg": round(Some(m.air.removed_kg()), 1e3),
-            "bvoc_kg": round(Some(m.air.bvoc_kg), 1e3),
-            "leaf_gain_m2": round(Some(m.leaf_gain_m2), 10.0),
-            "value_usd": money_json(&t.money),
-            "net_usd": (a.net(Basis::Typical) * 100.0).round() / 100.0,
-            "planted_net_usd": (a.planted_net(Basis::Typical) * 100.0).round() / 100.0,
-        })
-    });
-    serde_json::json!({
-        "co2_stored_kg": round(a.co2_stored_kg, 10.0),
-        "co2_sequestered_kg": round(a.co2_sequestered_kg, 100.0),
-        "co2_avoided_kg": round(a.co2_avoided_kg, 100.0),
-        "interception_m3": round(a.interception_m3, 1e3),
-        "cooling_kwh": round(e.map(|e| e.electricity_kwh()), 10.0),
-        "natural_gas_kbtu": round(e.map(|e| e.natural_gas_kbtu()), 10.0),
-        "shade_cooling_kwh": round(e.map(|e| e.shade_cooling_kwh), 10.0),
-        "heating_penalty_kbtu": round(e.map(|e| e.heating_penalty_kbtu), 10.0),
-        "useful_winter_share": round(e.map(|e| e.useful_winter_share), 1e3),
-        "climate_cooling_kwh": round(e.and_then(|e| e.climate).map(|c| c.0), 10.0),
-        "climate_heating_kbtu": round(e.and_then(|e| e.climate).map(|c| c.1), 10.0),
-        "facade_shaded_m2h": round(e.map(|e| e.summer.shaded_m2h), 1.0),
-        "air_removed_kg": round(a.air.map(|q| q.removed_kg()), 1e3),
-        "bvoc_kg": round(a.air.map(|q| q.bvoc_kg), 1e3),
-        "leaf_gain_m2": round(Some(a.leaf_gain_m2), 10.0),
-        "value_usd": money_json(&a.money),
-        "cost_usd": a.costs.map(|c| serde_json::json!({
-            "planting": (c.planting * 100.0).round() / 100.0,
-            "pruning": (c.pruning * 100.0).round() / 100.0,
-            "removal": (c.removal * 100.0).round() / 100.0,
-            "sidewalk": (c.sidewalk * 100.0).round() / 100.0,
-            "cleanup": (c.cleanup * 100.0).round() / 100.0,
-            "average": (c.average * 100.0).round() / 100.0,
-            "cycles": (c.cycles * 100.0).round() / 100.0,
-            "pest_liability_administration": (c.other * 100.0).round() / 100.0,
-            "line_clearance_utility": (c.utility * 100.0).round() / 100.0,
-        })),
-        "pruning": a.pruning.as_ref().map(pruning_json),
-        "net_usd": (a.net(Basis::Site) * 100.0).round() / 100.0,
-        "alive_share": (a.cohort.alive * 1e4).round() / 1e4,
-        "died_share": (a.cohort.died * 1e4).round() / 1e4,
-        "planted_net_usd": (a.planted_net(Basis::Site) * 100.0).round() / 100.0,
-        "typical": typical,
-        "leaf_outside_zones_m2": round(a.leaf_outside_zones_m2, 10.0),
-        "conflicts": a.conflicts.iter().map(|c| serde_json::json!({
-            "kind": c.kind.name(),
-            "part": c.part.name(),
-            "leaf_area_m2": (c.leaf_area * 10.0).round() / 10.0,
-            "leaf_share": (c.leaf_share * 1e3).round() / 1e3,
-            "from_m": (c.heights.0 * 100.0).round() / 100.0,
-            "to_m": (c.heights.1 * 100.0).round() / 100.0,
-        })).collect::<Vec<_>>(),
-    })
+/// A year's net in words, at typical position and on the site where there is one (`sylva grow`'s
+/// lines and captions).
+pub fn net_words(a: &YearAccount, has_site: bool) -> String {
+    let typical = (a.typical.as_ref())
+        .map(|_| format!("net ${:.0}/yr at typical position", a.net(Basis::Typical)));
+    let site = has_site.then(|| format!("${:.0}/yr on this site", a.net(Basis::Site)));
+    match (typical, site) {
+        (Some(t), Some(s)) => format!("{t}, {s}"),
+        (Some(t), None) => t,
+        (None, Some(s)) => format!("net {s}"),
+        (None, None) => format!("net ${:.0}/yr (own crown, no site)", a.net(Basis::Site)),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::growth::Database;
-    use crate::growth::report::{Cohort, csv};
+    use crate::growth::survey::report::{Cohort, csv};
+    use crate::record::to_json;
+    use crate::street::accounts::records::AccountRecord;
     use crate::street::{Assessor, Site};
 
     #[test]
@@ -409,7 +326,7 @@ mod tests {
         );
         let typical: f64 = rows[1][col("typical_net_usd")].parse().unwrap();
         assert!((typical - t.net(Basis::Typical)).abs() < 0.006, "{typical}");
-        let j = json(&accounts[1]);
+        let j = to_json(&AccountRecord::of(&accounts[1]));
         assert!(j["cooling_kwh"].is_null());
         assert_eq!(j["typical"]["row"], "PLAC");
         assert!(j["typical"]["value_usd"]["air_quality"].as_f64().unwrap() > 0.0);

@@ -8,7 +8,7 @@
 //! picture's covered outline is measured, and along a high sun (60 degrees up), as a shadow is.
 
 use crate::growth::Measured;
-use crate::growth::report::Cohort;
+use crate::growth::survey::report::Cohort;
 use crate::skeleton::Skeleton;
 use crate::street::energy::crown::{BeamStop, Crown, leaves_of};
 use glam::DVec3;
@@ -65,6 +65,83 @@ pub fn opacity<T>(
         out.push((row, also(m, age, &skeleton)));
     }
     out
+}
+
+/// The share of a beam a crown stops, in leaf and bare, as output (`sylva sweep --beam
+/// --json`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct BeamRecord {
+    /// Mean share of the beam stopped over the outline, 0..1.
+    pub stopped: f64,
+    /// The outline's area, m².
+    pub outline_m2: f64,
+}
+
+impl From<BeamStop> for BeamRecord {
+    fn from(s: BeamStop) -> BeamRecord {
+        BeamRecord {
+            stopped: s.stopped,
+            outline_m2: s.outline_m2,
+        }
+    }
+}
+
+/// What a picture of the crown from the side covers (the renderer measures it).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CoverageRecord {
+    /// Share of the outline covered.
+    pub covered: f64,
+    /// Share of what is covered that is leaf.
+    pub leaf_share: f64,
+    /// Share of what is covered that is bare wood outside the leaves.
+    pub bare_tips: f64,
+    /// The outline's area, m².
+    pub outline_m2: f64,
+}
+
+/// In leaf and bare.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LeafAndBare<T> {
+    #[allow(missing_docs)]
+    pub leaf: T,
+    #[allow(missing_docs)]
+    pub bare: T,
+}
+
+/// One species and age of `sylva sweep --beam`, as output.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[allow(missing_docs)]
+pub struct OpacityRecord {
+    pub region: String,
+    pub species: String,
+    pub age: f64,
+    pub leaf_area_m2: f64,
+    pub bark_area_m2: f64,
+    /// Seen from the side, and along a sun 60 degrees up.
+    pub side: LeafAndBare<BeamRecord>,
+    pub sun: LeafAndBare<BeamRecord>,
+    /// What the renderer's picture from the side covers, where it was asked for.
+    pub picture: Option<LeafAndBare<CoverageRecord>>,
+}
+
+impl OpacityRecord {
+    /// The record of `o`, with its picture's coverage where measured.
+    pub fn of(o: &Opacity, picture: Option<LeafAndBare<CoverageRecord>>) -> OpacityRecord {
+        let pair = |p: (BeamStop, BeamStop)| LeafAndBare {
+            leaf: p.0.into(),
+            bare: p.1.into(),
+        };
+        OpacityRecord {
+            region: o.region.clone(),
+            species: o.code.clone(),
+            age: o.age,
+            leaf_area_m2: o.leaf_area_m2,
+            bark_area_m2: o.bark_area_m2,
+            side: pair(o.side),
+            sun: pair(o.sun),
+            picture,
+        }
+    }
 }
 
 /// [`opacity`] for many species at once, in parallel; `tick` after each.

@@ -268,7 +268,7 @@ fn leaves(
 mod tests {
     use super::*;
     use crate::growth::Database;
-    use crate::growth::report::Cohort;
+    use crate::growth::survey::report::Cohort;
 
     fn red_pixels(rgba: &[u8], w: u32, half: std::ops::Range<u32>) -> usize {
         rgba.chunks(4)

@@ -3,7 +3,7 @@
 //! common name; then, where the tree's region has no equations for it, the same species in the
 //! nearest region that has them, then its genus, then its tree type's most common species.
 
-use crate::regions::by_distance_from;
+use crate::inventory::regions::by_distance_from;
 use std::collections::HashMap;
 use sylva::growth::{Database, SpeciesEntry};
 

@@ -7,8 +7,8 @@
 //! impostors took its load from 27 s without them to 42 s (`tests/cesium/view.mjs`).
 
 use crate::CityError;
-use crate::plan::ProtoKey;
-use crate::prototypes::Prototype;
+use crate::trees::plan::ProtoKey;
+use crate::trees::prototypes::Prototype;
 use image::codecs::png::{CompressionType, FilterType};
 use image::{ExtendedColorType, ImageEncoder, RgbaImage};
 use std::collections::HashMap;
@@ -157,7 +157,7 @@ mod tests {
             })
             .to_vec();
         let dir = tempfile::tempdir().unwrap();
-        let mut grown = crate::prototypes::grow_all(&keys, 0, dir.path()).unwrap();
+        let mut grown = crate::trees::prototypes::grow_all(&keys, 0, dir.path()).unwrap();
         let own: Vec<RgbaImage> = keys
             .iter()
             .map(|k| {

@@ -9,8 +9,8 @@
 //! fitted on, a fitted crown taller than the tree, a crown base that would sink with age. Those
 //! are the data's own limits, listed so that a reader can tell them from the model's misses.
 
-use super::measure::{Dimensions, measure};
-use super::{Database, Grower, GrowthOptions, Measured};
+use crate::growth::survey::measure::{Dimensions, measure};
+use crate::growth::{Database, Grower, GrowthOptions, Measured};
 use crate::skeleton::Skeleton;
 
 /// The quantities measured, in the order of every `[f64; 5]` here.
@@ -59,6 +59,78 @@ impl SweepRow {
     /// Whether every quantity stayed within its bound at every age.
     pub fn within(&self) -> bool {
         self.misses().is_empty()
+    }
+}
+
+/// A quantity past its bound in a sweep (`sylva sweep --json`'s `misses`).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct MissRecord {
+    /// The quantity (`height`, `dbh`, ...).
+    pub quantity: String,
+    /// Its worst relative error.
+    pub worst: f64,
+    /// The age of it.
+    pub age: u32,
+}
+
+/// Where a species' targets part from its raw equations (`adjusted`).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct AdjustmentRecord {
+    /// The quantity.
+    pub quantity: String,
+    /// First and last whole age affected.
+    pub ages: [u32; 2],
+    /// Largest relative shift of the target from the raw equation.
+    pub shift: f64,
+    /// Why, in words.
+    pub why: String,
+}
+
+/// One species and region of a sweep (`sylva sweep --json`, one line each).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[allow(missing_docs)]
+pub struct SweepRecord {
+    pub region: String,
+    pub species: String,
+    pub ages: [u32; 2],
+    /// Worst relative error per quantity ([`QUANTITIES`]' order), and the age of each.
+    pub worst: [f64; 5],
+    pub at: [u32; 5],
+    /// Whether every quantity stayed within its bound at every age.
+    pub within: bool,
+    pub misses: Vec<MissRecord>,
+    pub adjusted: Vec<AdjustmentRecord>,
+    /// Seconds the growth took.
+    pub seconds: f64,
+}
+
+impl SweepRecord {
+    /// The record of `r`.
+    pub fn of(r: &SweepRow) -> SweepRecord {
+        SweepRecord {
+            region: r.region.clone(),
+            species: r.code.clone(),
+            ages: [r.ages.0, r.ages.1],
+            worst: r.worst,
+            at: r.at,
+            within: r.within(),
+            misses: (r.misses().into_iter())
+                .map(|(k, worst, age)| MissRecord {
+                    quantity: QUANTITIES[k].to_string(),
+                    worst,
+                    age,
+                })
+                .collect(),
+            adjusted: (r.adjustments.iter())
+                .map(|a| AdjustmentRecord {
+                    quantity: QUANTITIES[a.quantity].to_string(),
+                    ages: [a.ages.0, a.ages.1],
+                    shift: a.shift,
+                    why: a.why.to_string(),
+                })
+                .collect(),
+            seconds: r.seconds,
+        }
     }
 }
 
@@ -236,7 +308,7 @@ pub fn markdown(rows: &[SweepRow], seed: u64) -> String {
     let _ = writeln!(out, "# Every species of the database, grown and measured\n");
     let _ = writeln!(
         out,
-        "Written by `sylva sweep --markdown` (crates/sylva/src/growth/sweep.rs): every species \
+        "Written by `sylva sweep --markdown` (crates/sylva/src/growth/survey/sweep.rs): every species \
          of every region that has its five equations, grown from the first whole age its data \
          cover to the last, measured at every whole age as the survey measured (height, DBH at \
          breast height, crown diameter, crown height, one-sided leaf area) and compared with \

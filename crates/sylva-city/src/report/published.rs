@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 /// The table as shipped.
-const TABLE: &str = include_str!("../data/published-per-tree.csv");
+const TABLE: &str = include_str!("../../data/published-per-tree.csv");
 
 /// The categories, in the report's order: the four the report computes (i-Tree Streets'
 /// typical position: energy, carbon, stormwater, air quality), then what it does not, then the

@@ -10,8 +10,8 @@
 //! itself values an inventory. A figure with no model or price is -1 (the property's no-data
 //! value).
 
-use crate::plan::{Kind, Planned};
-use crate::prototypes::Prototype;
+use crate::trees::plan::{Kind, Planned};
+use crate::trees::prototypes::Prototype;
 use std::collections::HashMap;
 use sylva::growth::Measured;
 use sylva::street::Prices;
@@ -129,7 +129,7 @@ pub fn tree_year(tree: &Planned, m: Option<&Measured>, p: Option<&Prototype>) ->
 pub fn years(
     trees: &[Planned],
     measured: &HashMap<(String, String), Measured>,
-    prototypes: &HashMap<crate::plan::ProtoKey, Prototype>,
+    prototypes: &HashMap<crate::trees::plan::ProtoKey, Prototype>,
 ) -> Vec<TreeYear> {
     trees
         .iter()
@@ -147,7 +147,7 @@ pub fn years(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plan::ProtoKey;
+    use crate::trees::plan::ProtoKey;
     use glam::DVec3;
 
     #[test]
@@ -163,7 +163,7 @@ mod tests {
         };
         let dir = tempfile::tempdir().unwrap();
         let protos =
-            crate::prototypes::grow_all(std::slice::from_ref(&key), 0, dir.path()).unwrap();
+            crate::trees::prototypes::grow_all(std::slice::from_ref(&key), 0, dir.path()).unwrap();
         let p = &protos[&key];
         let tree = |height: f32| Planned {
             row: 0,

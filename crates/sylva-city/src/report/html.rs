@@ -1,8 +1,8 @@
 //! The city's report as a page of HTML tables (`CityReport::html`).
 
-use crate::benefits::CATEGORIES;
-use crate::published::Comparison;
 use crate::report::CityReport;
+use crate::report::published::Comparison;
+use crate::trees::benefits::CATEGORIES;
 use std::fmt::Write as _;
 
 impl CityReport {

@@ -3,7 +3,7 @@
 //! once as a binary file that every tile drawing it refers to.
 
 use crate::CityError;
-use crate::plan::ProtoKey;
+use crate::trees::plan::ProtoKey;
 use std::collections::BTreeMap;
 #[cfg(test)]
 use std::collections::HashMap;

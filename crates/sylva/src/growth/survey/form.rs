@@ -27,7 +27,7 @@ pub struct FormMeasures {
 
 /// Measures the form of a skeleton whose first stem is the trunk, standing at the origin, with
 /// its crown from `crown_base` to `top` metres and `crown_diameter` metres across (as
-/// [`super::measure()`] finds them). The form is the crown's frame: a grown tree's short twigs
+/// [`crate::growth::measure()`] finds them). The form is the crown's frame: a grown tree's short twigs
 /// (its [`Skeleton::short_twigs`]) are no leaders, scaffolds or forks of the pipe model.
 pub fn measure_form(
     skeleton: &Skeleton,

@@ -5,9 +5,9 @@
 
 use crate::CityError;
 use crate::geo::{LocalFrame, Projection};
+use crate::inventory::regions::nearest;
+use crate::inventory::species::{Fallback, Named, Resolved, SpeciesIndex};
 use crate::inventory::{Inventory, Position, Rejected, Status};
-use crate::regions::nearest;
-use crate::species::{Fallback, Named, Resolved, SpeciesIndex};
 use glam::DVec3;
 use std::collections::{BTreeMap, HashMap};
 use sylva::growth::{Database, Measured};

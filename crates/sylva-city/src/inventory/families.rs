@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 use std::sync::OnceLock;
 
-const TABLE: &str = include_str!("../data/genus-family.csv");
+const TABLE: &str = include_str!("../../data/genus-family.csv");
 
 fn table() -> &'static HashMap<&'static str, &'static str> {
     static TABLE_BY_GENUS: OnceLock<HashMap<&'static str, &'static str>> = OnceLock::new();

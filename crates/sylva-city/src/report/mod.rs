@@ -8,10 +8,13 @@
 //! benefits from `benefits::tree_year` (Sylva's own carbon and rain, and i-Tree Streets'
 //! typical position at its DBH).
 
-use crate::benefits::{NO_DATA, tree_year};
-use crate::plan::{Kind, Plan, ProtoKey};
-use crate::prototypes::Prototype;
-use crate::published::{self, Comparison};
+pub(crate) mod html;
+pub mod published;
+
+use crate::trees::benefits::{NO_DATA, tree_year};
+use crate::trees::plan::{Kind, Plan, ProtoKey};
+use crate::trees::prototypes::Prototype;
+use published::Comparison;
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 use sylva::growth::DBH_CLASS_EDGES_CM;
@@ -139,7 +142,7 @@ struct Tree {
 }
 
 fn tree_of(
-    t: &crate::plan::Planned,
+    t: &crate::trees::plan::Planned,
     key: &ProtoKey,
     plan: &Plan,
     prototypes: &HashMap<ProtoKey, Prototype>,
@@ -204,7 +207,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
                 .to_string();
             SpeciesRow {
                 code: key.code.clone(),
-                family: crate::families::family(&genus).map(str::to_string),
+                family: crate::inventory::families::family(&genus).map(str::to_string),
                 genus,
                 common: m.map_or(String::new(), |m| m.species.common.clone()),
                 scientific,

@@ -1,8 +1,8 @@
 //! The USDA Urban Tree Database's growth equations (tables TS1, TS2 and TS6), built in or read
 //! from a folder, and the lookup of a species in a region by code, scientific or common name.
 
-use super::GrowthError;
-use super::equations::{Equation, Form};
+use crate::growth::GrowthError;
+use crate::growth::data::equations::{Equation, Form};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -128,14 +128,16 @@ impl Database {
         DB.get_or_init(|| {
             let dir = "data/urban-tree-database";
             let mut db = Database::parse(
-                include_str!("../../data/urban-tree-database/TS6_Growth_coefficients.csv"),
-                include_str!("../../data/urban-tree-database/TS2_Regional_species_and_counts.csv"),
-                include_str!("../../data/urban-tree-database/TS1_Regional_information.csv"),
+                include_str!("../../../data/urban-tree-database/TS6_Growth_coefficients.csv"),
+                include_str!(
+                    "../../../data/urban-tree-database/TS2_Regional_species_and_counts.csv"
+                ),
+                include_str!("../../../data/urban-tree-database/TS1_Regional_information.csv"),
                 dir,
             )
             .expect("the built-in Urban Tree Database parses (tested)");
             db.fit_palm_ages(
-                include_str!("../../data/urban-tree-database/TS3_palm_ages.csv"),
+                include_str!("../../../data/urban-tree-database/TS3_palm_ages.csv"),
                 &format!("{dir}/{}", TS3[1]),
             )
             .expect("the built-in palm measurements parse (tested)");
@@ -349,7 +351,7 @@ impl Database {
     }
 
     /// A species' entry, its region and its five equations: what [`Database::find`] makes a
-    /// [`super::Measured`] of. `query` is a species code (`PLAC`), a scientific name
+    /// [`crate::growth::Measured`] of. `query` is a species code (`PLAC`), a scientific name
     /// (`Platanus x acerifolia`) or a common name (`London planetree`), in any case, with `_`
     /// or `-` for spaces.
     pub(super) fn lookup(

@@ -4,9 +4,11 @@
 //! plantings and broken rows that real inventories carry. Written in each supported form and
 //! layout, all describing the same trees.
 
+mod gpkg_write;
+
 use crate::CityError;
 use crate::geo::Projection;
-use crate::regions::city_of;
+use crate::inventory::regions::city_of;
 use std::path::Path;
 use sylva::growth::{DBH_CLASS_EDGES_CM, Database};
 use sylva::rng::{Random, StreamKey};
@@ -415,9 +417,9 @@ impl DemoCity {
             .iter()
             .map(|t| (t.fault != Some(Fault::NoPosition)).then_some((t.x, t.y)))
             .collect();
-        crate::gpkg_write::write(
+        crate::demo::gpkg_write::write(
             path,
-            &crate::gpkg_write::Layer {
+            &crate::demo::gpkg_write::Layer {
                 epsg: self.epsg,
                 year: self.year,
                 columns: &columns,

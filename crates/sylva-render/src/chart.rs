@@ -2,13 +2,15 @@
 //! leaf area against age), the equations as a curve and the grown tree as points. Text in the
 //! captions' bundled font, so no system fonts are needed.
 
-use anyhow::Result;
+use crate::{FrameStats, Picture, RenderError};
 use plotters::prelude::*;
 use sylva::growth::Measured;
 use sylva::growth::Targets;
-use sylva::growth::report::{AgeRecord, CHARTED};
+use sylva::growth::survey::report::{AgeRecord, CHARTED};
 use sylva::street::{Basis, YearAccount};
-use sylva_render::{FrameStats, Picture};
+
+/// What plotters may fail with, boxed.
+type Drawn<T> = Result<T, Box<dyn std::error::Error + Send + Sync>>;
 
 /// Makes the bundled font plotters' "sans-serif", once.
 fn register_font() {
@@ -18,13 +20,17 @@ fn register_font() {
         let _ = plotters::style::register_font(
             "sans-serif",
             plotters::style::FontStyle::Normal,
-            sylva_render::caption::FONT,
+            crate::caption::FONT,
         );
     });
 }
 
 /// The chart of one species' history as a picture.
-pub fn growth_chart(m: &Measured, history: &[AgeRecord]) -> Result<Picture> {
+pub fn growth_chart(m: &Measured, history: &[AgeRecord]) -> Result<Picture, RenderError> {
+    draw_growth(m, history).map_err(|e| RenderError::Chart(e.to_string()))
+}
+
+fn draw_growth(m: &Measured, history: &[AgeRecord]) -> Drawn<Picture> {
     register_font();
     let (w, h) = (1500u32, 900u32);
     let mut buffer = vec![255u8; (w * h * 3) as usize];
@@ -86,7 +92,16 @@ pub fn benefit_chart(
     accounts: &[YearAccount],
     missing: &[String],
     basis: Basis,
-) -> Result<Picture> {
+) -> Result<Picture, RenderError> {
+    draw_benefits(m, accounts, missing, basis).map_err(|e| RenderError::Chart(e.to_string()))
+}
+
+fn draw_benefits(
+    m: &Measured,
+    accounts: &[YearAccount],
+    missing: &[String],
+    basis: Basis,
+) -> Drawn<Picture> {
     register_font();
     let (w, h) = (1500u32, 900u32);
     let mut buffer = vec![255u8; (w * h * 3) as usize];

@@ -3,7 +3,8 @@
 //! feed the CSV, the charts and the captions of `sylva grow`; drawing them is the caller's.
 //!
 //! ```
-//! use sylva::growth::{Database, report::{Cohort, run_ages}};
+//! use sylva::growth::Database;
+//! use sylva::growth::survey::report::{Cohort, run_ages};
 //! let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
 //! let ages = run_ages(&plane, Some(5.0), Some(10.0), 5.0).unwrap();
 //! let mut cohort = Cohort::new(vec![plane], 0);
@@ -11,13 +12,13 @@
 //!     let skeletons = cohort.advance_to(age);
 //!     assert_eq!(skeletons.len(), 1);
 //! }
-//! let csv = sylva::growth::report::csv(&cohort.history[0]);
+//! let csv = sylva::growth::survey::report::csv(&cohort.history[0]);
 //! assert_eq!(csv.lines().count(), 3);
 //! ```
 
-use super::form::{FormMeasures, measure_form};
-use super::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
 use crate::Skeleton;
+use crate::growth::survey::form::{FormMeasures, measure_form};
+use crate::growth::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
 use crate::mesh::MeshOptions;
 use std::fmt::Write as _;
 
@@ -69,32 +70,60 @@ pub fn run_ages(
     Ok((0..count).map(|i| from + i as f64 * step).collect())
 }
 
-/// An age's record as JSON: each grown dimension beside the equations' (`_measured`), and the
-/// crown's form.
-pub fn record_json(m: &Measured, r: &AgeRecord) -> serde_json::Value {
-    let (d, t, f) = (&r.model, &r.measured, &r.form);
-    let round = |v: f64, k: f64| (v * k).round() / k;
-    serde_json::json!({
-        "species": m.species.code,
-        "age": r.age,
-        "height_m": round(d.height, 1e3),
-        "height_measured_m": round(t.height, 1e3),
-        "crown_height_m": round(d.crown_height, 1e3),
-        "crown_height_measured_m": round(t.crown_height, 1e3),
-        "crown_diameter_m": round(d.crown_diameter, 1e3),
-        "crown_diameter_measured_m": round(t.crown_diameter, 1e3),
-        "dbh_cm": round(d.dbh, 1e2),
-        "dbh_measured_cm": round(t.dbh, 1e2),
-        "leaf_area_m2": round(d.leaf_area, 10.0),
-        "leaf_area_measured_m2": round(t.leaf_area, 10.0),
-        "inner_leaf_share": round(f.inner_leaf_share, 1e3),
-        "leaders": f.leaders,
-        "scaffold_angle_deg": f.scaffold_angle.map(|a| round(a, 10.0)),
-        "pipe_exponent": f.pipe_exponent.map(|n| round(n, 1e2)),
-        "live_branches": r.branches.0,
-        "shed_branches": r.branches.1,
-        "live_segments": r.segments,
-    })
+/// An age's output record: each grown dimension beside the equations' (`_measured`), and
+/// the crown's form (`sylva grow --json`, the wheel's summary).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[allow(missing_docs)]
+pub struct GrowthRecord {
+    /// The species' code.
+    pub species: String,
+    pub age: f64,
+    pub height_m: f64,
+    pub height_measured_m: f64,
+    pub crown_height_m: f64,
+    pub crown_height_measured_m: f64,
+    pub crown_diameter_m: f64,
+    pub crown_diameter_measured_m: f64,
+    pub dbh_cm: f64,
+    pub dbh_measured_cm: f64,
+    pub leaf_area_m2: f64,
+    pub leaf_area_measured_m2: f64,
+    pub inner_leaf_share: f64,
+    pub leaders: usize,
+    pub scaffold_angle_deg: Option<f64>,
+    pub pipe_exponent: Option<f64>,
+    pub live_branches: usize,
+    pub shed_branches: usize,
+    pub live_segments: usize,
+}
+
+impl GrowthRecord {
+    /// The record of age `r` of species `m`.
+    pub fn of(m: &Measured, r: &AgeRecord) -> GrowthRecord {
+        let (d, t, f) = (&r.model, &r.measured, &r.form);
+        let round = |v: f64, k: f64| (v * k).round() / k;
+        GrowthRecord {
+            species: m.species.code.clone(),
+            age: r.age,
+            height_m: round(d.height, 1e3),
+            height_measured_m: round(t.height, 1e3),
+            crown_height_m: round(d.crown_height, 1e3),
+            crown_height_measured_m: round(t.crown_height, 1e3),
+            crown_diameter_m: round(d.crown_diameter, 1e3),
+            crown_diameter_measured_m: round(t.crown_diameter, 1e3),
+            dbh_cm: round(d.dbh, 1e2),
+            dbh_measured_cm: round(t.dbh, 1e2),
+            leaf_area_m2: round(d.leaf_area, 10.0),
+            leaf_area_measured_m2: round(t.leaf_area, 10.0),
+            inner_leaf_share: round(f.inner_leaf_share, 1e3),
+            leaders: f.leaders,
+            scaffold_angle_deg: f.scaffold_angle.map(|a| round(a, 10.0)),
+            pipe_exponent: f.pipe_exponent.map(|n| round(n, 1e2)),
+            live_branches: r.branches.0,
+            shed_branches: r.branches.1,
+            live_segments: r.segments,
+        }
+    }
 }
 
 /// One age of one tree: what the model grew and what the equations say.
@@ -167,19 +196,24 @@ impl Cohort {
         skeletons
     }
 
-    /// The tallest height and widest crown the equations give any species at any of `ages`
-    /// (at least 2 m and 1 m): the frame a run's pictures share, so that ages compare.
+    /// The frame of a run's pictures ([`extent`]).
     pub fn extent(&self, ages: &[f64]) -> (f64, f64) {
-        let mut tallest = 2.0f64;
-        let mut widest = 1.0f64;
-        for m in &self.species {
-            for &a in ages {
-                tallest = tallest.max(m.height(a));
-                widest = widest.max(m.crown_diameter(a));
-            }
-        }
-        (tallest, widest)
+        extent(&self.species, ages)
     }
+}
+
+/// The tallest height and widest crown the equations give any species at any of `ages`
+/// (at least 2 m and 1 m): the frame a run's pictures share, so that ages compare.
+pub fn extent(species: &[Measured], ages: &[f64]) -> (f64, f64) {
+    let mut tallest = 2.0f64;
+    let mut widest = 1.0f64;
+    for m in species {
+        for &a in ages {
+            tallest = tallest.max(m.height(a));
+            widest = widest.max(m.crown_diameter(a));
+        }
+    }
+    (tallest, widest)
 }
 
 /// `5` for whole ages, `5.5` otherwise, padded so that files sort by age.
@@ -290,7 +324,7 @@ impl Measured {
     /// the foliage table names them; for species without a row, one bark and a green
     /// (evergreens darker).
     pub fn colours(&self) -> ([f32; 3], [f32; 3]) {
-        if let Some(f) = super::foliage::of(&self.species.code) {
+        if let Some(f) = crate::growth::data::foliage::of(&self.species.code) {
             return (f.bark.srgb, f.summer.srgb);
         }
         let evergreen = self.species.tree_type.get(1..2) == Some("E");
