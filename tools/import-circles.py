@@ -59,8 +59,8 @@ def sccs(E):
 # Each folder's rooms, lowest first (ARCHITECTURE.md draws them).
 ROOMS={
     'crates/sylva/src': [
-        ('street', ['site','energy','work','accounts','study','rank','records','picture']),
-        ('growth', ['data','model','survey','season']),
+        ('street', ['error','site','energy','work','accounts','study','rank','records','picture']),
+        ('growth', ['error','data','model','survey','season']),
     ],
     'crates/sylva-city/src': [
         ('', ['error','geo','inventory','demo','trees','tiles','report','tasks','cache','run','bench']),

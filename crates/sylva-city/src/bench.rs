@@ -2,7 +2,10 @@
 //! N/10 trees tiled first as the baseline, then one of N, in the same process.
 
 use crate::demo::{DemoLayout, demo_city};
-use crate::{CityError, CityOptions, Layout, Quiet, tile_city};
+use crate::error::CityError;
+use crate::inventory::Layout;
+use crate::run::{Quiet, tile_city};
+use crate::trees::plan::CityOptions;
 use std::time::Instant;
 
 /// One city tiled.

@@ -2,7 +2,7 @@
 //! (state plane, UTM, ...) named by EPSG code, the Earth-centred frame 3D Tiles draws in, and a
 //! city's local east-north-up frame, in which tiles and trees are laid out in metres.
 
-use crate::CityError;
+use crate::error::CityError;
 use glam::DVec3;
 use proj4rs::proj::Proj;
 

@@ -2,8 +2,8 @@
 //! the summary of what became of every row. The folder is written beside its final place and
 //! moved there only when complete, so a failed run leaves no half-written tileset.
 
-use crate::CityError;
 use crate::cache::GrowthCache;
+use crate::error::CityError;
 use crate::inventory::Layout;
 use crate::tasks::{CityJob, CityRun, OutFile, PROTOTYPES_DIR, run_growth, run_tile, stump_file};
 use crate::tiles::Tile;

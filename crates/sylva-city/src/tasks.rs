@@ -15,7 +15,7 @@
 //! which keeps every float exact). Who writes the files is the caller's choice: each task
 //! returns its files' paths (relative to the run's output folder) and bytes.
 
-use crate::CityError;
+use crate::error::CityError;
 use crate::inventory::{self, Inventory, Layout};
 use crate::report;
 use crate::tiles::quadtree::{self, Node};

@@ -10,6 +10,7 @@ import * as T from '/vendor/city.min.js';
 import { lineChart, barChart } from '/charts.js';
 import { softwareGl } from '/gl.js';
 import { extentOf, drawGround } from '/city-ground.js';
+import { epochTable, esc } from '/city-report.js';
 import {
   prepare, rowOf, trees, paint, share, combine, forget, ownBytes, Batches, setSpeciesColours, PALETTE, OTHER_SPECIES, solidAt, LEFT_OUT,
 } from '/city-trees.js';
@@ -366,7 +367,6 @@ function pick(clientX, clientY) {
 probe.pick = pick;
 
 const f = (v, d = 1) => (v == null || Number.isNaN(v) ? '–' : Number(v).toFixed(d));
-const esc = (s) => String(s ?? '').replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
 
 async function showCard(row) {
   $('card').hidden = false;
@@ -436,35 +436,18 @@ async function loadReport(city) {
 }
 
 function showReportEpoch() {
-  const r = state.report;
-  if (!r) return;
-  const epochs = r.epochs || [];
-  const first = epochs[0];
-  const now = epochs.find((e) => e.years === state.city.epochs[state.epoch].years) || first;
-  const cell = (e, k, d = 0) => {
-    if (!e) return '–';
-    const v = k === 'expected_alive_share' ? 100 * e[k] : e[k];
-    return Number(v).toLocaleString(undefined, { maximumFractionDigits: k === 'expected_alive_share' ? 1 : d });
-  };
-  const rows = [['Trees', 'trees'], ['Canopy, m²', 'canopy_m2'], ['Leaf area, m²', 'leaf_area_m2'],
-    ['Benefits (Sylva: four of five categories, energy not computed), $/yr', 'benefits_usd'],
-    ['Benefits (i-Tree typical), $/yr', 'typical_total_usd'],
-    ['Trees expected standing, %', 'expected_alive_share'],
-    ['Benefits (Sylva), expected, $/yr', 'expected_benefits_usd']];
-  // The first epoch, and the one shown beside it.
-  const later = now !== first;
-  const name = (e) => (e.years === 0 ? 'as inventoried' : `+${e.years} years`);
-  $('report-summary').innerHTML = `<table id="report-epochs"><tr><th></th><th>${first ? name(first) : ''}</th>` +
-    (later ? `<th>${name(now)}</th>` : '') + '</tr>' +
-    rows.map(([label, k]) => `<tr><th>${label}</th><td data-k="${k}" data-first>${cell(first, k)}</td>` +
-      (later ? `<td data-k="${k}">${cell(now, k)}</td>` : '') + '</tr>').join('') + '</table>' +
-    (r.flags?.length ? `<p class="note">Flagged: ${r.flags.map(esc).join('; ')}</p>` : '');
+  if (!state.report) return;
+  $('report-summary').innerHTML = epochTable(state.report, state.city.epochs[state.epoch].years);
 }
 
 // ---- for the browser test ------------------------------------------------------------------------
 
-// Where some drawn trees stand on the screen (mid-height of each instance, inside the canvas),
-// so that the test clicks trees as a user would.
+// Whether a click at (x, y) reaches the scene: no panel, legend or card lies over it (the view
+// turns while the test times it, so a tree may end up under one).
+const onCanvas = (x, y) => document.elementFromPoint(x, y) === canvas;
+
+// Where some drawn trees stand on the screen (mid-height of each instance, inside the canvas
+// and not under a panel), so that the test clicks trees as a user would.
 probe.treePoints = (most = 20) => {
   const out = [];
   const r = canvas.getBoundingClientRect();
@@ -477,8 +460,9 @@ probe.treePoints = (most = 20) => {
       p.setFromMatrixPosition(m);
       p.y += 0.45 * (row?.height_m || 4);
       p.project(camera);
-      if (Math.abs(p.x) < 0.9 && Math.abs(p.y) < 0.9 && p.z < 1) {
-        out.push({ x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height, id: row?.id, depth: p.z });
+      const x = r.left + ((p.x + 1) / 2) * r.width, y = r.top + ((1 - p.y) / 2) * r.height;
+      if (Math.abs(p.x) < 0.9 && Math.abs(p.y) < 0.9 && p.z < 1 && onCanvas(x, y)) {
+        out.push({ x, y, id: row?.id, depth: p.z });
       }
     }
   }
@@ -502,7 +486,8 @@ probe.drawn = () => {
   };
 };
 
-// Where markers stand on the screen, and their trees' ids (at most `most`, spread over all).
+// Where markers stand on the screen and a click reaches them, and their trees' ids (at most
+// `most`, spread over all).
 probe.markerPoints = (most = 20) => {
   const m = batches.markers, out = [], p = new T.Vector3();
   const r = canvas.getBoundingClientRect();
@@ -511,9 +496,10 @@ probe.markerPoints = (most = 20) => {
     // Markers of the trees a coarse tile leaves out have no card to open.
     if (!m.refs[i]) continue;
     p.fromArray(m.position, 3 * i).project(camera);
-    if (Math.abs(p.x) < 0.95 && Math.abs(p.y) < 0.95 && p.z < 1) {
+    const x = r.left + ((p.x + 1) / 2) * r.width, y = r.top + ((1 - p.y) / 2) * r.height;
+    if (Math.abs(p.x) < 0.95 && Math.abs(p.y) < 0.95 && p.z < 1 && onCanvas(x, y)) {
       const [tile, k] = m.refs[i];
-      out.push({ x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height, id: rowOf(tile, k)?.id });
+      out.push({ x, y, id: rowOf(tile, k)?.id });
     }
   }
   return out;

@@ -53,6 +53,11 @@ const FILES: &[(&str, &str, &[u8])] = &[
         include_bytes!("../assets/city-ground.js"),
     ),
     (
+        "/city-report.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("../assets/city-report.js"),
+    ),
+    (
         "/city-trees.js",
         "text/javascript; charset=utf-8",
         include_bytes!("../assets/city-trees.js"),

@@ -3,7 +3,7 @@
 //! features layer `trees` whose points are GeoPackage binary geometries (a `GP` header and
 //! WKB). The demo city's GeoPackage form.
 
-use crate::CityError;
+use crate::error::CityError;
 use rusqlite::Connection;
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 
 mod gpkg_write;
 
-use crate::CityError;
+use crate::error::CityError;
 use crate::geo::Projection;
 use crate::inventory::regions::city_of;
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! A CSV inventory: a header line, then a row per tree.
 
 use super::{MAX_ROWS, Record, Records, Rejected};
-use crate::CityError;
+use crate::error::CityError;
 use std::path::Path;
 
 /// Reads every row of the CSV file at `path`. A line the CSV reader cannot read (broken

@@ -4,7 +4,7 @@
 //! still write it: `urn:ogc:def:crs:EPSG::2263`).
 
 use super::{MAX_ROWS, Record, Records, Rejected};
-use crate::CityError;
+use crate::error::CityError;
 use std::path::Path;
 
 /// Largest GeoJSON file read, bytes: it is parsed whole, and a city of 10^6 trees writes some

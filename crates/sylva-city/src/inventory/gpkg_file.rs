@@ -3,7 +3,7 @@
 //! optional envelope, then standard WKB), in the spatial reference system the layer names.
 
 use super::{MAX_ROWS, Record, Records, Rejected};
-use crate::CityError;
+use crate::error::CityError;
 use geo_traits::{CoordTrait, GeometryTrait, GeometryType, PointTrait};
 use rusqlite::types::ValueRef;
 use rusqlite::{Connection, OpenFlags};

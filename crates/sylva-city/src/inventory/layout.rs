@@ -13,7 +13,7 @@
 //! or `--dbh-unit cm` says so; a trunk circumference may stand in for it.
 
 use super::{Inventory, Position, Record, Records, Rejected, Status, Tree};
-use crate::CityError;
+use crate::error::CityError;
 use std::path::Path;
 
 /// A unit of length in an inventory.

@@ -14,7 +14,7 @@ pub mod species;
 
 pub use layout::{Layout, LengthUnit};
 
-use crate::CityError;
+use crate::error::CityError;
 use std::path::Path;
 
 /// One row of an inventory file, before its layout is known: its fields by name (names as the

@@ -6,7 +6,7 @@
 //! some 50 ms making each picture's mipmaps, whatever its size: a 1,000-tree city's 196
 //! impostors took its load from 27 s without them to 42 s (`tests/cesium/view.mjs`).
 
-use crate::CityError;
+use crate::error::CityError;
 use crate::trees::plan::ProtoKey;
 use crate::trees::prototypes::Prototype;
 use image::codecs::png::{CompressionType, FilterType};

@@ -9,7 +9,7 @@ pub mod check;
 pub mod content;
 pub mod quadtree;
 
-use crate::CityError;
+use crate::error::CityError;
 use crate::trees::benefits::TreeYear;
 use crate::trees::plan::{Kind, Planned, ProtoKey};
 use crate::trees::prototypes::Prototype;

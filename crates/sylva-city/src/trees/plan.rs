@@ -3,7 +3,7 @@
 //! is turned and scaled, and its measured dimensions. Every row is accounted for in the
 //! [`Summary`].
 
-use crate::CityError;
+use crate::error::CityError;
 use crate::geo::{LocalFrame, Projection};
 use crate::inventory::regions::nearest;
 use crate::inventory::species::{Fallback, Named, Resolved, SpeciesIndex};

@@ -2,7 +2,7 @@
 //! its age classes in rising order, and each class meshed at three levels of detail, written
 //! once as a binary file that every tile drawing it refers to.
 
-use crate::CityError;
+use crate::error::CityError;
 use crate::trees::plan::ProtoKey;
 use std::collections::BTreeMap;
 #[cfg(test)]

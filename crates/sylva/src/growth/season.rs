@@ -24,9 +24,9 @@
 //! - flowers as five-lobed rosettes (a flower or a cluster) as long as a leaf, at one in two
 //!   of the lit leaves' places on a bare or unfolding tree and one in five among full leaves.
 
-use super::Measured;
 use crate::export::Materials;
 use crate::growth::data::foliage::{self, BarkPattern, Persistence};
+use crate::growth::data::measured::Measured;
 use crate::mesh::{MeshOptions, TreeMesh, mesh_tree};
 use crate::rng::mix64;
 use crate::skeleton::{Leaf, LeafShape, Skeleton};
@@ -327,7 +327,8 @@ fn flowers(leaves: &[Leaf], state: LeafState) -> Vec<Leaf> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::growth::{Database, Grower, GrowthOptions};
+    use crate::growth::data::database::Database;
+    use crate::growth::model::{Grower, GrowthOptions};
 
     #[test]
     fn months_parse_from_seasons_numbers_and_names() {

@@ -1,11 +1,11 @@
 //! A region's species side by side: each grown year by year on the same site, its benefits
 //! and costs summed over the years, and the first year it runs into the street.
 
-use super::StreetError;
 use super::accounts::costs::YearCosts;
 use super::accounts::ledger::YearAccount;
 use super::accounts::money::Basis;
 use super::accounts::pruner::PruningYear;
+use super::error::StreetError;
 use super::study::{Spread, StreetTree};
 use super::work::conflicts::{Conflict, Kind};
 use crate::growth::{Database, Measured};

@@ -45,7 +45,7 @@
 //! standard = "us-street"
 //! ```
 
-use crate::street::StreetError;
+use crate::street::error::StreetError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

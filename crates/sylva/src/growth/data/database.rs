@@ -1,8 +1,8 @@
 //! The USDA Urban Tree Database's growth equations (tables TS1, TS2 and TS6), built in or read
 //! from a folder, and the lookup of a species in a region by code, scientific or common name.
 
-use crate::growth::GrowthError;
 use crate::growth::data::equations::{Equation, Form};
+use crate::growth::error::GrowthError;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::OnceLock;

@@ -405,7 +405,7 @@ fn parse(text: &str, file: &str) -> Result<Vec<Foliage>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::growth::Database;
+    use crate::growth::data::database::Database;
 
     #[test]
     fn the_table_reads_and_every_row_is_a_sourced_database_species() {

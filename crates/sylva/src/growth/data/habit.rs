@@ -360,7 +360,7 @@ pub fn species_rows() -> impl Iterator<Item = (&'static str, TreeForm, &'static 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::growth::Database;
+    use crate::growth::data::database::Database;
 
     #[test]
     fn every_species_in_the_database_has_a_habit_and_the_named_ones_their_form() {

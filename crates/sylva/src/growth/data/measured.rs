@@ -2,9 +2,9 @@
 //! from the database's age→DBH and DBH→X equations and kept inside the ranges they were fitted
 //! for.
 
-use crate::growth::GrowthError;
 use crate::growth::data::database::{Database, Region, SpeciesEntry};
 use crate::growth::data::equations::Equation;
+use crate::growth::error::GrowthError;
 
 /// Longest life the age search looks at, years.
 const MAX_AGE: f64 = 300.0;

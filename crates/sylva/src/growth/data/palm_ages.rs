@@ -12,8 +12,8 @@
 //! scatter widely (their trunks were planted at many sizes), so the fit is a rough guide and
 //! is said to be one wherever it is shown (`Row::fitted_to`).
 
-use crate::growth::GrowthError;
 use crate::growth::data::equations::{Equation, Form};
+use crate::growth::error::GrowthError;
 use std::collections::BTreeMap;
 
 /// Fewest measured trees of a species for a fit.

@@ -22,7 +22,7 @@ pub struct Dimensions {
 impl Dimensions {
     /// Relative errors against the measured functions, in the order height, DBH, crown
     /// diameter, crown height, leaf area (0 where a target is 0).
-    pub fn relative_errors(&self, t: &crate::growth::Targets) -> [f64; 5] {
+    pub fn relative_errors(&self, t: &crate::growth::model::Targets) -> [f64; 5] {
         let rel = |a: f64, b: f64| if b > 0.0 { a / b - 1.0 } else { 0.0 };
         [
             rel(self.height, t.height),

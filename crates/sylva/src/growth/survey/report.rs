@@ -17,8 +17,10 @@
 //! ```
 
 use crate::Skeleton;
+use crate::growth::data::measured::Measured;
+use crate::growth::model::{Grower, GrowthOptions, Targets};
 use crate::growth::survey::form::{FormMeasures, measure_form};
-use crate::growth::{Dimensions, Grower, GrowthOptions, Measured, Targets, measure};
+use crate::growth::survey::measure::{Dimensions, measure};
 use crate::mesh::MeshOptions;
 use std::fmt::Write as _;
 
@@ -340,7 +342,7 @@ impl Measured {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::growth::Database;
+    use crate::growth::data::database::Database;
 
     #[test]
     fn ages_labels_and_errors() {

@@ -9,8 +9,10 @@
 //! fitted on, a fitted crown taller than the tree, a crown base that would sink with age. Those
 //! are the data's own limits, listed so that a reader can tell them from the model's misses.
 
+use crate::growth::data::database::Database;
+use crate::growth::data::measured::Measured;
+use crate::growth::model::{Grower, GrowthOptions};
 use crate::growth::survey::measure::{Dimensions, measure};
-use crate::growth::{Database, Grower, GrowthOptions, Measured};
 use crate::skeleton::Skeleton;
 
 /// The quantities measured, in the order of every `[f64; 5]` here.

@@ -17,8 +17,8 @@
 //! year's chance of dying (street::accounts::survival) times the removal price at its DBH, so that
 //! weighting a year by the share alive gives the cost per tree planted.
 
-use crate::street::StreetError;
 use crate::street::accounts::prices::{non_negative, parse, read, value};
+use crate::street::error::StreetError;
 use serde::Deserialize;
 use std::path::Path;
 

@@ -16,7 +16,6 @@
 
 use crate::Skeleton;
 use crate::growth::{Dimensions, Measured};
-use crate::street::StreetError;
 use crate::street::accounts::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
 use crate::street::accounts::costs::{Costs, YearCosts};
 use crate::street::accounts::money::{Basis, Money};
@@ -27,6 +26,7 @@ use crate::street::energy::climate::{Climate, climate, interception_m3};
 use crate::street::energy::climate_effect::climate_effect;
 use crate::street::energy::crown::{Crown, leaves_of};
 use crate::street::energy::shade::{Energy, Sky, energy};
+use crate::street::error::StreetError;
 use crate::street::site::Site;
 use crate::street::work::conflicts::{Conflict, conflicts_with, leaf_outside_zones};
 

@@ -20,8 +20,8 @@
 //!
 //! Costs are in `costs.rs`.
 
-use crate::street::StreetError;
 use crate::street::accounts::aesthetics;
+use crate::street::error::StreetError;
 use serde::Deserialize;
 use std::path::Path;
 

@@ -22,7 +22,7 @@
 //! middle of the three. The guides' own year-by-year schedules were not reachable, so this is
 //! the published method with the nearest citable inputs, and every report says so.
 
-use crate::street::StreetError;
+use crate::street::error::StreetError;
 
 /// The years after planting that count as establishment (PSW-GTR-207's five).
 pub const ESTABLISHMENT_YEARS: u32 = 5;

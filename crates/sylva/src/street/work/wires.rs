@@ -13,7 +13,7 @@
 //! height and at the reach height that agrees best in each region (a one-number fit, said as
 //! such), beside the agreement of always answering "no conflict".
 
-use crate::street::StreetError;
+use crate::street::error::StreetError;
 use std::collections::BTreeMap;
 use std::path::Path;
 
