@@ -104,7 +104,7 @@ pub fn run(args: &LobesArgs) -> Result<()> {
     // A picture needs the mesh too: make it once for the picture and any mesh file.
     let meshed = (!pictures.is_empty()).then(|| mesh_tree(&skeleton, &look.options));
     let mesh = match &meshed {
-        Some(m) => Meshable::Mesh(m),
+        Some(m) => Meshable::Mesh(&skeleton, m),
         None => Meshable::Skeleton(&skeleton),
     };
     let mut written = write_outputs(&planned, &options, &skeleton, mesh, &rules.name, &look)?;

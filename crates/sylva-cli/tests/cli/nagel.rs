@@ -225,7 +225,7 @@ fn nagel_commands_refuse_bad_input_with_line_numbers() {
         d,
     );
     refuses(
-        &["fractal", "-o", &out("a.dxf")],
+        &["fractal", "-o", &out("a.dwg")],
         &["unknown format", ".vec"],
         d,
     );

@@ -7,6 +7,7 @@
 //! Drawings that must know their extent before the first stroke (SVG, PNG) replay the source
 //! once per pass instead of buffering it.
 
+pub mod cad;
 mod outputs;
 mod picture;
 mod vec_file;

@@ -22,6 +22,8 @@ pub enum LineFormat {
     Glb,
     /// A mesh as OBJ + MTL.
     Obj,
+    /// Plan symbol and elevations for landscape CAD, as DXF (from the skeleton).
+    Dxf,
 }
 
 impl LineFormat {
@@ -37,10 +39,11 @@ impl LineFormat {
             Some("png") => Self::Png,
             Some("glb") => Self::Glb,
             Some("obj") => Self::Obj,
+            Some("dxf") => Self::Dxf,
             _ => {
                 return Err(ExportError::Output(format!(
                     "output {}: unknown format; use .vec (vector file), .svg or .png (drawing), \
-                     .glb or .obj (mesh)",
+                     .glb or .obj (mesh), .dxf (plan and elevations for CAD)",
                     path.display()
                 )));
             }
@@ -98,8 +101,8 @@ pub enum Meshable<'a> {
     Skeleton(&'a Skeleton),
     /// Built only if a mesh is asked for (the fractal streams its lines without one).
     Build(&'a dyn Fn() -> Skeleton),
-    /// Already meshed by the caller (who drew a picture of it too).
-    Mesh(&'a TreeMesh),
+    /// Already meshed by the caller (who drew a picture of it too): the skeleton and its mesh.
+    Mesh(&'a Skeleton, &'a TreeMesh),
     /// Nothing to mesh (a vector file has no radii); callers refuse mesh outputs first.
     Nothing,
 }
@@ -131,9 +134,36 @@ pub fn write_outputs(
                 write_atomically(path, &draw_png(source, options))?;
                 format!("{} view, PNG", options.view.name())
             }
+            LineFormat::Dxf => {
+                let built;
+                let skeleton = match &mesh {
+                    Meshable::Skeleton(s) | Meshable::Mesh(s, _) => *s,
+                    Meshable::Build(build) => {
+                        built = build();
+                        &built
+                    }
+                    Meshable::Nothing => {
+                        return Err(ExportError::Output(format!(
+                            "{name}: lines only; a DXF plan and elevations are drawn from a \
+                             tree's stems and leaves"
+                        )));
+                    }
+                };
+                let drawing = super::cad::tree_dxf(skeleton, name)?;
+                write_atomically_with(path, |w| {
+                    drawing
+                        .save(w)
+                        .map_err(|e| std::io::Error::other(e.to_string()))
+                })?;
+                format!(
+                    "DXF: plan and elevations, {} stems, {} leaves",
+                    skeleton.stems.len(),
+                    skeleton.leaves.len()
+                )
+            }
             LineFormat::Glb | LineFormat::Obj => {
                 let mesh = match (&mut meshed, &mesh) {
-                    (_, Meshable::Mesh(m)) => *m,
+                    (_, Meshable::Mesh(_, m)) => *m,
                     (Some(m), _) => &*m,
                     (slot, Meshable::Skeleton(s)) => slot.insert(mesh_tree(s, &look.options)),
                     (slot, Meshable::Build(build)) => {
@@ -168,7 +198,7 @@ mod tests {
         let a = dir.path().join("a.svg");
         let e = plan(&[a.clone(), a.clone()]).unwrap_err().to_string();
         assert!(e.contains("named twice"), "{e}");
-        let e = plan(&[dir.path().join("a.dxf")]).unwrap_err().to_string();
+        let e = plan(&[dir.path().join("a.dwg")]).unwrap_err().to_string();
         assert!(e.contains("unknown format") && e.contains(".vec"), "{e}");
         let folder = dir.path().join("b.png");
         std::fs::create_dir(&folder).unwrap();
