@@ -51,6 +51,20 @@ fn on(layer: &str, kind: EntityType) -> Entity {
     e
 }
 
+/// A closed outline through `points` on `layer`.
+fn closed(layer: &str, points: &[Vec2]) -> Entity {
+    let mut poly = LwPolyline::default();
+    poly.set_is_closed(true);
+    poly.vertices = (points.iter())
+        .map(|p| LwPolylineVertex {
+            x: f64::from(p.x),
+            y: f64::from(p.y),
+            ..Default::default()
+        })
+        .collect();
+    on(layer, EntityType::LwPolyline(poly))
+}
+
 /// The convex hull of `points` (Andrew's monotone chain), counter-clockwise.
 fn hull(mut points: Vec<Vec2>) -> Vec<Vec2> {
     points.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
@@ -125,43 +139,18 @@ pub fn tree_dxf(skeleton: &Skeleton, name: &str) -> Result<Drawing, ExportError>
             }
         }
         for leaf in &skeleton.leaves {
-            let at =
-                |x: f32, z: f32| project(leaf.position + leaf.orientation * Vec3::new(x, 0.0, z));
-            let (half, mid) = (0.5 * leaf.width, 0.5 * leaf.length);
-            let outline = [
-                at(0.0, 0.0),
-                at(-half, mid),
-                at(0.0, leaf.length),
-                at(half, mid),
-            ];
-            crown.extend(outline);
-            let mut poly = LwPolyline::default();
-            poly.set_is_closed(true);
-            poly.vertices = (outline.iter())
-                .map(|p| LwPolylineVertex {
-                    x: f64::from(p.x),
-                    y: f64::from(p.y),
-                    ..Default::default()
-                })
-                .collect();
-            block
-                .entities
-                .push(on("TREE-LEAVES", EntityType::LwPolyline(poly)));
+            // The blade's outline as every drawing draws it (`leaf_lines`: base, widest point
+            // on each side, tip), each segment's start one corner.
+            let mut outline: Vec<Vec2> = Vec::with_capacity(4);
+            super::leaf_lines(leaf, &mut |a: Vec3, _: Vec3, _: super::Stroke| {
+                outline.push(project(a));
+            });
+            crown.extend(&outline);
+            block.entities.push(closed("TREE-LEAVES", &outline));
         }
         let outline = hull(crown);
         if outline.len() >= 3 {
-            let mut poly = LwPolyline::default();
-            poly.set_is_closed(true);
-            poly.vertices = (outline.iter())
-                .map(|p| LwPolylineVertex {
-                    x: f64::from(p.x),
-                    y: f64::from(p.y),
-                    ..Default::default()
-                })
-                .collect();
-            block
-                .entities
-                .push(on("TREE-CROWN", EntityType::LwPolyline(poly)));
+            block.entities.push(closed("TREE-CROWN", &outline));
         }
         // In plan the trunk is its circle at the ground.
         if view == "PLAN"
