@@ -81,6 +81,7 @@ pub struct Projection {
     epsg: u16,
     from: Proj,
     to: Proj,
+    unit: Option<(&'static str, f64)>,
 }
 
 impl std::fmt::Debug for Projection {
@@ -122,7 +123,19 @@ impl Projection {
             epsg: def.code,
             from,
             to,
+            unit: unit_of(def.proj4),
         })
+    }
+
+    /// The length unit of a projected system's coordinates, as PROJ names it (`m`, `us-ft`,
+    /// ...), and its length in metres; none for a geographic system (degrees) or a unit
+    /// Sylva does not know.
+    pub fn unit(&self) -> Option<(&'static str, f64)> {
+        if self.from.is_latlong() {
+            None
+        } else {
+            self.unit
+        }
     }
 
     /// The EPSG code.
@@ -141,6 +154,44 @@ impl Projection {
         let (lon, lat) = (p.0.to_degrees(), p.1.to_degrees());
         (lon.is_finite() && lat.is_finite() && lat.abs() <= 90.0).then_some((lon, lat))
     }
+}
+
+/// The length units of projected systems, in metres, as PROJ defines them (PROJ's unit table,
+/// `proj -lu`: the international foot 0.3048 m, the US survey foot 1200/3937 m, ...).
+const UNITS: [(&str, f64); 10] = [
+    ("m", 1.0),
+    ("km", 1000.0),
+    ("cm", 0.01),
+    ("mm", 0.001),
+    ("ft", 0.3048),
+    ("us-ft", 1200.0 / 3937.0),
+    ("yd", 0.9144),
+    ("us-yd", 3600.0 / 3937.0),
+    ("mi", 1609.344),
+    ("us-mi", 6_336_000.0 / 3937.0),
+];
+
+/// The unit of a PROJ.4 definition: its `+units=`, or `+to_meter=` when that matches one of
+/// [`UNITS`] (some definitions give the US survey foot only as a number); metres when it names
+/// neither, PROJ's default.
+fn unit_of(proj4: &str) -> Option<(&'static str, f64)> {
+    let arg = |name: &str| {
+        proj4
+            .split_whitespace()
+            .find_map(|a| a.strip_prefix(name))
+            .map(str::to_string)
+    };
+    if let Some(u) = arg("+units=") {
+        return UNITS.iter().find(|(n, _)| *n == u).copied();
+    }
+    if let Some(v) = arg("+to_meter=") {
+        let v: f64 = v.parse().ok()?;
+        return UNITS
+            .iter()
+            .find(|(_, m)| (m / v - 1.0).abs() < 1e-6)
+            .copied();
+    }
+    Some(UNITS[0])
 }
 
 #[cfg(test)]
@@ -182,6 +233,10 @@ mod tests {
         let (lon, lat) = p.lon_lat(1_027_431.148, 202_756.768_7).unwrap();
         assert!((lon - -73.844_215_22).abs() < 2e-6, "{lon}");
         assert!((lat - 40.723_091_77).abs() < 2e-6, "{lat}");
+        // Its coordinates are US survey feet; UTM's are metres; WGS84's degrees have none.
+        assert_eq!(p.unit(), Some(("us-ft", 1200.0 / 3937.0)));
+        assert_eq!(Projection::epsg(32618).unwrap().unit(), Some(("m", 1.0)));
+        assert_eq!(Projection::epsg(4326).unwrap().unit(), None);
         let e = Projection::epsg(99_999).unwrap_err().to_string();
         assert!(e.contains("--crs") && e.contains("EPSG:99999"), "{e}");
     }

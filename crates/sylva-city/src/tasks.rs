@@ -21,6 +21,7 @@ use crate::report;
 use crate::tiles::quadtree::{self, Node};
 use crate::tiles::{self, LEAF_TREES, Tile, TileTask, TilesetReport, content};
 use crate::trees::benefits::{self, TreeYear};
+use crate::trees::cad;
 use crate::trees::plan::Summary;
 use crate::trees::plan::{self, CityOptions, Kind, Plan, ProtoKey};
 use crate::trees::prototypes::{self, GrowthTask, Prototype};
@@ -72,6 +73,9 @@ impl CityJob {
         let options = &options.checked()?;
         let inventory = inventory::load(path, layer, layout)?;
         let plan = plan::plan(&inventory, options)?;
+        if options.dxf {
+            cad::check(&plan)?;
+        }
         if let Some(e) = plan.epochs.iter().find(|e| e.trees.is_empty()) {
             return Err(CityError::setting(
                 "--years",
@@ -236,6 +240,10 @@ impl CityJob {
             let (json, report): (Vec<u8>, TilesetReport) =
                 tiles::tileset_json(&laid.root, &mine, self.plan.frame.to_ecef_matrix(), tallest)?;
             files.push((format!("{}tileset.json", laid.dir), json));
+            if self.options.dxf {
+                let dxf = cad::planting_plan(&self.inventory, &self.plan, e, &self.prototypes)?;
+                files.push((format!("{}{}", laid.dir, cad::PLAN_FILE), dxf));
+            }
             epochs.push((
                 laid.years,
                 laid.dir.clone().into(),

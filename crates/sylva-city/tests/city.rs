@@ -182,6 +182,7 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
         stumps: true,
         cache: Some((dir.path().join("cache"), 512)),
         report: true,
+        dxf: true,
         ..Default::default()
     };
     let run = tile_city(&inventory, None, &Layout::default(), &options, &out, &Quiet).unwrap();
@@ -286,6 +287,7 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
     assert!(html.contains("Not computed") && html.contains("replacement value"));
     assert!(html.contains("relative age as i-Tree Streets shows it"));
     assert!(checked.tiles > 4, "{checked:?}");
+    planting_plan_places_every_tree(&out.join("planting-plan.dxf"), &inventory, drawn);
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["rows"], 1000);
@@ -386,4 +388,72 @@ fn epochs_age_every_tree_and_plant_the_planned_ones() {
             "{t:?} {l:?}"
         );
     }
+}
+
+/// The planting plan (`--dxf`) holds an INSERT for every tree and stump drawn, each at its
+/// row's own coordinates (the GeoPackage's UTM metres), on its species' layer, its crown
+/// some centimetres to 25 m from its trunk once scaled (a plan symbol's width against the
+/// grown tree's is `sylva::drawing::cad`'s test).
+fn planting_plan_places_every_tree(path: &Path, inventory: &Path, drawn: usize) {
+    use dxf::entities::EntityType;
+    let drawing = dxf::Drawing::load_file(path).unwrap();
+    assert_eq!(
+        drawing.header.default_drawing_units,
+        dxf::enums::Units::Meters
+    );
+    let inv = inventory::load(inventory, None, &Layout::default()).unwrap();
+    let places: Vec<(f64, f64)> = (inv.trees.iter())
+        .filter_map(|t| match t.position {
+            inventory::Position::Projected(x, y) => Some((x, y)),
+            _ => None,
+        })
+        .collect();
+    let blocks: HashMap<String, f64> = (drawing.blocks())
+        .map(|b| {
+            let reach = (b.entities.iter())
+                .filter_map(|e| match &e.specific {
+                    EntityType::LwPolyline(p) => {
+                        p.vertices.iter().map(|v| v.x.hypot(v.y)).reduce(f64::max)
+                    }
+                    EntityType::Circle(c) => Some(c.radius),
+                    _ => None,
+                })
+                .fold(0.0, f64::max);
+            (b.name.clone(), reach)
+        })
+        .collect();
+    let mut inserts = 0;
+    for e in drawing.entities() {
+        let EntityType::Insert(i) = &e.specific else {
+            continue;
+        };
+        inserts += 1;
+        let at = (i.location.x, i.location.y);
+        assert!(
+            places
+                .iter()
+                .any(|p| (p.0 - at.0).abs() < 1e-3 && (p.1 - at.1).abs() < 1e-3),
+            "{} at {at:?} is no row's place",
+            i.name
+        );
+        if i.name == "STUMP" {
+            assert_eq!(e.common.layer, "STUMPS");
+            continue;
+        }
+        // PSME-PacfNW-30-0 on `TREE-PSME Pseudotsuga menziesii`.
+        let code = i.name.split('-').next().unwrap();
+        assert!(
+            e.common.layer.starts_with(&format!("TREE-{code} ")),
+            "{} on {}",
+            i.name,
+            e.common.layer
+        );
+        let reach = blocks[&i.name] * i.x_scale_factor;
+        assert!(
+            reach > 0.05 && reach < 25.0,
+            "{}: crown reach {reach} m",
+            i.name
+        );
+    }
+    assert_eq!(inserts, drawn);
 }

@@ -58,6 +58,7 @@ pub fn run(args: &CityArgs) -> Result<()> {
                 .map(|dir| (dir, args.cache_mib))
         },
         report: args.report,
+        dxf: args.dxf,
     };
     let bar = StageBar::new();
     let started = std::time::Instant::now();
@@ -124,6 +125,10 @@ pub fn run(args: &CityArgs) -> Result<()> {
                 String::new()
             }
         );
+        if args.dxf {
+            let path = dir.join(sylva_city::trees::cad::PLAN_FILE);
+            println!("    planting plan for CAD: {}", path.display());
+        }
     }
     println!(
         "  {} grown trees shared ({:.1} MB); {:.0} trees/s; {:.0} bytes per tree; {:.1} s \

@@ -10,6 +10,7 @@ use sylva::growth::survey::report::{self, age_label, extent, run_ages};
 use sylva::growth::{Measured, dressed_mesh};
 use sylva::mesh::MeshOptions;
 use sylva::street::accounts::table::{self, net_words};
+use sylva::street::picture::cad::{SectionTree, street_section_dxf};
 use sylva::street::rank::first_conflicts;
 use sylva::street::records::{YearRecord, to_json};
 use sylva::street::study::{Spread, StreetTree};
@@ -85,6 +86,8 @@ pub fn run(args: &GrowArgs) -> Result<()> {
     // One frame for every age and species: the tallest and widest they reach.
     let extent = extent(&species, &ages);
     let mut accounts: Vec<Vec<YearAccount>> = species.iter().map(|_| Vec::new()).collect();
+    // With a site, each age's tree for the street section in DXF.
+    let mut sections: Vec<Vec<SectionTree>> = species.iter().map(|_| Vec::new()).collect();
     for &age in &ages {
         let (mut meshes, mut dresses) = (Vec::new(), Vec::new());
         for (i, tree) in trees.iter_mut().enumerate() {
@@ -148,6 +151,9 @@ pub fn run(args: &GrowArgs) -> Result<()> {
                     said_pruning(&year.accounts[0]),
                 );
             }
+            if site.is_some() {
+                sections[i].push(SectionTree::of(&year.skeleton, age));
+            }
             accounts[i].push(year.accounts.remove(0));
             meshes.push(mesh);
             dresses.push(dress);
@@ -195,10 +201,20 @@ pub fn run(args: &GrowArgs) -> Result<()> {
             let bars = benefit_chart(m, &accounts[i], missing, Basis::Typical)?;
             save_picture(&output.join(format!("{code}-benefits-typical.png")), &bars)?;
         }
+        let section = output.join(format!("{code}-street-section.dxf"));
+        if let Some(site) = site {
+            let dxf = street_section_dxf(site, &sections[i], code, &m.label())?;
+            write_atomically(&section, &dxf)?;
+        }
         if args.json {
             continue;
         }
         if site.is_some() {
+            println!(
+                "{}: the street section and plan at each age for CAD: {}",
+                m.label(),
+                section.display()
+            );
             let mut first = first_conflicts(&accounts[i]);
             first.sort_by(|a, b| a.0.total_cmp(&b.0));
             let first: Vec<String> = first

@@ -134,6 +134,7 @@ impl Settings {
             // A cluster's workers grow their own tasks; the local run grows them all.
             cache: None,
             report: false,
+            dxf: false,
         }
     }
 }

@@ -4,6 +4,7 @@
 //! `EXT_structural_metadata`).
 
 use crate::trees::benefits::TreeYear;
+use crate::trees::cad::drawn_scale;
 use crate::trees::plan::{Kind, Planned, ProtoKey};
 use crate::trees::prototypes::Prototype;
 use glam::DVec3;
@@ -146,19 +147,14 @@ pub fn tile_glb(
     let placed: Vec<Placement> = groups
         .iter()
         .map(|(key, rows)| {
-            let drawn = key.as_ref().map(|k| prototypes[k].height.max(0.01));
+            let drawn = key.as_ref().map(|k| prototypes[k].height);
             let of = |r: &u32| &trees[*r as usize].tree;
             (
                 rows.iter()
                     .map(|r| (of(r).at - centre).as_vec3().to_array())
                     .collect(),
                 rows.iter().map(|r| of(r).turn).collect(),
-                rows.iter()
-                    .map(|r| match drawn {
-                        Some(h) => (of(r).height / h).clamp(0.05, 20.0),
-                        None => of(r).scale,
-                    })
-                    .collect(),
+                rows.iter().map(|r| drawn_scale(of(r), drawn)).collect(),
             )
         })
         .collect();

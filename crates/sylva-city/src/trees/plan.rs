@@ -35,6 +35,8 @@ pub struct CityOptions {
     pub cache: Option<(std::path::PathBuf, u64)>,
     /// Also write the city's report (`report.html`, `.csv`, `.json`) beside the tiles.
     pub report: bool,
+    /// Also write each epoch's planting plan as DXF (`trees::cad`) beside its tileset.
+    pub dxf: bool,
 }
 
 impl Default for CityOptions {
@@ -49,6 +51,7 @@ impl Default for CityOptions {
             seed: 0,
             cache: None,
             report: false,
+            dxf: false,
         }
     }
 }

@@ -7,6 +7,7 @@ use crate::trees::plan::ProtoKey;
 use std::collections::BTreeMap;
 #[cfg(test)]
 use std::collections::HashMap;
+use sylva::drawing::cad::PlanSymbol;
 use sylva::export::{Materials, SharedImpostor, SharedMesh};
 use sylva::growth::season::dressed_skeleton;
 use sylva::growth::{Grower, GrowthOptions, Measured, measure};
@@ -63,6 +64,8 @@ pub struct Prototype {
     pub impostor: Option<SharedImpostor>,
     /// Its impostor's picture (PNG) until the city's atlas takes it.
     pub impostor_png: Option<Vec<u8>>,
+    /// Its plan symbol (crown outline and trunk from above), for the planting plans.
+    pub plan: PlanSymbol,
 }
 
 /// One growth task: a species, region and seed variant grown once, its age classes taken on
@@ -214,6 +217,7 @@ fn prototype(
         errors,
         impostor,
         impostor_png,
+        plan: PlanSymbol::of(skeleton),
     };
     (prototype, files)
 }

@@ -64,6 +64,13 @@ pub struct CityArgs {
     #[arg(long)]
     pub report: bool,
 
+    /// Also write each epoch's planting plan for CAD beside its tileset (planting-plan.dxf):
+    /// every tree an INSERT of its grown tree's plan symbol (crown outline and trunk) at its
+    /// place, in a projected inventory's own coordinates and unit, on a layer per species; at
+    /// most 250,000 trees an epoch.
+    #[arg(long)]
+    pub dxf: bool,
+
     /// The GeoPackage layer (default: its first features layer).
     #[arg(long, help_heading = "Columns")]
     pub layer: Option<String>,

@@ -240,3 +240,36 @@ fn nagel_commands_refuse_bad_input_with_line_numbers() {
         d,
     );
 }
+
+#[test]
+fn a_dxf_that_cannot_be_written_is_refused_and_nothing_is_left() {
+    let dir = tempfile::tempdir().unwrap();
+    let profile = concat!(env!("CARGO_MANIFEST_DIR"), "/../../profiles/round.csv");
+    let missing = dir.path().join("no-such-folder").join("tree.dxf");
+    let run = sylva(&[
+        "whisk",
+        "--profile",
+        profile,
+        "-o",
+        missing.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(1), "{}", text(&run.stderr));
+    let said = text(&run.stderr);
+    assert!(
+        said.contains("cannot write") && said.contains("tree.dxf"),
+        "{said}"
+    );
+    assert!(!missing.exists());
+    // Where it can be written, it is, whole: a DXF's last group is its EOF.
+    let ok = dir.path().join("tree.dxf");
+    let run = sylva(&["whisk", "--profile", profile, "-o", ok.to_str().unwrap()]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let written = std::fs::read_to_string(&ok).unwrap();
+    assert!(
+        written.trim_end().ends_with("EOF"),
+        "{}",
+        &written[written.len() - 40..]
+    );
+    // Nothing but the file: no temporary left beside it.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}

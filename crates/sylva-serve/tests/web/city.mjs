@@ -38,8 +38,16 @@ if (!city) {
   const t0 = Date.now();
   // A cache of its own, so that the sparse city below grows nothing again.
   const cache = ['--cache', join(work, 'grown')];
-  execFileSync(bin, ['city', join(work, 'demo.csv'), '-o', city, '--years', '0,20', '--report', '--variants', '1', ...cache], { stdio: 'ignore' });
+  execFileSync(bin, ['city', join(work, 'demo.csv'), '-o', city, '--years', '0,20', '--report', '--dxf', '--variants', '1', ...cache], { stdio: 'ignore' });
   console.log(`demo city written in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+  // Its planting plans (--dxf) and what they are drawn from, for ezdxf in pytest
+  // (crates/sylva-py/tests/test_cad.py reads SHOTS/dxf).
+  if (shots) {
+    mkdirSync(join(shots, 'dxf'), { recursive: true });
+    copyFileSync(join(work, 'demo.csv'), join(shots, 'dxf', 'demo.csv'));
+    copyFileSync(join(city, 'summary.json'), join(shots, 'dxf', 'summary.json'));
+    for (const y of [0, 20]) copyFileSync(join(city, `year-${y}`, 'planting-plan.dxf'), join(shots, 'dxf', `planting-plan-${y}.dxf`));
+  }
   sparse = join(work, 'sparse-census');
   writeFileSync(join(work, 'sparse.csv'), spread(readFileSync(join(work, 'demo.csv'), 'utf8'), 12));
   execFileSync(bin, ['city', join(work, 'sparse.csv'), '-o', sparse, '--years', '0', '--variants', '1', ...cache], { stdio: 'ignore' });

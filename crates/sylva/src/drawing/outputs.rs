@@ -150,11 +150,7 @@ pub fn write_outputs(
                     }
                 };
                 let drawing = super::cad::tree_dxf(skeleton, name)?;
-                write_atomically_with(path, |w| {
-                    drawing
-                        .save(w)
-                        .map_err(|e| std::io::Error::other(e.to_string()))
-                })?;
+                write_atomically(path, &super::cad::to_bytes(&drawing)?)?;
                 format!(
                     "DXF: plan and elevations, {} stems, {} leaves",
                     skeleton.stems.len(),

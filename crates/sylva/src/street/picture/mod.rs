@@ -5,6 +5,7 @@
 //! this year are outlined in red. A pruning cycle is drawn across the street, before and
 //! after its cuts, each cut ringed in blue.
 
+pub mod cad;
 mod canvas;
 mod plan;
 
