@@ -208,7 +208,11 @@ impl CityJob {
             };
             let labels = |row: usize| {
                 let t = &self.inventory.trees[row];
-                (t.id.clone(), t.species.clone())
+                tiles::Labels {
+                    id: t.id.clone(),
+                    written: t.species.clone(),
+                    condition: t.observed.condition.map_or("", |c| c.name()).to_string(),
+                }
             };
             return Some(TileTask::new(
                 &tiles.dir,

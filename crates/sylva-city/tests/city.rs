@@ -9,6 +9,16 @@ use sylva_city::tiles::check::check_tileset;
 use sylva_city::trees::plan::{CityOptions, Kind, Plan, plan};
 use sylva_city::{Quiet, tile_city};
 
+/// A tree as each form gives it: place, species, DBH, age, height and condition.
+type Seen = (
+    glam::DVec3,
+    String,
+    f32,
+    f32,
+    f32,
+    Option<inventory::Condition>,
+);
+
 fn planned(path: &Path, layout: &Layout) -> Plan {
     let inv = inventory::load(path, None, layout).unwrap();
     plan(&inv, &CityOptions::default()).unwrap()
@@ -67,9 +77,7 @@ fn every_form_and_layout_gives_the_same_trees() {
         "{:?}",
         s.skipped
     );
-    let ids = |inv: &inventory::Inventory,
-               p: &Plan|
-     -> HashMap<String, (glam::DVec3, String, f32, f32, f32)> {
+    let ids = |inv: &inventory::Inventory, p: &Plan| -> HashMap<String, Seen> {
         p.epochs[0]
             .trees
             .iter()
@@ -82,7 +90,14 @@ fn every_form_and_layout_gives_the_same_trees() {
                 };
                 (
                     inv.trees[t.row].id.clone(),
-                    (t.at, code, t.dbh, t.age, t.height),
+                    (
+                        t.at,
+                        code,
+                        t.dbh,
+                        t.age,
+                        t.height,
+                        inv.trees[t.row].observed.condition,
+                    ),
                 )
             })
             .collect()
@@ -95,8 +110,14 @@ fn every_form_and_layout_gives_the_same_trees() {
         assert_eq!(p.summary.trees, s.trees, "{name}");
         let other = ids(inv, p);
         assert_eq!(other.len(), reference.len(), "{name}");
-        for (id, (at, code, dbh, age, height)) in &reference {
-            let (at2, code2, dbh2, age2, height2) = &other[id];
+        for (id, (at, code, dbh, age, height, condition)) in &reference {
+            let (at2, code2, dbh2, age2, height2, condition2) = &other[id];
+            // The census's Good, Fair, Poor and the GIS export's finer classes read alike.
+            assert_eq!(condition, condition2, "{name} {id}");
+            assert!(
+                condition.is_some(),
+                "{name} {id}: the demo's living trees have one"
+            );
             // Positions through UTM and back agree within centimetres of the census's
             // degrees (8 decimals: a millimetre); GeoPackage and GeoJSON hold the same.
             assert!(at.distance(*at2) < 0.05, "{name} {id}: {at} vs {at2}");
@@ -286,6 +307,34 @@ fn a_demo_city_tiles_and_passes_the_structural_checks() {
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("Not computed") && html.contains("replacement value"));
     assert!(html.contains("relative age as i-Tree Streets shows it"));
+    // The GeoPackage's CONDITION (i-Tree's finer classes) read for every living tree: each
+    // species' condition adds up to its trees, and its RPI is its share in good condition
+    // over the city's.
+    let seen = &report["observed"];
+    let all: Vec<u64> = (seen["good_fair_poor"].as_array().unwrap().iter())
+        .map(|n| n.as_u64().unwrap())
+        .collect();
+    assert_eq!(all.iter().sum::<u64>() as usize, trees);
+    assert_eq!(seen["not_recorded"], 0);
+    let city_good = all[0] as f64 / trees as f64;
+    for c in seen["condition"].as_array().unwrap() {
+        let n: Vec<u64> = (c["good_fair_poor"].as_array().unwrap().iter())
+            .map(|n| n.as_u64().unwrap())
+            .collect();
+        let of = species.iter().find(|s| s["code"] == c["code"]).unwrap();
+        assert_eq!(n.iter().sum::<u64>(), of["trees"].as_u64().unwrap(), "{c}");
+        let rpi = n[0] as f64 / n.iter().sum::<u64>() as f64 / city_good;
+        assert!((c["rpi"].as_f64().unwrap() - rpi).abs() < 1e-12, "{c}");
+    }
+    // A GIS export records no problems; the census layout does (`inventory::observed`).
+    assert!(seen["problems"].as_array().unwrap().is_empty());
+    assert!(html.contains("relative performance index") && html.contains("Condition and"));
+    assert!(
+        csv.lines()
+            .next()
+            .unwrap()
+            .ends_with("condition_not_recorded,rpi")
+    );
     assert!(checked.tiles > 4, "{checked:?}");
     planting_plan_places_every_tree(&out.join("planting-plan.dxf"), &inventory, drawn);
     let summary: serde_json::Value =
@@ -456,4 +505,61 @@ fn planting_plan_places_every_tree(path: &Path, inventory: &Path, drawn: usize) 
         );
     }
     assert_eq!(inserts, drawn);
+}
+
+/// A census-layout inventory with the NYC 2015 census's observation columns (Sylva's own test
+/// rows, `tests/data/census-observed.csv`): condition by species with each species' RPI,
+/// counted by hand, the problems by species, and the values Sylva could not place listed.
+#[test]
+fn a_census_inventorys_condition_and_problems_reach_the_report() {
+    use sylva_city::report::observed::observations;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/census-observed.csv");
+    let inv = inventory::load(&path, None, &Layout::default()).unwrap();
+    assert_eq!(inv.trees.len(), 13);
+    let p = plan(&inv, &CityOptions::default()).unwrap();
+    let o = observations(&p);
+    // Living trees: London plane 2 good, 1 fair, 1 poor; honeylocust 3 good, 1 fair; Callery
+    // pear 1 good, 1 poor and one "Splendid", not recorded. The city: 6 good of 10 (60%).
+    assert_eq!(o.good_fair_poor, [6, 2, 2]);
+    assert_eq!(o.not_recorded, 1);
+    let row = |code: &str| o.condition.iter().find(|c| c.code == code).unwrap();
+    // By hand: plane 2/4 = 50%, over 60%: 0.833; honeylocust 3/4 = 75%: 1.25; pear 1/2: 0.833.
+    assert_eq!(row("PLAC").good_fair_poor, [2, 1, 1]);
+    assert!((row("PLAC").rpi.unwrap() - 0.5 / 0.6).abs() < 1e-12);
+    let honeylocust = o
+        .condition
+        .iter()
+        .find(|c| c.good_fair_poor == [3, 1, 0])
+        .unwrap();
+    assert!((honeylocust.rpi.unwrap() - 1.25).abs() < 1e-12);
+    let pear = o.condition.iter().find(|c| c.not_recorded == 1).unwrap();
+    assert!((pear.rpi.unwrap() - 0.5 / 0.6).abs() < 1e-12);
+    // The values it could not place, each named with its column.
+    assert_eq!(
+        o.unread,
+        vec![
+            ("health".to_string(), "Splendid".to_string(), 1),
+            ("sidewalk".to_string(), "maybe".to_string(), 1)
+        ]
+    );
+    // The plane's sidewalk damage: 2 of its 4; lights in the branches: 1; wire on the trunk: 1.
+    let plane: Vec<_> = o.problems.iter().filter(|r| r.code == "PLAC").collect();
+    let sum = |f: &dyn Fn(&sylva_city::report::observed::ProblemRow) -> (usize, usize)| {
+        plane.iter().fold((0, 0), |a, r| {
+            let (n, w) = f(r);
+            (a.0 + n, a.1 + w)
+        })
+    };
+    assert_eq!(
+        sum(&|r| (r.sidewalk_damage.recorded, r.sidewalk_damage.with)),
+        (4, 2)
+    );
+    assert_eq!(
+        sum(&|r| (r.branch_lights.recorded, r.branch_lights.with)),
+        (4, 1)
+    );
+    assert_eq!(
+        sum(&|r| (r.trunk_wire_or_lights.recorded, r.trunk_wire_or_lights.with)),
+        (4, 1)
+    );
 }

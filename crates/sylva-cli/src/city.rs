@@ -34,6 +34,10 @@ pub fn run(args: &CityArgs) -> Result<()> {
         planted: args.planted_col.clone(),
         status: args.status_col.clone(),
         ground: args.ground_col.clone(),
+        observed: sylva_city::inventory::ObservedColumns {
+            condition: args.condition_col.clone(),
+            ..Default::default()
+        },
         name: String::new(),
     };
     if let Some(dir) = args.cache.as_ref().filter(|d| d.exists() && !d.is_dir()) {

@@ -45,7 +45,7 @@ enum ColumnNames {
 }
 
 /// The columns a layout can name.
-const COLUMNS: [&str; 12] = [
+const COLUMNS: [&str; 13] = [
     "id",
     "species",
     "dbh",
@@ -58,6 +58,7 @@ const COLUMNS: [&str; 12] = [
     "planted",
     "status",
     "ground",
+    "condition",
 ];
 
 impl Settings {
@@ -118,6 +119,10 @@ impl Settings {
             planted: one("planted")?,
             status: one("status")?,
             ground: one("ground")?,
+            observed: sylva_city::inventory::ObservedColumns {
+                condition: one("condition")?,
+                ..Default::default()
+            },
             name: String::new(),
         })
     }

@@ -1,4 +1,5 @@
-// The city view's report panel: the first epoch beside the one shown, as the city's report
+// The city view's report panel: the first epoch beside the one shown, and the condition the
+// inventory recorded with each species' relative performance, as the city's report
 // (`sylva city --report`, report.json) gives them.
 
 /** Text made safe to put inside HTML. */
@@ -26,5 +27,22 @@ export function epochTable(r, years) {
     (later ? `<th>${name(now)}</th>` : '') + '</tr>' +
     rows.map(([label, k]) => `<tr><th>${label}</th><td data-k="${k}" data-first>${cell(first, k)}</td>` +
       (later ? `<td data-k="${k}">${cell(now, k)}</td>` : '') + '</tr>').join('') + '</table>' +
-    (r.flags?.length ? `<p class="note">Flagged: ${r.flags.map(esc).join('; ')}</p>` : '');
+    (r.flags?.length ? `<p class="note">Flagged: ${r.flags.map(esc).join('; ')}</p>` : '') +
+    conditionLine(r);
+}
+
+/** The condition the inventory recorded, and the species that do best and worst by i-Tree
+ * Streets' relative performance index (a species' share in good condition over the city's). */
+export function conditionLine(r) {
+  const o = r.observed;
+  const [g, f, p] = o?.good_fair_poor || [0, 0, 0];
+  const n = g + f + p;
+  if (!n) return '<p id="report-condition" class="note">Condition: not recorded in the inventory.</p>';
+  const pct = (k) => `${Math.round((100 * k) / n)}%`;
+  const name = (code) => esc(r.species.find((s) => s.code === code)?.common || code);
+  const ranked = o.condition.filter((c) => c.rpi !== null).sort((a, b) => b.rpi - a.rpi);
+  const list = (cs) => cs.map((c) => `${name(c.code)} ${c.rpi.toFixed(2)}`).join(', ');
+  return `<p id="report-condition">Condition as recorded (${n} trees${o.not_recorded ? `, ${o.not_recorded} not recorded` : ''}): ` +
+    `${pct(g)} good, ${pct(f)} fair, ${pct(p)} poor. Relative performance (1: the city's trees), best: ` +
+    `${list(ranked.slice(0, 3))}; worst: ${list(ranked.slice(-3).reverse())}.</p>`;
 }

@@ -28,7 +28,7 @@ const state = {
   frame: null,       // its tileset frame (ECEF) to the page's (east, up, south)
   epoch: 0,
   tilesets: new Map(),  // epoch index -> TilesRenderer
-  filter: { species: '', dbh: '', benefit: 0 },
+  filter: { species: '', dbh: '', condition: '', benefit: 0 },
   report: null,
 };
 
@@ -143,11 +143,14 @@ function shown(row) {
   const f = state.filter;
   if (f.species && row.species !== f.species) return false;
   if (f.dbh !== '' && dbhClass(row.dbh_cm) !== Number(f.dbh)) return false;
+  // A tile written before condition was read has no such column: every tree not recorded.
+  if (f.condition && (row.condition || 'none') !== f.condition) return false;
   return (row.typical_benefits_usd_per_year || 0) >= f.benefit;
 }
 
 function colourTrees(root) {
-  const all = !state.filter.species && state.filter.dbh === '' && !(state.filter.benefit > 0);
+  const f = state.filter;
+  const all = !f.species && f.dbh === '' && !f.condition && !(f.benefit > 0);
   root.traverse((o) => {
     if (!o.isInstancedMesh && !(o.isPoints && o.name.startsWith(LEFT_OUT))) return;
     if (all && !o.userData.sylva?.painted) return;
@@ -323,6 +326,7 @@ function applyFilter() {
   state.filter = {
     species: $('f-species').value,
     dbh: $('f-dbh').value,
+    condition: $('f-condition').value,
     benefit: Math.max(0, Number($('f-benefit').value) || 0),
   };
   for (const t of state.tilesets.values()) colourTrees(t.group);
@@ -375,6 +379,7 @@ async function showCard(row) {
   const lines = [
     ['Inventory row', `id ${esc(row.id)}; written as “${esc(row.species_written)}”`],
     ['Grown as', `${esc(row.scientific_name)} (${esc(row.species)}) of the ${esc(row.region)} region`],
+    ['Condition', row.condition ? `${row.condition}, as the inventory recorded it` : 'not recorded'],
     ['Epoch', epoch.years === 0 ? 'as inventoried' : `${epoch.years} years after the inventory`],
     ['Age', `${f(row.age_years, 0)} years`],
     ['DBH', `${f(row.dbh_cm)} cm`],
@@ -574,7 +579,7 @@ async function start() {
   $('city').value = name;
   $('city').onchange = (e) => chooseCity(e.target.value);
   $('epoch').oninput = (e) => showEpoch(Number(e.target.value));
-  for (const id of ['f-species', 'f-dbh', 'f-benefit']) $(id).onchange = applyFilter;
+  for (const id of ['f-species', 'f-dbh', 'f-condition', 'f-benefit']) $(id).onchange = applyFilter;
   $('f-benefit').oninput = applyFilter;
   resize();
   await chooseCity(name);

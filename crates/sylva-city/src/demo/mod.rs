@@ -5,6 +5,7 @@
 //! layout, all describing the same trees.
 
 mod gpkg_write;
+mod observed;
 
 use crate::error::CityError;
 use crate::geo::Projection;
@@ -293,6 +294,13 @@ impl DemoCity {
                 "longitude",
                 "height_ft",
                 "planted",
+                "health",
+                "sidewalk",
+                "brch_light",
+                "trunk_wire",
+                "trnk_light",
+                "root_stone",
+                "root_grate",
             ],
             DemoLayout::Gis => vec![
                 "OBJECTID",
@@ -304,6 +312,7 @@ impl DemoCity {
                 "POINT_Y",
                 "HEIGHT_M",
                 "PLANTED",
+                "CONDITION",
             ],
         };
         let rows = self
@@ -336,7 +345,7 @@ impl DemoCity {
                     DemoLayout::Census => format!("{:.2}", h / 0.3048),
                     DemoLayout::Gis => format!("{h:.2}"),
                 });
-                vec![
+                let mut row = vec![
                     t.id.clone(),
                     t.scientific.clone(),
                     t.common.clone(),
@@ -346,7 +355,9 @@ impl DemoCity {
                     b,
                     height,
                     t.planted.map_or(String::new(), |p| p.to_string()),
-                ]
+                ];
+                row.extend(observed::cells(t, layout));
+                row
             })
             .collect();
         (header, rows)

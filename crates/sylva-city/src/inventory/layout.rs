@@ -12,6 +12,8 @@
 //! DBH is in inches, the unit of US inventories, unless its column's name says cm (`dbh_cm`)
 //! or `--dbh-unit cm` says so; a trunk circumference may stand in for it.
 
+use super::find;
+use super::observed::ObservedColumns;
 use super::{Inventory, Position, Record, Records, Rejected, Status, Tree};
 use crate::error::CityError;
 use std::path::Path;
@@ -96,18 +98,10 @@ pub struct Layout {
     pub status: Option<String>,
     /// Ground height above the ellipsoid, m.
     pub ground: Option<String>,
+    /// What the surveyors saw: condition and problems.
+    pub observed: ObservedColumns,
     /// The layout in words, once completed.
     pub name: String,
-}
-
-/// The header's name among `names` (any case), if it has one.
-fn find(header: &[String], names: &[&str]) -> Option<String> {
-    names.iter().find_map(|n| {
-        header
-            .iter()
-            .find(|h| h.trim().eq_ignore_ascii_case(n))
-            .cloned()
-    })
 }
 
 impl Layout {
@@ -210,6 +204,7 @@ impl Layout {
         l.ground = l
             .ground
             .or_else(|| f(&["ground", "ground_m", "elevation", "z"]));
+        l.observed = l.observed.completed(header);
         l
     }
 
@@ -234,6 +229,13 @@ impl Layout {
                     records.header.join(", ")
                 ),
             ));
+        }
+        if let Some(column) = &self.observed.condition {
+            let cells: Vec<&str> = (records.rows.iter())
+                .filter_map(|r| r.fields.iter().find(|(k, _)| k == column))
+                .map(|(_, v)| v.as_str())
+                .collect();
+            self.observed.check(&cells, path)?;
         }
         let crs = records.crs.or(self.crs);
         let has_points = records.rows.iter().any(|r| r.point.is_some());
@@ -393,6 +395,7 @@ impl Layout {
             planted,
             ground,
             status,
+            observed: self.observed.read(|c| get(c).map(str::to_string)),
         })
     }
 }

@@ -9,10 +9,12 @@ pub mod families;
 mod geojson_file;
 mod gpkg_file;
 mod layout;
+pub mod observed;
 pub mod regions;
 pub mod species;
 
 pub use layout::{Layout, LengthUnit};
+pub use observed::{Condition, Observed, ObservedColumns};
 
 use crate::error::CityError;
 use std::path::Path;
@@ -147,6 +149,8 @@ pub struct Tree {
     pub ground: Option<f64>,
     /// What it is.
     pub status: Status,
+    /// What the surveyors saw of it: condition and problems.
+    pub observed: Observed,
 }
 
 /// A row that cannot be used, and why.
@@ -169,6 +173,17 @@ pub struct Inventory {
     pub crs: Option<u32>,
     /// The layout it was read with, in words.
     pub layout: String,
+}
+
+/// The header's name among `names` (any case), if it has one: how the layouts find their
+/// columns.
+fn find(header: &[String], names: &[&str]) -> Option<String> {
+    names.iter().find_map(|n| {
+        header
+            .iter()
+            .find(|h| h.trim().eq_ignore_ascii_case(n))
+            .cloned()
+    })
 }
 
 /// Reads the inventory at `path` with `layout` (each column it leaves unnamed taken from the

@@ -1,9 +1,10 @@
 //! The city's report as a page of HTML tables (`CityReport::html`).
 
-use crate::report::CityReport;
 use crate::report::published::Comparison;
+use crate::report::{CityReport, observed};
 use crate::trees::benefits::CATEGORIES;
 use std::fmt::Write as _;
+use sylva::growth::DBH_CLASS_EDGES_CM;
 
 impl CityReport {
     /// As a page of HTML tables.
@@ -57,6 +58,7 @@ impl CityReport {
             );
         }
         h.push_str("</table>\n");
+        self.observed_html(&mut h, &esc);
         self.categories_html(&mut h);
         shares_html(&mut h, "Genera", "Genus", &self.genera, true, &esc);
         shares_html(&mut h, "Families", "Family", &self.families, false, &esc);
@@ -98,6 +100,109 @@ impl CityReport {
 }
 
 impl CityReport {
+    /// Condition and relative performance by species, and the problems the surveyors saw, by
+    /// species and DBH class; or that the inventory records none.
+    fn observed_html(&self, h: &mut String, esc: &dyn Fn(&str) -> String) {
+        let o = &self.observed;
+        let name = |code: &str| {
+            self.species
+                .iter()
+                .find(|s| s.code == code)
+                .map_or(esc(code), |s| {
+                    format!(
+                        "{} <i>{}</i> ({})",
+                        esc(&s.common),
+                        esc(&s.scientific),
+                        esc(code)
+                    )
+                })
+        };
+        h.push_str("<h2>Condition and relative performance, as the inventory recorded them</h2>\n");
+        if !o.has_condition() {
+            h.push_str(
+                "<p>The inventory records no condition (no <code>health</code> or \
+                 <code>condition</code> column, or none Sylva could read; name one with \
+                 <code>--condition-col</code>).</p>\n",
+            );
+        } else {
+            let pct = |n: usize, of: usize| format!("{:.0}%", 100.0 * n as f64 / of.max(1) as f64);
+            h.push_str(
+                "<p>Shares of the trees whose condition was recorded. The relative performance \
+                 index (i-Tree Streets) is a species' share in good condition over the city's: \
+                 above 1 it does better than the city's trees, below 1 worse.</p><table><tr>\
+                 <th>Species</th><th>Recorded</th><th>Good</th><th>Fair</th><th>Poor</th>\
+                 <th>Not recorded</th><th>RPI</th><th>Reading</th></tr>\n",
+            );
+            let all: usize = o.good_fair_poor.iter().sum();
+            for r in &o.condition {
+                let n: usize = r.good_fair_poor.iter().sum();
+                let [g, f, p] = r.good_fair_poor;
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{}</td><td>{n}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>\
+                     <td>{}</td><td>{}</td></tr>",
+                    name(&r.code),
+                    pct(g, n),
+                    pct(f, n),
+                    pct(p, n),
+                    r.not_recorded,
+                    r.rpi.map_or("–".into(), |v| format!("{v:.2}")),
+                    observed::reading(r.rpi)
+                );
+            }
+            let [g, f, p] = o.good_fair_poor;
+            let _ = writeln!(
+                h,
+                "<tr><th>All</th><th>{all}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th>\
+                 <th>1.00</th><th></th></tr></table>",
+                pct(g, all),
+                pct(f, all),
+                pct(p, all),
+                o.not_recorded
+            );
+        }
+        if !o.unread.is_empty() {
+            h.push_str("<p>Values Sylva could not place, counted as not recorded:</p><ul>\n");
+            for (column, value, n) in &o.unread {
+                let _ = writeln!(
+                    h,
+                    "<li><code>{}</code> = “{}”: {n} rows</li>",
+                    esc(column),
+                    esc(value)
+                );
+            }
+            h.push_str("</ul>\n");
+        }
+        if o.problems.is_empty() {
+            return;
+        }
+        h.push_str(
+            "<h2>The street's problems, as the inventory recorded them</h2><p>Shares of the \
+             trees for which each was recorded, by species and DBH class.</p><table><tr>\
+             <th>Species</th><th>DBH class, cm</th><th>Trees</th><th>Sidewalk damaged</th>\
+             <th>Lights or wires in the branches</th><th>Wire or lights on the trunk</th>\
+             <th>Paving or grate on the roots</th></tr>\n",
+        );
+        let share = |s: &observed::Seen| {
+            s.share()
+                .map_or("–".into(), |v| format!("{:.0}%", 100.0 * v))
+        };
+        for p in &o.problems {
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                name(&p.code),
+                dbh_class_words(p.dbh_class),
+                p.trees,
+                share(&p.sidewalk_damage),
+                share(&p.branch_lights),
+                share(&p.trunk_wire_or_lights),
+                share(&p.root_paving)
+            );
+        }
+        h.push_str("</table>\n");
+    }
+
     /// Benefits per tree at the first epoch by category, Sylva's own beside i-Tree's typical
     /// position: every category present, a missing one said to be not computed.
     fn categories_html(&self, h: &mut String) {
@@ -192,4 +297,14 @@ fn comparison_html(h: &mut String, c: &Comparison, esc: &dyn Fn(&str) -> String)
         let _ = writeln!(h, "<li>{}</li>", esc(d));
     }
     h.push_str("</ul>\n");
+}
+
+/// DBH class `k` (of i-Tree's nine) in centimetres, as HTML: "&lt;7.6", "15.2–30.5", "≥106.7".
+fn dbh_class_words(k: usize) -> String {
+    let edges = DBH_CLASS_EDGES_CM;
+    match k {
+        0 => format!("&lt;{:.1}", edges[0]),
+        k if k >= edges.len() => format!("≥{:.1}", edges[edges.len() - 1]),
+        k => format!("{:.1}–{:.1}", edges[k - 1], edges[k]),
+    }
 }

@@ -9,6 +9,7 @@
 //! typical position at its DBH).
 
 pub(crate) mod html;
+pub mod observed;
 pub mod published;
 
 use crate::trees::benefits::{NO_DATA, tree_year};
@@ -118,6 +119,9 @@ pub struct CityReport {
     pub models: Vec<String>,
     /// What is not computed, and why.
     pub not_computed: Vec<String>,
+    /// What the inventory's surveyors saw: condition and RPI by species, problems by species
+    /// and DBH class.
+    pub observed: observed::Observations,
     /// Per tree at the first epoch: i-Tree Streets' typical-position energy, carbon,
     /// stormwater, air quality and aesthetics, $ a year.
     pub typical_per_tree_usd: [Option<f64>; 5],
@@ -246,6 +250,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         }
         row.typical_total_usd = add(row.typical_total_usd, tree.typical_total);
     }
+    let observed = observed::observations(plan);
     let trees: usize = species.values().map(|s| s.trees).sum();
     let per_tree = |v: Option<f64>| v.map(|v| v / trees.max(1) as f64);
     let typical_per_tree_usd: [Option<f64>; 5] = std::array::from_fn(|k| {
@@ -374,9 +379,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
             "age as a share of life expectancy: the Urban Tree Database gives no species' \
              expected life span"
                 .into(),
-            "replacement value: the CTLA trunk formula needs regional prices per unit of trunk \
-             area and species, condition and location ratings, which Sylva does not have"
-                .into(),
+            replacement_missing(&observed),
             "Sylva's own energy: an inventory has no façades, so the grown crowns' shade on \
              buildings is not computed (the typical position's energy is i-Tree's); Sylva's \
              own total is of the other four categories"
@@ -386,7 +389,30 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         own_per_tree_usd,
         benefits_per_tree_usd,
         published,
+        observed,
     }
+}
+
+/// What the CTLA trunk formula still lacks, named exactly.
+fn replacement_missing(observed: &observed::Observations) -> String {
+    format!(
+        "replacement value: the CTLA trunk formula (Council of Tree and Landscape Appraisers, \
+         Guide for Plant Appraisal, 9th ed., 2000) multiplies a basic value (a replacement tree's \
+         installed cost, plus a regional price per unit of trunk area for the rest of the \
+         tree's trunk area) by species, condition and location ratings. {} Still missing: each \
+         species' rating and the region's price per unit of trunk area and installed cost (set \
+         by each ISA chapter: for California the Western Chapter's Species Classification and \
+         Group Assignment, 2004), which neither i-Tree Streets' published reference-city \
+         reports nor any other source Sylva could reach tabulate; McPherson (2007, \
+         Arboriculture & Urban Forestry 33(1), Table 2) gives one species' (Chinese pistache in \
+         Davis: $11.94 per cm² of trunk area, $345 installed, species rating 90%), not a \
+         region's table; and a location rating, which an inventory does not record",
+        if observed.has_condition() {
+            "The inventory records condition (above)."
+        } else {
+            "Condition: this inventory records none."
+        }
+    )
 }
 
 impl CityReport {
@@ -404,7 +430,8 @@ impl CityReport {
              age_40_60,age_ge_60,mean_age_years,at_oldest_measured,benefits_usd,own_energy_usd,\
              own_carbon_usd,own_stormwater_usd,own_air_quality_usd,own_aesthetics_usd,\
              typical_energy_usd,typical_carbon_usd,typical_stormwater_usd,typical_air_quality_usd,\
-             typical_aesthetics_usd,typical_total_usd\n",
+             typical_aesthetics_usd,typical_total_usd,condition_good,condition_fair,\
+             condition_poor,condition_not_recorded,rpi\n",
         );
         let cell = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.2}"));
         for s in &self.species {
@@ -413,9 +440,18 @@ impl CityReport {
             let typical: Vec<String> = (s.own_usd.iter().chain(&s.typical_usd))
                 .map(|&v| cell(v))
                 .collect();
+            let seen = self.observed.condition.iter().find(|c| c.code == s.code);
+            let condition = seen.map_or(",,,,".to_string(), |c| {
+                let [g, f, p] = c.good_fair_poor;
+                format!(
+                    "{g},{f},{p},{},{}",
+                    c.not_recorded,
+                    c.rpi.map_or(String::new(), |r| format!("{r:.3}"))
+                )
+            });
             let _ = writeln!(
                 out,
-                "{},\"{}\",\"{}\",{},{},{},{:.4},{:.2},{:.1},{},{},{:.1},{},{},{},{}",
+                "{},\"{}\",\"{}\",{},{},{},{:.4},{:.2},{:.1},{},{},{:.1},{},{},{},{},{}",
                 s.code,
                 s.scientific,
                 s.common,
@@ -431,7 +467,8 @@ impl CityReport {
                 s.at_oldest_measured,
                 cell(s.benefits_usd),
                 typical.join(","),
-                cell(s.typical_total_usd)
+                cell(s.typical_total_usd),
+                condition
             );
         }
         out

@@ -36,6 +36,9 @@ pub struct TileTree {
     pub id: String,
     /// The species as the inventory names it.
     pub written: String,
+    /// Its condition as the inventory recorded it (`good`, `fair`, `poor`; empty: not
+    /// recorded).
+    pub condition: String,
 }
 
 /// The schema of every tile's property tables: one class, a street tree.
@@ -59,6 +62,7 @@ pub fn schema() -> serde_json::Value {
                 "common_name": text,
                 "scientific_name": text,
                 "region": { "type": "STRING", "description": "Urban Tree Database climate region whose equations grow it" },
+                "condition": { "type": "STRING", "description": "Its condition as the inventory recorded it, in i-Tree Streets' classes: good, fair or poor; empty where not recorded" },
                 "dbh_cm": number("Trunk diameter at breast height, cm"),
                 "age_years": number("Age, years since planting"),
                 "height_m": number("Height, m"),
@@ -219,6 +223,7 @@ fn table(trees: &[TileTree]) -> PropertyTable {
             ("common_name".into(), text(&|t| names(t).0)),
             ("scientific_name".into(), text(&|t| names(t).1)),
             ("region".into(), text(&|t| key(t).1)),
+            ("condition".into(), text(&|t| t.condition.clone())),
             ("dbh_cm".into(), number(&|t| t.dbh)),
             ("age_years".into(), number(&|t| t.age)),
             ("height_m".into(), number(&|t| t.height)),

@@ -47,6 +47,18 @@ pub struct TilesetReport {
     pub trees: usize,
 }
 
+/// What a tile's table says of a tree beyond its plan: the inventory's id for it, its
+/// species as written, and its condition as recorded (`good`, `fair`, `poor`, or empty).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Labels {
+    /// The inventory's id.
+    pub id: String,
+    /// The species as the inventory names it.
+    pub written: String,
+    /// The condition as recorded.
+    pub condition: String,
+}
+
 /// One tile's work, whole: everything its content needs, so that any process can make it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TileTask {
@@ -85,7 +97,7 @@ impl TileTask {
         node: &Node,
         trees: &[Planned],
         years: &[TreeYear],
-        labels: &dyn Fn(usize) -> (String, String),
+        labels: &dyn Fn(usize) -> Labels,
         prototypes: &HashMap<ProtoKey, Prototype>,
         stump: &SharedMesh,
         prototypes_uri: &str,
@@ -128,11 +140,16 @@ impl TileTask {
             .iter()
             .map(|&i| {
                 let tree = trees[i as usize].clone();
-                let (id, written) = labels(tree.row);
+                let Labels {
+                    id,
+                    written,
+                    condition,
+                } = labels(tree.row);
                 TileTree {
                     year: years[i as usize],
                     id,
                     written,
+                    condition,
                     tree,
                 }
             })
@@ -429,7 +446,11 @@ mod tests {
         let root = quadtree::build(&at, LEAF_TREES);
         assert!(!root.children.is_empty());
         let years = vec![TreeYear::default(); n];
-        let labels = |row: usize| (format!("T{row}"), "stump".to_string());
+        let labels = |row: usize| Labels {
+            id: format!("T{row}"),
+            written: "stump".to_string(),
+            condition: String::new(),
+        };
         let stump = crate::tasks::stump_file().0;
         let task = TileTask::new(
             "",

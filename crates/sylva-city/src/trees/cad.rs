@@ -183,6 +183,7 @@ mod tests {
             }],
             summary: Default::default(),
             measured: HashMap::new(),
+            observed: Vec::new(),
         };
         assert!(check(&plan).is_ok(), "at the bound");
         let one = plan.epochs[0].trees[0].clone();

@@ -251,6 +251,8 @@ pub struct Plan {
     pub summary: Summary,
     /// The measured functions of every species and region drawn.
     pub measured: HashMap<(String, String), Measured>,
+    /// What the surveyors saw of each of the inventory's trees, by row.
+    pub observed: Vec<crate::inventory::Observed>,
 }
 
 /// Plans the trees of `inventory` (read from a file whose rows were `rows` in all).
@@ -452,6 +454,7 @@ pub fn plan(inventory: &Inventory, options: &CityOptions) -> Result<Plan, CityEr
         epochs,
         summary,
         measured,
+        observed: inventory.trees.iter().map(|t| t.observed.clone()).collect(),
     })
 }
 

@@ -185,6 +185,9 @@ try {
   check(picked.every((p) => /^T\d{6}$/.test(p.id) && p.region === 'PacfNW' && p.dbh_cm > 0 &&
     p.height_m > 1 && p.height_m < 60 && p.age_years >= 0),
     'the attributes are the inventory\'s and the grown tree\'s');
+  // The GeoPackage's CONDITION (i-Tree's finer classes) as i-Tree Streets' three.
+  check(picked.every((p) => ['good', 'fair', 'poor'].includes(p.condition)),
+    `each picked tree carries its recorded condition (${picked.map((p) => p.condition).join(', ')})`);
   // The year's benefits: a figure no model or price gives is the no-data value, which the
   // client reads as absent (PacfNW has no sourced rainfall, so no rain figure).
   check(picked.some((p) => p.co2_stored_kg > 0 && p.co2_sequestered_kg_per_year > 0 &&

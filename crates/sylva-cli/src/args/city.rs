@@ -132,6 +132,12 @@ pub struct CityArgs {
     /// Ground height column (m above the WGS84 ellipsoid).
     #[arg(long, help_heading = "Columns")]
     pub ground_col: Option<String>,
+
+    /// Condition column (default: the census's `health`, else `condition`): Good, Fair, Poor,
+    /// or i-Tree's Excellent, Very Good, Critical, Dying; for the report's condition and
+    /// relative performance by species, and each tree's property in the tiles.
+    #[arg(long, help_heading = "Columns")]
+    pub condition_col: Option<String>,
 }
 
 /// The column layout of a demo CSV.

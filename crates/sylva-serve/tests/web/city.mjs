@@ -154,6 +154,7 @@ try {
   check(title.includes(`tree ${opened.id}`), `the card is tree ${opened.id}'s: ${title}`);
   const card = await page.textContent('#card-table');
   check(/Inventory row/.test(card) && /Grown as/.test(card) && /DBH/.test(card), 'the card gives its inventory row, what it is grown as and its DBH');
+  check(/Condition(good|fair|poor), as the inventory recorded it/.test(card), 'the card gives the condition the inventory recorded');
   const href = await page.getAttribute('#street-link', 'href');
   check(/^\/\?region=\w+&species=\w+&age=\d+$/.test(href), `the card links to the street page: ${href}`);
   await waitUntil('the card\'s charts', () => page.evaluate(() => window.sylvaCity.cardCharts > 0), 120);
@@ -174,6 +175,14 @@ try {
   const lit = await page.evaluate(() => window.sylvaCity.lit());
   check(lit.dim > 0 && lit.lit > 0, `filtering ${common}: ${lit.lit} trees lit, ${lit.dim} dimmed`);
   await page.selectOption('#f-species', '');
+  // A condition filter dims every tree of another condition, and the report panel says the
+  // condition the inventory recorded.
+  await page.selectOption('#f-condition', 'poor');
+  const poor = await page.evaluate(() => window.sylvaCity.lit());
+  check(poor.dim > 0 && poor.lit > 0 && poor.lit < poor.dim, `filtering poor trees: ${poor.lit} lit, ${poor.dim} dimmed`);
+  await page.selectOption('#f-condition', '');
+  const said = await page.textContent('#report-condition');
+  check(/\d+% good, \d+% fair, \d+% poor/.test(said) && said.includes('best:'), `the report panel gives the condition: ${said.slice(0, 90)}…`);
 
   // 9. The report's totals against a sum over the tiles' property tables (each epoch's leaf
   // tiles hold every tree once).
@@ -190,6 +199,11 @@ try {
       return !a || a.trees !== s.trees || Math.abs(a.years / a.trees - s.mean_age_years) > 1e-3 * Math.max(1, s.mean_age_years);
     });
     check(off.length === 0, `each species' trees and mean age in the report are the tiles' (${report.species.length} species${off.length ? `; not: ${off.map((s) => s.code).join(', ')}` : ''})`);
+    // Each tree's condition in the tiles is the report's count (the demo's census `health`).
+    const [g, f, p] = report.observed.good_fair_poor;
+    const c = sum.condition;
+    check((c.good || 0) === g && (c.fair || 0) === f && (c.poor || 0) === p && (c.none || 0) === report.observed.not_recorded,
+      `the tiles' conditions (${JSON.stringify(c)}) are the report's (${g} good, ${f} fair, ${p} poor)`);
   }
   // Beside Modesto's published benefits per tree (McPherson et al. 1999), held to within the
   // factors docs/benefits.md explains (prices and population), aesthetics included.
@@ -308,7 +322,7 @@ function rawGet(base, path) {
 function sumTiles(tilesetPath) {
   const dir = tilesetPath.slice(0, tilesetPath.lastIndexOf('/') + 1);
   const json = JSON.parse(readFileSync(tilesetPath, 'utf8'));
-  const sum = { trees: 0, benefits: 0, typical: 0, ages: {} };
+  const sum = { trees: 0, benefits: 0, typical: 0, ages: {}, condition: {} };
   const walk = (tile) => {
     if (tile.children?.length) { tile.children.forEach(walk); return; }
     if (!tile.content) return;
@@ -321,6 +335,10 @@ function sumTiles(tilesetPath) {
       const a = (sum.ages[t.get('species', i)] ||= { trees: 0, years: 0 });
       a.trees += 1;
       a.years += t.get('age_years', i);
+      if (t.get('species', i) !== 'stump') {
+        const c = t.get('condition', i) || 'none';
+        sum.condition[c] = (sum.condition[c] || 0) + 1;
+      }
     }
   };
   walk(json.root);
