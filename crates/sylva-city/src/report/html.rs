@@ -1,7 +1,7 @@
 //! The city's report as a page of HTML tables (`CityReport::html`).
 
 use crate::report::published::Comparison;
-use crate::report::{CityReport, observed};
+use crate::report::{CityReport, observed, predicted};
 use crate::trees::benefits::CATEGORIES;
 use std::fmt::Write as _;
 use sylva::growth::DBH_CLASS_EDGES_CM;
@@ -198,6 +198,73 @@ impl CityReport {
                 share(&p.branch_lights),
                 share(&p.trunk_wire_or_lights),
                 share(&p.root_paving)
+            );
+        }
+        h.push_str("</table>\n");
+        self.predicted_html(h, &name);
+    }
+
+    /// Sylva's site model on a typical street beside what was recorded: each species' first
+    /// flare and wire conflicts, and the shares of its trees under and over that DBH with a
+    /// damaged sidewalk, and with lights or wires in the branches.
+    fn predicted_html(&self, h: &mut String, name: &dyn Fn(&str) -> String) {
+        if self.predicted.is_empty() {
+            return;
+        }
+        let _ = writeln!(
+            h,
+            "<h3>Beside Sylva's site model on a typical street</h3><p>Each species as grown \
+             for the city, unpruned, set on <code>{}</code> (a 1.2 m strip between curb and \
+             sidewalk, lines overhead at 8.5 m): the first age class whose trunk's flare \
+             reaches the curb or the sidewalk, and the first whose crown enters the lines' \
+             clearance, with the DBH the equations give then; beside them, the recorded shares of its trees under and at \
+             or over that DBH. The events differ: roots lift a flag well beyond the flare, years \
+             before the trunk's base reaches it, so damage is recorded on trees smaller than \
+             the flare conflict; and the census's lights or wires in the branches are mostly \
+             string lights and wires hung in the tree, not the utility lines the site model \
+             clears, so they follow the street's decorations more than the crown's \
+             reach.</p><table><tr><th>Species</th><th>Flare reaches the pavement</th>\
+             <th>Sidewalk damaged, under · at or over</th><th>Crown into the lines' clearance</th>\
+             <th>Lights or wires in the branches, under · at or over</th></tr>",
+            predicted::SITE.0
+        );
+        let when = |f: Option<predicted::First>, years: f64| {
+            f.map_or(format!("not by {years:.0} years (its oldest class)"), |f| {
+                format!("DBH {:.0} cm (age {:.0})", f.dbh_cm, f.age)
+            })
+        };
+        for p in &self.predicted {
+            let rows: Vec<&observed::ProblemRow> = (self.observed.problems.iter())
+                .filter(|r| r.code == p.code)
+                .collect();
+            // The shares recorded in the DBH classes below the predicted DBH's, and from it up.
+            let split =
+                |f: Option<predicted::First>,
+                 seen: &dyn Fn(&observed::ProblemRow) -> observed::Seen| {
+                    let k = f.map_or(usize::MAX, |f| {
+                        DBH_CLASS_EDGES_CM.partition_point(|&e| e <= f.dbh_cm)
+                    });
+                    let sum = |under: bool| {
+                        let mut s = observed::Seen::default();
+                        for r in rows.iter().filter(|r| (r.dbh_class < k) == under) {
+                            let v = seen(r);
+                            s.recorded += v.recorded;
+                            s.with += v.with;
+                        }
+                        s.share().map_or("–".into(), |v| {
+                            format!("{:.0}% of {}", 100.0 * v, s.recorded)
+                        })
+                    };
+                    format!("{} · {}", sum(true), sum(false))
+                };
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                name(&p.code),
+                when(p.flare, p.years),
+                split(p.flare, &|r| r.sidewalk_damage),
+                when(p.wire, p.years),
+                split(p.wire, &|r| r.branch_lights)
             );
         }
         h.push_str("</table>\n");

@@ -10,6 +10,7 @@
 
 pub(crate) mod html;
 pub mod observed;
+pub mod predicted;
 pub mod published;
 
 use crate::trees::benefits::{NO_DATA, tree_year};
@@ -122,6 +123,9 @@ pub struct CityReport {
     /// What the inventory's surveyors saw: condition and RPI by species, problems by species
     /// and DBH class.
     pub observed: observed::Observations,
+    /// Sylva's site model on a typical street beside the problems recorded: each species'
+    /// first flare and wire conflicts (`predicted`), where problems were recorded.
+    pub predicted: Vec<predicted::Predicted>,
     /// Per tree at the first epoch: i-Tree Streets' typical-position energy, carbon,
     /// stormwater, air quality and aesthetics, $ a year.
     pub typical_per_tree_usd: [Option<f64>; 5],
@@ -251,6 +255,18 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         row.typical_total_usd = add(row.typical_total_usd, tree.typical_total);
     }
     let observed = observed::observations(plan);
+    // The species whose problems were recorded, grown on the typical street.
+    let mut grown: Vec<(String, String)> = (first.map_or(&[][..], |e| &e.trees).iter())
+        .filter_map(|t| match &t.kind {
+            Kind::Tree(k) if observed.problems.iter().any(|p| p.code == k.code) => {
+                Some((k.region.clone(), k.code.clone()))
+            }
+            _ => None,
+        })
+        .collect();
+    grown.sort();
+    grown.dedup();
+    let predicted = predicted::predicted(plan, prototypes, &grown);
     let trees: usize = species.values().map(|s| s.trees).sum();
     let per_tree = |v: Option<f64>| v.map(|v| v / trees.max(1) as f64);
     let typical_per_tree_usd: [Option<f64>; 5] = std::array::from_fn(|k| {
@@ -364,6 +380,13 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
              height; canopy the crowns' projected discs summed"
                 .into(),
             "importance value: share of trees plus share of leaf area (i-Tree Streets)".into(),
+            "condition, as the inventory recorded it, in i-Tree Streets' report classes: the \
+             census's health Good, Fair, Poor as written; other layouts' condition Excellent, \
+             Very Good and Good as good, Fair as fair, Poor, Critical and Dying as poor (i-Tree \
+             Eco's dieback classes); any other value not recorded, and listed; relative \
+             performance index: a species' share in good condition over the city's (CUFR, \
+             Urban Forest Research, Summer 2004)"
+                .into(),
             "benefits: Sylva's own CO2 taken up (Jenkins et al. 2003), rain held back by the \
              grown crown, its air quality (i-Tree's uptake per m² of leaf on the crown's own \
              leaf) and aesthetics (its yearly leaf gain at the region's price per m², McPherson \
@@ -390,6 +413,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         benefits_per_tree_usd,
         published,
         observed,
+        predicted,
     }
 }
 
@@ -406,7 +430,10 @@ fn replacement_missing(observed: &observed::Observations) -> String {
          reports nor any other source Sylva could reach tabulate; McPherson (2007, \
          Arboriculture & Urban Forestry 33(1), Table 2) gives one species' (Chinese pistache in \
          Davis: $11.94 per cm² of trunk area, $345 installed, species rating 90%), not a \
-         region's table; and a location rating, which an inventory does not record",
+         region's table; a condition rating as a percentage, which a class (good, fair, \
+         poor) does not give and no source Sylva reached converts (McPherson's three trees \
+         were rated 56 to 64%); and a location rating, which an inventory does not record \
+         (McPherson's street trees: 66.7%)",
         if observed.has_condition() {
             "The inventory records condition (above)."
         } else {

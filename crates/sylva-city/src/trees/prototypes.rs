@@ -4,6 +4,7 @@
 
 use crate::error::CityError;
 use crate::trees::plan::ProtoKey;
+use crate::trees::typical::{OnTypicalStreet, on_typical_street};
 use std::collections::BTreeMap;
 #[cfg(test)]
 use std::collections::HashMap;
@@ -66,6 +67,8 @@ pub struct Prototype {
     pub impostor_png: Option<Vec<u8>>,
     /// Its plan symbol (crown outline and trunk from above), for the planting plans.
     pub plan: PlanSymbol,
+    /// Its conflicts on a typical narrow street, unpruned (`typical`).
+    pub typical_street: OnTypicalStreet,
 }
 
 /// One growth task: a species, region and seed variant grown once, its age classes taken on
@@ -218,6 +221,7 @@ fn prototype(
         impostor,
         impostor_png,
         plan: PlanSymbol::of(skeleton),
+        typical_street: on_typical_street(skeleton),
     };
     (prototype, files)
 }

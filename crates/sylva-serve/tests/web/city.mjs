@@ -204,6 +204,11 @@ try {
     const c = sum.condition;
     check((c.good || 0) === g && (c.fair || 0) === f && (c.poor || 0) === p && (c.none || 0) === report.observed.not_recorded,
       `the tiles' conditions (${JSON.stringify(c)}) are the report's (${g} good, ${f} fair, ${p} poor)`);
+    // The census's problems sit beside Sylva's site model: each species with problems
+    // recorded is set on the typical street, and some reach into its lines' clearance.
+    const codes = new Set(report.observed.problems.map((r) => r.code));
+    check(report.predicted.length === codes.size && report.predicted.some((p) => p.wire && p.wire.dbh_cm > 0),
+      `the report sets ${report.predicted.length} species on the typical street beside the problems recorded`);
   }
   // Beside Modesto's published benefits per tree (McPherson et al. 1999), held to within the
   // factors docs/benefits.md explains (prices and population), aesthetics included.
