@@ -563,3 +563,25 @@ fn a_census_inventorys_condition_and_problems_reach_the_report() {
         (4, 1)
     );
 }
+
+/// A condition column of numbers (a score, not classes) is refused naming the file and the
+/// column, before anything is planned.
+#[test]
+fn a_condition_column_of_numbers_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scored.csv");
+    std::fs::write(
+        &path,
+        "tree_id,spc_latin,tree_dbh,latitude,longitude,condition\n\
+         1,Platanus x acerifolia,14,40.7231,-73.8442,80\n\
+         2,Platanus x acerifolia,12,40.7232,-73.8441,65\n",
+    )
+    .unwrap();
+    let e = inventory::load(&path, None, &Layout::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("scored.csv") && e.contains("`condition`") && e.contains("--condition-col"),
+        "{e}"
+    );
+}

@@ -164,9 +164,10 @@ impl CityReport {
         if !o.unread.is_empty() {
             h.push_str("<p>Values Sylva could not place, counted as not recorded:</p><ul>\n");
             for (column, value, n) in &o.unread {
+                let rows = if *n == 1 { "row" } else { "rows" };
                 let _ = writeln!(
                     h,
-                    "<li><code>{}</code> = “{}”: {n} rows</li>",
+                    "<li><code>{}</code> = “{}”: {n} {rows}</li>",
                     esc(column),
                     esc(value)
                 );
