@@ -584,4 +584,16 @@ fn a_condition_column_of_numbers_is_refused() {
         e.contains("scored.csv") && e.contains("`condition`") && e.contains("--condition-col"),
         "{e}"
     );
+    // A column named by a flag that the file does not have is refused, not read as empty.
+    let named = Layout {
+        observed: inventory::ObservedColumns {
+            condition: Some("COND".into()),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let e = inventory::load(&path, None, &named)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("--condition-col COND: no such column"), "{e}");
 }

@@ -211,6 +211,20 @@ impl Layout {
     /// Turns `records` into trees: each row's columns read by this layout, converted to
     /// metres, centimetres and degrees, and checked. Rows that fail are kept as rejected.
     pub fn apply(&self, records: Records, path: &Path) -> Result<Inventory, CityError> {
+        // A column named that the file does not have would read as empty on every row.
+        if let Some((flag, column)) = self
+            .named()
+            .into_iter()
+            .find(|(_, c)| !records.header.iter().any(|h| h == c))
+        {
+            return Err(CityError::inventory(
+                path,
+                format!(
+                    "{flag} {column}: no such column (the header has {})",
+                    records.header.join(", ")
+                ),
+            ));
+        }
         if self.species.is_empty() {
             return Err(CityError::inventory(
                 path,
@@ -284,6 +298,31 @@ impl Layout {
         }
         out.rejected.sort_by_key(|r| r.line);
         Ok(out)
+    }
+
+    /// Every column this layout names, with the flag that names it.
+    fn named(&self) -> Vec<(&'static str, &str)> {
+        let one = [
+            ("--id-col", &self.id),
+            ("--dbh-col", &self.dbh),
+            ("--circumference-col", &self.circumference),
+            ("--height-col", &self.height),
+            ("--planted-col", &self.planted),
+            ("--status-col", &self.status),
+            ("--ground-col", &self.ground),
+            ("--condition-col", &self.observed.condition),
+        ];
+        let mut out: Vec<(&'static str, &str)> = (one.into_iter())
+            .filter_map(|(flag, c)| Some((flag, c.as_deref()?)))
+            .collect();
+        if let Some((a, b)) = &self.lon_lat {
+            out.extend([("--lon-col", a.as_str()), ("--lat-col", b.as_str())]);
+        }
+        if let Some((a, b)) = &self.xy {
+            out.extend([("--x-col", a.as_str()), ("--y-col", b.as_str())]);
+        }
+        out.extend(self.species.iter().map(|c| ("--species-col", c.as_str())));
+        out
     }
 
     /// One row as a tree, or why it cannot be one.

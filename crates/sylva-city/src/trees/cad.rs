@@ -108,6 +108,8 @@ pub fn planting_plan(
         );
     }
     let stumps = dxf.layer("STUMPS", 8);
+    // A stump's symbol is its cut: a circle 1 m across, scaled to its DBH; added at the first.
+    let mut stump: Option<String> = None;
     for t in &epoch.trees {
         let at = match (&frame, inventory.trees.get(t.row).map(|r| r.position)) {
             (Frame::Projected(..), Some(Position::Projected(x, y))) => (x, y),
@@ -129,17 +131,15 @@ pub fn planting_plan(
                     .map_err(flag)?;
             }
             Kind::Stump => {
-                // A stump's symbol is its cut: a circle of its DBH.
-                let block = dxf.symbol(
-                    "STUMP",
-                    &PlanSymbol {
+                let diameter = f64::from((t.dbh / 100.0).max(0.1));
+                let block = stump.get_or_insert_with(|| {
+                    let cut = PlanSymbol {
                         trunk_radius: 0.5,
                         ..Default::default()
-                    },
-                );
-                let diameter = f64::from((t.dbh / 100.0).max(0.1));
-                dxf.place(&block, &stumps, at, diameter, 0.0)
-                    .map_err(flag)?;
+                    };
+                    dxf.symbol("STUMP", &cut)
+                });
+                dxf.place(block, &stumps, at, diameter, 0.0).map_err(flag)?;
             }
         }
     }

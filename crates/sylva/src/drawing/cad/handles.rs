@@ -107,8 +107,9 @@ pub fn complete(text: &str) -> String {
         };
         let add_owner = owned_by.filter(|o| !has_owner && !o.is_empty());
         for (i, p) in object.iter().enumerate() {
-            match p.code {
-                5 => out.push((5, handle.clone().unwrap_or_else(|| p.value.to_string()))),
+            // Only an ENDBLK's handle is replaced (it repeats its BLOCK's); every other is kept.
+            match (p.code, kind, &handle) {
+                (5, "ENDBLK", Some(h)) => out.push((5, h.clone())),
                 _ => out.push((p.code, p.value.to_string())),
             }
             // A table's handle and owner follow its name; anything else's owner follows its
