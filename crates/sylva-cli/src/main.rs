@@ -2,6 +2,7 @@
 //! hands them to the subcommand's module; each module turns flags into library calls and
 //! prints what was made. What several of them need lives in `shared.rs`.
 
+mod allocator;
 mod args;
 mod bench;
 mod city;

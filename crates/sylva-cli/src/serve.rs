@@ -11,6 +11,7 @@ pub fn run(args: &ServeArgs) -> Result<()> {
         cache_bytes: (args.cache_mib as usize) << 20,
         cities: args.cities.clone(),
         basemap: args.basemap.clone(),
+        allocator: crate::allocator::NAME,
         ..Default::default()
     };
     let open = args.open;

@@ -72,11 +72,23 @@ async function getJson(url) {
   timing.requests++;
   for (;;) {
     const r = await fetch(url);
-    if (r.status === 503) { await new Promise((ok) => setTimeout(ok, 1000)); continue; }
+    if (r.status === 503) { await waitBusy(r); continue; }
     const body = await r.json();
     if (!r.ok) throw new Error(body.error || r.statusText);
     return body;
   }
+}
+
+// A 503: the server grows as many species at once as its cores and memory bound allow, or
+// this growth is still under way; the answer says for how many growths it waits and when to
+// ask again (Retry-After). The page says so rather than seeming to hang, and asks again.
+async function waitBusy(r) {
+  const body = await r.json().catch(() => ({}));
+  const n = body.growing ?? 1;
+  status(`Waiting for ${n} growth${n === 1 ? '' : 's'} on the server…`);
+  const seconds = Number(r.headers.get('retry-after')) || body.retry_after || 1;
+  await new Promise((ok) => setTimeout(ok, 1000 * seconds));
+  timing.waits = (timing.waits ?? 0) + 1;
 }
 
 // Answers asked for before they are needed (the page's first species list and growth tables
@@ -236,8 +248,7 @@ function loadGlb(url) {
     const get = async () => {
       for (;;) {
         const r = await fetch(url);
-        // 503: the server grows as many species as it allows at once; this one comes next.
-        if (r.status === 503) { await new Promise((ok) => setTimeout(ok, 1000)); continue; }
+        if (r.status === 503) { await waitBusy(r); continue; }
         if (!r.ok) throw new Error((await r.json()).error);
         return r.arrayBuffer();
       }

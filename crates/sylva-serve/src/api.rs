@@ -3,15 +3,16 @@
 //! async ones, so a request that only reads is never held up by another's growth.
 
 use crate::State;
-use crate::cache::{Growth, Key, Refused};
+use crate::cache::{Entry, Growth, Key, Refused};
 use crate::grown::{self, AgeEntry, first_conflicts, sites};
-use crate::params::{ApiError, Query};
+use crate::params::{ApiError, Busy, Query};
 use axum::Json;
 use axum::extract::{Query as AxumQuery, State as AxumState};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use std::collections::HashMap;
 use std::sync::Arc;
+use std::sync::atomic::Ordering;
 use sylva::drawing::{DrawOptions, View, draw_svg};
 use sylva::growth::Measured;
 use sylva::growth::survey::report::{self, AgeRecord};
@@ -84,19 +85,6 @@ fn species_json(state: &State, region: &str) -> serde_json::Value {
     to_json(&list)
 }
 
-/// `GET /api/status`: what the cache holds against its bound.
-pub async fn status(AxumState(state): AxumState<Arc<State>>) -> Json<serde_json::Value> {
-    let c = &state.cache;
-    Json(serde_json::json!({
-        "cache_bytes": c.bytes(),
-        "recent_bytes": state.recent.bytes(),
-        "cache_bound": c.bound(),
-        "growths": c.len(),
-        "growing": c.growing(),
-        "growing_limit": c.growing_limit(),
-    }))
-}
-
 /// `GET /api/sites`: the built-in planting sites, as the page draws them (metres; the trunk
 /// at the origin, x along the street, y across it towards the buildings).
 pub async fn site_list() -> Json<serde_json::Value> {
@@ -106,6 +94,26 @@ pub async fn site_list() -> Json<serde_json::Value> {
         .collect();
     Json(serde_json::Value::Array(list))
 }
+
+/// How long a request waits for the ages it needs before it is answered 503 with a time to
+/// ask again: on a busy machine a growth may take minutes, and a page (or any client) waiting
+/// on an open request cannot tell a slow server from a hung one.
+pub const WAIT_LIMIT: std::time::Duration = std::time::Duration::from_secs(30);
+
+/// When a request stops waiting for growths: [`WAIT_LIMIT`] after it began, however many
+/// species it waits for.
+#[derive(Clone, Copy)]
+struct Deadline(tokio::time::Instant);
+
+impl Deadline {
+    fn new() -> Deadline {
+        Deadline(tokio::time::Instant::now() + WAIT_LIMIT)
+    }
+}
+
+/// Seconds a request refused as busy is told to wait before asking again: about the time a
+/// small species takes to reach its first ages.
+pub const RETRY_SECONDS: u32 = 2;
 
 impl State {
     /// The growth of a species, started if need be.
@@ -122,14 +130,126 @@ impl State {
             seed,
             pruned,
         };
-        self.cache.get(key, m).map_err(|Refused::Busy(n)| ApiError {
-            status: StatusCode::SERVICE_UNAVAILABLE,
-            parameter: None,
-            message: format!(
-                "busy: {n} species are growing, the most at once; try again in a few seconds"
+        self.cache.get(key, m).map_err(|r| self.refused(m, r))
+    }
+
+    /// The answer to a growth the cache would not start.
+    fn refused(&self, m: &Measured, refused: Refused) -> ApiError {
+        let mb = |bytes: usize| bytes.div_ceil(1 << 20);
+        let bound = mb(self.cache.bound());
+        match refused {
+            Refused::Busy { growing } => ApiError::busy(
+                format!(
+                    "busy: waiting for {growing} growths ({growing} species are growing, the \
+                     most at once); ask again in {RETRY_SECONDS} s"
+                ),
+                Busy {
+                    retry_after: RETRY_SECONDS,
+                    growing,
+                },
             ),
-            allowed: None,
-        })
+            Refused::Full {
+                expected,
+                committed,
+                growing,
+            } => ApiError::busy(
+                format!(
+                    "busy: waiting for {growing} growths; the trees in memory and growing \
+                     ({} MiB) leave no room under the server's bound for grown trees ({bound} \
+                     MiB) for {} (about {} MiB) until they finish or their requests end; ask \
+                     again in {RETRY_SECONDS} s",
+                    mb(committed),
+                    m.label(),
+                    mb(expected)
+                ),
+                Busy {
+                    retry_after: RETRY_SECONDS,
+                    growing,
+                },
+            ),
+            Refused::TooLarge { expected } => ApiError {
+                status: StatusCode::INSUFFICIENT_STORAGE,
+                parameter: Some("species"),
+                message: format!(
+                    "{}: its {} ages take about {} MiB, more than this server's whole bound \
+                     for grown trees ({bound} MiB): start `sylva serve` with --cache-mib {} \
+                     or more to show it",
+                    m.label(),
+                    grown::ages_of(m).len(),
+                    mb(expected),
+                    crate::cache_mib_for(expected)
+                ),
+                allowed: None,
+                busy: None,
+            },
+        }
+    }
+
+    /// `wait`, or a 503 once `deadline` has passed (the growth goes on, and the answer comes
+    /// when asked again).
+    async fn waited<T>(
+        &self,
+        m: &Measured,
+        growth: &Growth,
+        deadline: Deadline,
+        wait: impl std::future::Future<Output = T>,
+    ) -> Result<T, ApiError> {
+        let busy = |message: String| {
+            ApiError::busy(
+                message,
+                Busy {
+                    retry_after: RETRY_SECONDS,
+                    growing: self.cache.growing(),
+                },
+            )
+        };
+        let got = tokio::time::timeout_at(deadline.0, wait)
+            .await
+            .map_err(|_| {
+                self.cache.refusals.waited.fetch_add(1, Ordering::Relaxed);
+                busy(format!(
+                    "{}: still growing after {} s ({} of its {} ages grown; waiting for {} \
+                 growths); ask again in {RETRY_SECONDS} s",
+                    m.label(),
+                    WAIT_LIMIT.as_secs(),
+                    growth.reached(),
+                    growth.ages.len(),
+                    self.cache.growing()
+                ))
+            })?;
+        if growth.stopped() {
+            return Err(busy(format!(
+                "{}: its growth was stopped at {} of {} ages to keep the server's memory \
+                 bound, and grows again when the trees in use make room; ask again in \
+                 {RETRY_SECONDS} s",
+                m.label(),
+                growth.reached(),
+                growth.ages.len()
+            )));
+        }
+        Ok(got)
+    }
+
+    /// Every age of a species, once grown.
+    async fn all(
+        &self,
+        region: &str,
+        m: &Measured,
+        seed: u64,
+        pruned: Option<usize>,
+        deadline: Deadline,
+    ) -> Result<Vec<Entry>, ApiError> {
+        let growth = self.growth(region, m, seed, pruned)?;
+        let entries = self.waited(m, &growth, deadline, growth.all()).await?;
+        if entries.len() < growth.ages.len() {
+            return Err(ApiError::internal(format!(
+                "{}: the growth stopped at {} of {} ages",
+                m.label(),
+                entries.len(),
+                growth.ages.len()
+            )));
+        }
+        Ok(entries)
     }
 
     /// Each species' entry at `age`.
@@ -140,11 +260,13 @@ impl State {
         age: u32,
         seed: u64,
         pruned: Option<usize>,
-    ) -> Result<Vec<Arc<AgeEntry>>, ApiError> {
+    ) -> Result<Vec<Entry>, ApiError> {
+        let deadline = Deadline::new();
         let mut entries = Vec::new();
         for m in species {
             let growth = self.growth(region, m, seed, pruned)?;
-            let entry = growth.at(age).await.ok_or_else(|| {
+            let entry = self.waited(m, &growth, deadline, growth.at(age)).await?;
+            let entry = entry.ok_or_else(|| {
                 ApiError::internal(format!(
                     "{}: the growth stopped before age {age}",
                     m.label()
@@ -174,8 +296,7 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
     if let Some(json) = state.recent.get(&kept) {
         return Ok(([(header::CONTENT_TYPE, "application/json")], json).into_response());
     }
-    let growth = state.growth(&region, m, seed, pruned)?;
-    let entries = growth.all().await;
+    let entries = state.all(&region, m, seed, pruned, Deadline::new()).await?;
     let body = to_json(&PageGrowth {
         species: SpeciesLabel::of(m),
         region: RegionLabel::of(m),
@@ -185,19 +306,17 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
         rows: (entries.iter())
             .map(|e| PageRow::of(&e.record, &e.accounts[site]))
             .collect(),
-        first_conflicts: (first_conflicts(&entries, site).into_iter())
-            .map(|(age, kind)| PageConflict {
-                kind: kind.name().to_string(),
-                age,
-            })
-            .collect(),
+        first_conflicts: (first_conflicts(entries.iter().map(|e| -> &AgeEntry { e }), site)
+            .into_iter())
+        .map(|(age, kind)| PageConflict {
+            kind: kind.name().to_string(),
+            age,
+        })
+        .collect(),
         missing: grown::missing(m, site),
     });
     let json = axum::body::Bytes::from(body.to_string());
-    // Kept only whole: a growth that stopped short is asked again next time.
-    if entries.len() == growth.ages.len() {
-        state.recent.put(kept, json.clone());
-    }
+    state.recent.put(kept, json.clone());
     Ok(([(header::CONTENT_TYPE, "application/json")], json).into_response())
 }
 
@@ -230,7 +349,7 @@ impl OneTree {
     }
 
     /// The tree, once grown to the age.
-    async fn entry(&self, state: &State) -> Result<Arc<AgeEntry>, ApiError> {
+    async fn entry(&self, state: &State) -> Result<Entry, ApiError> {
         let species = std::slice::from_ref(&self.m);
         Ok(state
             .at(&self.region, species, self.age, self.seed, self.pruned)
@@ -260,7 +379,11 @@ pub async fn tree_glb(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Par
     }
     let m = tree.m.clone();
     let glb = blocking(&state, move || {
-        grown::web_glb(&m, &entry, detail).map_err(|e| ApiError::internal(e.to_string()))
+        let mut glb =
+            grown::web_glb(&m, &entry, detail).map_err(|e| ApiError::internal(e.to_string()))?;
+        // Kept among the recent answers, counted by its length: no room past it.
+        glb.shrink_to_fit();
+        Ok(glb)
     })
     .await?;
     let glb = axum::body::Bytes::from(glb);
@@ -295,8 +418,9 @@ pub async fn table_csv(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Pa
     let site = query.site()?;
     let pruned = query.pruned()?;
     let mut out = String::new();
+    let deadline = Deadline::new();
     for (i, m) in species.iter().enumerate() {
-        let entries = state.growth(&region, m, seed, pruned)?.all().await;
+        let entries = state.all(&region, m, seed, pruned, deadline).await?;
         let history: Vec<AgeRecord> = entries.iter().map(|e| e.record).collect();
         let accounts: Vec<_> = entries.iter().map(|e| e.accounts[site].clone()).collect();
         let csv = table::join_csv(&report::csv(&history), &accounts);

@@ -86,19 +86,21 @@ pub struct AgeEntry {
 }
 
 impl AgeEntry {
-    /// Bytes held, roughly: what the cache's memory bound counts.
+    /// Bytes held on the heap and in the entry itself, counting what each list has room for
+    /// (its capacity), not only what it uses: what the cache's memory bound counts.
     pub fn bytes(&self) -> usize {
         let s = &self.skeleton;
         std::mem::size_of::<Self>()
-            + std::mem::size_of_val(s.stems.as_slice())
-            + std::mem::size_of_val(s.sections.as_slice())
-            + std::mem::size_of_val(s.leaves.as_slice())
+            + s.stems.capacity() * std::mem::size_of::<sylva::skeleton::Stem>()
+            + s.sections.capacity() * std::mem::size_of::<sylva::skeleton::CrossSection>()
+            + s.leaves.capacity() * std::mem::size_of::<sylva::skeleton::Leaf>()
             + self.lod.heap_bytes()
             + self.opening.len()
+            + self.accounts.capacity() * std::mem::size_of::<YearAccount>()
             + self
                 .accounts
                 .iter()
-                .map(|a| std::mem::size_of_val(a) + std::mem::size_of_val(a.conflicts.as_slice()))
+                .map(|a| std::mem::size_of_val(a.conflicts.as_slice()))
                 .sum::<usize>()
     }
 }
@@ -141,6 +143,7 @@ pub fn grow_all(
         // accounts above read the whole tree, twigs' wood included).
         let mut skeleton = skeleton;
         skeleton.drop_short_twigs();
+        skeleton.leaves.shrink_to_fit();
         let lod = LodTree::build(&kites(&skeleton), &web_mesh);
         let mut entry = AgeEntry {
             record,
@@ -149,7 +152,9 @@ pub fn grow_all(
             lod,
             opening: Default::default(),
         };
-        if let Ok(glb) = web_glb(m, &entry, OPENING) {
+        if let Ok(mut glb) = web_glb(m, &entry, OPENING) {
+            // Held as long as the age is: no room past its length.
+            glb.shrink_to_fit();
             entry.opening = glb.into();
         }
         if !done(entry) {
@@ -167,8 +172,13 @@ pub fn missing(m: &Measured, site: usize) -> Vec<String> {
 
 /// The first age each kind of conflict happens on site `site`, in order of age (the
 /// library's [`rank::first_conflicts`], which lists them by kind).
-pub fn first_conflicts(entries: &[std::sync::Arc<AgeEntry>], site: usize) -> Vec<(u32, Kind)> {
-    let accounts: Vec<YearAccount> = entries.iter().map(|e| e.accounts[site].clone()).collect();
+pub fn first_conflicts<'a>(
+    entries: impl IntoIterator<Item = &'a AgeEntry>,
+    site: usize,
+) -> Vec<(u32, Kind)> {
+    let accounts: Vec<YearAccount> = (entries.into_iter())
+        .map(|e| e.accounts[site].clone())
+        .collect();
     let mut first: Vec<(u32, Kind)> = rank::first_conflicts(&accounts)
         .into_iter()
         .map(|(age, c)| (age as u32, c.kind))

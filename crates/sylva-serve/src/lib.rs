@@ -5,9 +5,10 @@
 //! - [`assets`]: the page (HTML, JavaScript, three.js) compiled into the binary.
 //! - [`api`]: regions, species, sites, a species' growth table, a grown tree as GLB, the
 //!   comparison picture, the CSV and the plan symbol. [`params`] checks every parameter.
-//! - [`cache`]: each (region, species, seed) grown once for every age, within a memory bound;
-//!   [`grown`] is what one growth holds; [`pictures`] draws with Sylva's renderer;
-//!   [`recent`] keeps the last GLB files sent.
+//! - [`cache`]: each (region, species, seed) grown once for every age, within a memory bound,
+//!   counting every age alive in a [`ledger`]; [`grown`] is what one growth holds;
+//!   [`pictures`] draws with Sylva's renderer; [`recent`] keeps the last GLB files sent;
+//!   [`status`] tells every byte kept against the bound.
 //!
 //! Growth runs on blocking threads; the async threads only route and copy.
 //!
@@ -21,9 +22,11 @@ pub mod assets;
 pub mod cache;
 pub mod city;
 pub mod grown;
+pub mod ledger;
 pub mod params;
 pub mod pictures;
 pub mod recent;
+pub mod status;
 
 use axum::Router;
 use axum::routing::get;
@@ -38,8 +41,9 @@ pub struct Options {
     pub host: String,
     /// Port (0: any free one).
     pub port: u16,
-    /// Most bytes of grown trees kept (finished growths past this are dropped, oldest use
-    /// first).
+    /// Most bytes kept between requests: grown trees, and the answers kept for asking again
+    /// (at most an eighth of it, and [`RECENT_BYTES`]). Never passed: growths that would
+    /// pass it wait (503 with a time to ask again), least recently used ones are dropped.
     pub cache_bytes: usize,
     /// Most species growing at once; requests for more get 503 "busy".
     pub growing_limit: usize,
@@ -50,15 +54,15 @@ pub struct Options {
     pub cities: Vec<std::path::PathBuf>,
     /// An XYZ tile source drawn under the cities (`{z}`, `{x}`, `{y}` in it).
     pub basemap: Option<String>,
+    /// The memory allocator the binary was built with, as `/api/status` names it.
+    pub allocator: &'static str,
 }
 
-/// The default memory bound: 1 GiB of grown trees (skeletons, packed trees, the opening
-/// level's GLBs and accounts of every age). Measured (`/api/status`): London plane and Chinese
-/// pistache through their 64 and 75 ages hold 446 MB together, honeylocust's 50 ages 122 MB,
-/// so this keeps four to eight species.
-/// Growths still running are never dropped: at most [`Options::growing_limit`] (4) run at once,
-/// so memory stays under the bound plus four growths (some 300 MB each for the largest of
-/// these).
+/// The default memory bound: 1 GiB kept between requests, grown trees (skeletons, packed
+/// trees, the opening level's GLBs and accounts of every age) and recent answers (128 MiB).
+/// Measured (`sylva-serve`'s ignored test `what_each_species_takes`): Modesto's species take
+/// 120 to 450 MB each through all their ages (London plane 206 MB, Chinese pistache 242 MB),
+/// so this keeps three to six of them.
 pub const DEFAULT_CACHE_BYTES: usize = 1 << 30;
 
 impl Default for Options {
@@ -76,12 +80,31 @@ impl Default for Options {
             ],
             cities: Vec::new(),
             basemap: None,
+            allocator: "the system's",
         }
     }
 }
 
-/// Most bytes of answers (GLB files, growth tables) kept for requests asked again.
+/// Most bytes of answers (GLB files, growth tables) kept for requests asked again, whatever
+/// the bound.
 pub const RECENT_BYTES: usize = 128 << 20;
+
+/// The part of a bound of `bound` bytes kept for recent answers: an eighth, at most
+/// [`RECENT_BYTES`]; the rest is for grown trees.
+pub fn recent_share(bound: usize) -> usize {
+    (bound / 8).min(RECENT_BYTES)
+}
+
+/// The least `--cache-mib` whose share for grown trees holds `bytes`.
+pub fn cache_mib_for(bytes: usize) -> usize {
+    // The recent share is an eighth of the bound until it reaches RECENT_BYTES.
+    let bound = if bytes >= 7 * RECENT_BYTES {
+        bytes + RECENT_BYTES
+    } else {
+        (bytes * 8).div_ceil(7)
+    };
+    bound.div_ceil(1 << 20)
+}
 
 /// The age the page opens at (`state.age` in `assets/app.js`).
 pub const PAGE_AGE: u32 = 20;
@@ -90,8 +113,13 @@ pub const PAGE_AGE: u32 = 20;
 pub struct State {
     /// The growth tables.
     pub db: &'static Database,
+    /// Most bytes kept between requests ([`Options::cache_bytes`]): `cache`'s bound and
+    /// `recent`'s together.
+    pub bound: usize,
+    /// The memory allocator, by name.
+    pub allocator: &'static str,
     /// Grown species.
-    pub cache: cache::Cache,
+    pub cache: Arc<cache::Cache>,
     /// The renderer for pictures.
     pub pictures: pictures::Pictures,
     /// Answers that never change while the server runs (the region list, each region's
@@ -118,10 +146,15 @@ impl State {
     pub fn with_cities(options: &Options, cities: city::Cities) -> Arc<State> {
         Arc::new(State {
             db: Database::builtin(),
-            cache: cache::Cache::new(options.cache_bytes, options.growing_limit),
+            bound: options.cache_bytes,
+            allocator: options.allocator,
+            cache: Arc::new(cache::Cache::new(
+                options.cache_bytes - recent_share(options.cache_bytes),
+                options.growing_limit,
+            )),
             pictures: pictures::Pictures::default(),
             lists: Default::default(),
-            recent: recent::Recent::new(RECENT_BYTES),
+            recent: recent::Recent::new(recent_share(options.cache_bytes)),
             workers: tokio::sync::Semaphore::new(
                 std::thread::available_parallelism().map_or(2, |n| n.get()),
             ),
@@ -137,7 +170,7 @@ pub fn router(state: Arc<State>) -> Router {
         .route("/api/regions", get(api::regions))
         .route("/api/species", get(api::species))
         .route("/api/sites", get(api::site_list))
-        .route("/api/status", get(api::status))
+        .route("/api/status", get(status::status))
         .route("/api/growth", get(api::growth))
         .route("/api/tree.glb", get(api::tree_glb))
         .route("/api/plan.svg", get(api::plan_svg))
@@ -212,6 +245,14 @@ pub fn run(options: &Options, ready: impl FnOnce(&str, &city::Cities)) -> Result
             bound.ip().to_string()
         };
         ready(&format!("http://{host}:{}/", bound.port()), &state.cities);
+        tokio::spawn(async {
+            let mut every = tokio::time::interval(status::GIVE_BACK_EVERY);
+            loop {
+                every.tick().await;
+                // A few milliseconds of walking the heap: off the threads that answer.
+                let _ = tokio::task::spawn_blocking(status::give_back_free_memory).await;
+            }
+        });
         axum::serve(listener, router(state))
             .with_graceful_shutdown(async {
                 let _ = tokio::signal::ctrl_c().await;

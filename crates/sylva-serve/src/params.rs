@@ -22,6 +22,18 @@ pub struct ApiError {
     pub message: String,
     /// What is allowed.
     pub allowed: Option<String>,
+    /// For a 503: when to ask again, and what the server is busy with.
+    pub busy: Option<Busy>,
+}
+
+/// Why a request was answered 503, and when to ask again: the `Retry-After` header, and
+/// `retry_after` and `growing` in the body, from which the page says what it waits for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Busy {
+    /// Seconds to wait before asking again.
+    pub retry_after: u32,
+    /// Growths running.
+    pub growing: usize,
 }
 
 impl ApiError {
@@ -32,6 +44,7 @@ impl ApiError {
             parameter: Some(parameter),
             message: format!("{parameter}: {message}"),
             allowed: Some(allowed.into()),
+            busy: None,
         }
     }
 
@@ -43,18 +56,39 @@ impl ApiError {
             parameter: None,
             message,
             allowed: None,
+            busy: None,
+        }
+    }
+
+    /// A 503: the server cannot take this on now; `busy` says when to ask again.
+    pub fn busy(message: String, busy: Busy) -> Self {
+        ApiError {
+            status: StatusCode::SERVICE_UNAVAILABLE,
+            parameter: None,
+            message,
+            allowed: None,
+            busy: Some(busy),
         }
     }
 }
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
-        let body = serde_json::json!({
+        let mut body = serde_json::json!({
             "error": self.message,
             "parameter": self.parameter,
             "allowed": self.allowed,
         });
-        (self.status, Json(body)).into_response()
+        let Some(busy) = self.busy else {
+            return (self.status, Json(body)).into_response();
+        };
+        body["retry_after"] = busy.retry_after.into();
+        body["growing"] = busy.growing.into();
+        let retry = [(
+            axum::http::header::RETRY_AFTER,
+            busy.retry_after.to_string(),
+        )];
+        (self.status, retry, Json(body)).into_response()
     }
 }
 

@@ -1,9 +1,10 @@
 //! Pictures the page offers for download, drawn by Sylva's own renderer (the first backend
 //! that starts: Vulkan, OpenGL or the CPU), which is started once, on the first picture.
 
-use crate::grown::{AgeEntry, ages_of, full_mesh};
+use crate::cache::Entry;
+use crate::grown::{ages_of, full_mesh};
 use crate::params::ApiError;
-use std::sync::{Arc, Mutex};
+use std::sync::Mutex;
 use sylva::growth::Measured;
 use sylva::growth::survey::report::age_label;
 use sylva_render::caption::with_caption;
@@ -22,7 +23,7 @@ impl Pictures {
     pub fn compare(
         &self,
         species: &[Measured],
-        entries: &[Arc<AgeEntry>],
+        entries: &[Entry],
         age: u32,
         size: (u32, u32),
     ) -> Result<Vec<u8>, ApiError> {

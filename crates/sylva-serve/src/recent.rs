@@ -47,6 +47,11 @@ impl Recent {
         }
     }
 
+    /// The most bytes it keeps.
+    pub fn bound(&self) -> usize {
+        self.bound
+    }
+
     /// Bytes held.
     pub fn bytes(&self) -> usize {
         self.held.lock().unwrap_or_else(|e| e.into_inner()).1

@@ -270,7 +270,55 @@ async fn identical_requests_in_flight_are_grown_once() {
     assert!(bodies.windows(2).all(|w| w[0] == w[1]));
     let status = json(&s, "/api/status").await;
     assert_eq!(status["growths"], 1);
-    assert!(status["cache_bytes"].as_u64().unwrap() > 0);
+    // Every byte kept is the growth's ages and the answer kept for asking again.
+    let bytes = |k: &str| status[k].as_u64().unwrap();
+    assert!(bytes("growth_bytes") > 0);
+    assert_eq!(
+        bytes("cache_bytes"),
+        bytes("growth_bytes") + bytes("recent_bytes")
+    );
+    assert_eq!(bytes("growth_bytes"), bytes("held_bytes"));
+    assert!(bytes("cache_bytes") <= bytes("cache_bound"));
+    assert_eq!(status["growing"], 0);
+}
+
+/// A server whose bound cannot hold a species stops its growth at the bound and says so:
+/// first 503 with a time to ask again (the growth was tried: a first guess cannot know), then
+/// 507 naming the `--cache-mib` that would hold it; the bound is never passed.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_species_larger_than_the_bound_is_refused_with_what_would_hold_it() {
+    let s = State::new(&Options {
+        warm: Vec::new(),
+        cache_bytes: 64 << 20,
+        ..Default::default()
+    });
+    let response = router(s.clone())
+        .oneshot(
+            Request::get("/api/growth?species=PRCE")
+                .body(Body::empty())
+                .unwrap(),
+        )
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::SERVICE_UNAVAILABLE);
+    let retry = response.headers().get("retry-after").unwrap();
+    assert_eq!(retry.to_str().unwrap(), "2");
+    let body = response.into_body().collect().await.unwrap().to_bytes();
+    let body: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    let said = body["error"].as_str().unwrap();
+    assert!(
+        said.contains("stopped") && said.contains("memory bound"),
+        "{said}"
+    );
+    assert_eq!(body["retry_after"], 2);
+    let (status, _, body) = get(&s, "/api/growth?species=PRCE").await;
+    let said = String::from_utf8_lossy(&body);
+    assert_eq!(status, StatusCode::INSUFFICIENT_STORAGE, "{said}");
+    assert!(said.contains("--cache-mib"), "{said}");
+    let status = json(&s, "/api/status").await;
+    assert!(status["cache_bytes"].as_u64() <= status["cache_bound"].as_u64());
+    assert_eq!(status["refused"]["stopped"], 1);
+    assert_eq!(status["refused"]["too_large"], 1);
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

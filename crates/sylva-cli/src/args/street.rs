@@ -194,7 +194,11 @@ pub struct ServeArgs {
     #[arg(long)]
     pub open: bool,
 
-    /// Most memory kept for grown trees, MiB (the oldest used go first).
+    /// Most memory kept between requests, MiB: grown trees of every age, and the answers last
+    /// sent (an eighth of it, at most 128). Never passed: least recently used trees go first;
+    /// a species that cannot fit yet is answered 503 with a time to ask again, one that alone
+    /// outgrows it 507. Resident memory runs above it by what requests and growths build
+    /// while they run (measured in the README).
     #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(64..=65536))]
     pub cache_mib: u64,
 
