@@ -38,6 +38,7 @@ pub fn status_json(state: &State) -> serde_json::Value {
         "growths": h.growths,
         "growing": h.growing,
         "growing_limit": c.growing_limit(),
+        "growths_started": r.started.load(Ordering::Relaxed),
         "wait_limit_s": crate::api::WAIT_LIMIT.as_secs(),
         "refused": {
             "busy": r.busy.load(Ordering::Relaxed),

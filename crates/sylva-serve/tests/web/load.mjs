@@ -22,7 +22,9 @@ import { clients } from './clients.mjs';
 const bin = process.argv[2] || new URL('../../../../target/debug/sylva', import.meta.url).pathname;
 const CLIENTS = 20;
 const FLOOR_MS = 10;
-const server = await startServer(bin);
+// A bound that holds every growth this test makes (some 1.5 GB): it times waiting, and
+// soak.mjs judges the bound.
+const server = await startServer(bin, ['--cache-mib', '2048']);
 const guard = setTimeout(() => { console.log('FAILED: the load test ran past two minutes'); process.exit(1); }, 120000);
 const api = (path) => `${server.url}api/${path}`;
 const median = (xs) => xs.slice().sort((a, b) => a - b)[Math.floor(xs.length / 2)];
@@ -39,12 +41,15 @@ try {
   // 1. One growth for twenty identical requests.
   const one = await alone('growth?species=ZESE&seed=1');
   check(one.status === 200, `a growth alone: ${one.ms.toFixed(0)} ms`);
+  const before = (await (await fetch(api('status'))).json()).growths_started;
   const same = await pool.burst(Array.from({ length: CLIENTS }, () => api('growth?species=ZESE&seed=2')), warm);
   const slowest = Math.max(...same.map((r) => r.ms));
   const status = await (await fetch(api('status'))).json();
   console.log(`${CLIENTS} identical requests for a growth: slowest ${slowest.toFixed(0)} ms, ${(slowest / one.ms).toFixed(2)}x one growth alone; ${status.growths} growths held`);
   check(same.every((r) => r.status === 200), 'every identical request answered');
-  check(status.growths === 4, 'the twenty identical requests grew one tree');
+  // The bound may drop the least recently used growths to make room: what is counted is
+  // growths started.
+  check(status.growths_started === before + 1, 'the twenty identical requests grew one tree');
   check(slowest <= 2 * one.ms, 'no identical request waited more than 2x one growth');
 
   // 2. Reads while another species grows.

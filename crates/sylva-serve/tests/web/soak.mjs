@@ -40,7 +40,7 @@ const cityDir = opt('city', null);
 const CLIENTS = Number(opt('clients', 20));
 // The overhead the README states for resident memory above the bound: what growths and
 // requests build while they run, the program itself and the allocator's slack.
-const overheadMib = Number(opt('overhead-mib', 640));
+const overheadMib = Number(opt('overhead-mib', 1024));
 if (!bin) { console.log('usage: node soak.mjs path/to/sylva [--minutes N] ...'); process.exit(2); }
 
 const kb = (b) => Math.round(b / (1 << 20));
