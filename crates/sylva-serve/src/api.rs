@@ -100,14 +100,14 @@ pub async fn site_list() -> Json<serde_json::Value> {
 /// on an open request cannot tell a slow server from a hung one.
 pub const WAIT_LIMIT: std::time::Duration = std::time::Duration::from_secs(30);
 
-/// When a request stops waiting for growths: [`WAIT_LIMIT`] after it began, however many
-/// species it waits for.
+/// When a request stops waiting for growths: [`crate::Options::wait_limit`] (by default
+/// [`WAIT_LIMIT`]) after it began, however many species it waits for.
 #[derive(Clone, Copy)]
 struct Deadline(tokio::time::Instant);
 
 impl Deadline {
-    fn new() -> Deadline {
-        Deadline(tokio::time::Instant::now() + WAIT_LIMIT)
+    fn new(state: &State) -> Deadline {
+        Deadline(tokio::time::Instant::now() + state.wait_limit)
     }
 }
 
@@ -211,7 +211,7 @@ impl State {
                     "{}: still growing after {} s ({} of its {} ages grown; waiting for {} \
                  growths); ask again in {RETRY_SECONDS} s",
                     m.label(),
-                    WAIT_LIMIT.as_secs(),
+                    self.wait_limit.as_secs(),
                     growth.reached(),
                     growth.ages.len(),
                     self.cache.growing()
@@ -261,7 +261,7 @@ impl State {
         seed: u64,
         pruned: Option<usize>,
     ) -> Result<Vec<Entry>, ApiError> {
-        let deadline = Deadline::new();
+        let deadline = Deadline::new(self);
         let mut entries = Vec::new();
         for m in species {
             let growth = self.growth(region, m, seed, pruned)?;
@@ -296,7 +296,9 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
     if let Some(json) = state.recent.get(&kept) {
         return Ok(([(header::CONTENT_TYPE, "application/json")], json).into_response());
     }
-    let entries = state.all(&region, m, seed, pruned, Deadline::new()).await?;
+    let entries = state
+        .all(&region, m, seed, pruned, Deadline::new(&state))
+        .await?;
     let body = to_json(&PageGrowth {
         species: SpeciesLabel::of(m),
         region: RegionLabel::of(m),
@@ -418,7 +420,7 @@ pub async fn table_csv(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Pa
     let site = query.site()?;
     let pruned = query.pruned()?;
     let mut out = String::new();
-    let deadline = Deadline::new();
+    let deadline = Deadline::new(&state);
     for (i, m) in species.iter().enumerate() {
         let entries = state.all(&region, m, seed, pruned, deadline).await?;
         let history: Vec<AgeRecord> = entries.iter().map(|e| e.record).collect();

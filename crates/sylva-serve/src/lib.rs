@@ -56,6 +56,9 @@ pub struct Options {
     pub basemap: Option<String>,
     /// The memory allocator the binary was built with, as `/api/status` names it.
     pub allocator: &'static str,
+    /// How long a request waits for the growths it needs before it is answered 503
+    /// ([`api::WAIT_LIMIT`]).
+    pub wait_limit: std::time::Duration,
 }
 
 /// The default memory bound: 1 GiB kept between requests, grown trees (skeletons, packed
@@ -81,6 +84,7 @@ impl Default for Options {
             cities: Vec::new(),
             basemap: None,
             allocator: "the system's",
+            wait_limit: api::WAIT_LIMIT,
         }
     }
 }
@@ -118,6 +122,8 @@ pub struct State {
     pub bound: usize,
     /// The memory allocator, by name.
     pub allocator: &'static str,
+    /// [`Options::wait_limit`].
+    pub wait_limit: std::time::Duration,
     /// Grown species.
     pub cache: Arc<cache::Cache>,
     /// The renderer for pictures.
@@ -148,6 +154,7 @@ impl State {
             db: Database::builtin(),
             bound: options.cache_bytes,
             allocator: options.allocator,
+            wait_limit: options.wait_limit,
             cache: Arc::new(cache::Cache::new(
                 options.cache_bytes - recent_share(options.cache_bytes),
                 options.growing_limit,

@@ -9,9 +9,12 @@ use std::sync::Arc;
 use sylva_serve::{Options, State, router};
 use tower::ServiceExt;
 
+/// A state whose requests wait as long as growths take: the tests run beside others on a
+/// shared machine, where a growth may take longer than the server's 30 s.
 fn state() -> Arc<State> {
     State::new(&Options {
         warm: Vec::new(),
+        wait_limit: std::time::Duration::from_secs(600),
         ..Default::default()
     })
 }

@@ -34,22 +34,40 @@ impl Server {
         Server { child, address }
     }
 
-    /// The body of a GET that must answer 200.
+    /// The body of a GET that must answer 200, asked again as a 503 says (`Retry-After`:
+    /// the server is busy growing, or its memory bound is full until growths end), for at
+    /// most five minutes.
     fn get(&self, path: &str) -> String {
-        let mut stream = TcpStream::connect(&self.address).unwrap();
-        write!(
-            stream,
-            "GET {path} HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n",
-            self.address
-        )
-        .unwrap();
-        let mut answer = Vec::new();
-        stream.read_to_end(&mut answer).unwrap();
-        let answer = text(&answer);
-        let (head, body) = answer.split_once("\r\n\r\n").unwrap();
-        assert!(head.starts_with("HTTP/1.1 200"), "{path}: {head}");
-        assert!(!head.to_ascii_lowercase().contains("chunked"), "{head}");
-        body.to_string()
+        let until = std::time::Instant::now() + std::time::Duration::from_secs(300);
+        loop {
+            let mut stream = TcpStream::connect(&self.address).unwrap();
+            write!(
+                stream,
+                "GET {path} HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n",
+                self.address
+            )
+            .unwrap();
+            let mut answer = Vec::new();
+            stream.read_to_end(&mut answer).unwrap();
+            let answer = text(&answer);
+            let (head, body) = answer.split_once("\r\n\r\n").unwrap();
+            let retry = (head.lines())
+                .find_map(|l| {
+                    l.to_ascii_lowercase()
+                        .strip_prefix("retry-after: ")
+                        .map(str::to_owned)
+                })
+                .and_then(|s| s.trim().parse::<u64>().ok());
+            if let (true, Some(seconds)) = (head.starts_with("HTTP/1.1 503"), retry)
+                && std::time::Instant::now() < until
+            {
+                std::thread::sleep(std::time::Duration::from_secs(seconds));
+                continue;
+            }
+            assert!(head.starts_with("HTTP/1.1 200"), "{path}: {head}\n{body}");
+            assert!(!head.to_ascii_lowercase().contains("chunked"), "{head}");
+            return body.to_string();
+        }
     }
 }
 
