@@ -8,6 +8,7 @@
 import * as THREE from '/vendor/three.min.js';
 import { Street } from '/scene.js';
 import { QUANTITIES, lineChart, barChart } from '/charts.js';
+import { ask, askJson, waitingText } from '/ask.js';
 
 const COLOURS = ['#2f7d4f', '#c0612b', '#3b6fb6', '#8e4fa8'];
 // Detail levels of /api/tree.glb: 0 every twig and leaf; each next level about half the
@@ -70,24 +71,12 @@ const glbs = new Map();  // url -> Promise of a glTF scene (the last 40 kept)
 
 async function getJson(url) {
   timing.requests++;
-  for (;;) {
-    const r = await fetch(url);
-    if (r.status === 503) { await waitBusy(r); continue; }
-    const body = await r.json();
-    if (!r.ok) throw new Error(body.error || r.statusText);
-    return body;
-  }
+  return askJson(url, waitBusy);
 }
 
-// A 503: the server grows as many species at once as its cores and memory bound allow, or
-// this growth is still under way; the answer says for how many growths it waits and when to
-// ask again (Retry-After). The page says so rather than seeming to hang, and asks again.
-async function waitBusy(r) {
-  const body = await r.json().catch(() => ({}));
-  const n = body.growing ?? 1;
-  status(`Waiting for ${n} growth${n === 1 ? '' : 's'} on the server…`);
-  const seconds = Number(r.headers.get('retry-after')) || body.retry_after || 1;
-  await new Promise((ok) => setTimeout(ok, 1000 * seconds));
+// The server is busy with n growths: the page says so (see ask.js).
+function waitBusy(n) {
+  status(waitingText(n));
   timing.waits = (timing.waits ?? 0) + 1;
 }
 
@@ -246,12 +235,9 @@ function loadGlb(url) {
   if (!glbs.has(url)) {
     timing.requests++;
     const get = async () => {
-      for (;;) {
-        const r = await fetch(url);
-        if (r.status === 503) { await waitBusy(r); continue; }
-        if (!r.ok) throw new Error((await r.json()).error);
-        return r.arrayBuffer();
-      }
+      const r = await ask(url, waitBusy);
+      if (!r.ok) throw new Error((await r.json()).error);
+      return r.arrayBuffer();
     };
     const p = get().then((buf) => loader.parseAsync(buf, '')).then((gltf) => gltf.scene);
     p.catch(() => glbs.delete(url));

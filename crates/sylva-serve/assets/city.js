@@ -8,6 +8,7 @@
 
 import * as T from '/vendor/city.min.js';
 import { lineChart, barChart } from '/charts.js';
+import { askJson, waitingText } from '/ask.js';
 import { softwareGl } from '/gl.js';
 import { extentOf, drawGround } from '/city-ground.js';
 import { epochTable, esc } from '/city-report.js';
@@ -230,13 +231,6 @@ function showEpoch(index) {
 
 function status(text) { $('status').textContent = text || ''; }
 
-async function getJson(url) {
-  const r = await fetch(url);
-  const body = await r.json().catch(() => null);
-  if (!r.ok || body == null) throw new Error(body?.error || `${url}: ${r.status}`);
-  return body;
-}
-
 async function chooseCity(name) {
   for (const t of state.tilesets.values()) { scene.remove(t.group); t.dispose(); }
   state.tilesets.clear();
@@ -248,7 +242,7 @@ async function chooseCity(name) {
   state.city = city;
   history.replaceState(null, '', `?city=${encodeURIComponent(name)}`);
   if (!city || city.problem) { status(city ? city.problem : `no city ${name}`); return; }
-  const first = await getJson(city.epochs[0].tileset);
+  const first = await askJson(city.epochs[0].tileset);
   state.frame = pageFrame(first.root.transform);
   const e = extentOf(first.root.boundingVolume.box);
   drawGround(ground, e, state.basemap, state.city.origin, probe, redraw);
@@ -400,7 +394,9 @@ async function showCard(row) {
     `at ${age} years on the street page</a>`;
   $('card-note').textContent = 'Growing its species for the charts…';
   try {
-    const growth = await getJson(`/api/growth?region=${encodeURIComponent(row.region)}&species=${encodeURIComponent(row.species)}`);
+    // A busy server (503) is waited for, and the card says what for.
+    const growth = await askJson(`/api/growth?region=${encodeURIComponent(row.region)}&species=${encodeURIComponent(row.species)}`,
+      (n) => { $('card-note').textContent = probe.cardWaiting = `Growing its species for the charts: ${waitingText(n)}`; });
     if ($('card-title').textContent !== `${row.common_name || row.species}: tree ${row.id}`) return;
     const series = [{ colour: '#2f7d4f', rows: growth.rows }];
     for (const c of document.querySelectorAll('#card-charts canvas')) lineChart(c, c.dataset.q, series, age);
@@ -431,7 +427,7 @@ async function loadReport(city) {
     return;
   }
   try {
-    state.report = await getJson(files.json);
+    state.report = await askJson(files.json);
   } catch (err) {
     $('report-summary').innerHTML = `<p class="note">The report cannot be read: ${esc(err.message)}</p>`;
   }
@@ -557,7 +553,7 @@ probe.turn = (ms) => new Promise((done) => {
 // ---- start --------------------------------------------------------------------------------------
 
 async function start() {
-  const listed = await getJson('/api/cities');
+  const listed = await askJson('/api/cities');
   state.cities = listed.cities;
   state.edges = listed.dbh_class_edges_cm;
   state.basemap = listed.basemap;

@@ -33,6 +33,11 @@ const FILES: &[(&str, &str, &[u8])] = &[
         include_bytes!("../assets/charts.js"),
     ),
     (
+        "/ask.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("../assets/ask.js"),
+    ),
+    (
         "/city.html",
         "text/html; charset=utf-8",
         include_bytes!("../assets/city.html"),

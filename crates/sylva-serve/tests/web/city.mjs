@@ -138,7 +138,16 @@ try {
   console.log(`turning at the default view: ${fps.toFixed(1)} frames a second (target 10: ${fps >= 10 ? 'met' : 'MISSED'})`);
   check(fps >= 2, 'turning at two frames a second or better');
 
-  // 6. A click on a tree, or on a tree's marker, opens its card.
+  // 6. A click on a tree, or on a tree's marker, opens its card. The card's first growth is
+  // answered as a busy server answers (503, Retry-After, the growths it waits for): the card
+  // must say what it waits for, ask again, and draw its charts.
+  let busy = 0;
+  await page.route('**/api/growth?*', (route) => (busy++ > 0 ? route.continue() : route.fulfill({
+    status: 503,
+    headers: { 'Retry-After': '1' },
+    contentType: 'application/json',
+    body: JSON.stringify({ error: 'busy: 3 growths under way', growing: 3, retry_after: 1 }),
+  })));
   const points = await page.evaluate(() => [...window.sylvaCity.treePoints(12), ...window.sylvaCity.markerPoints(12)]);
   check(points.length > 0, `${points.length} trees on the screen to click`);
   let opened = null;
@@ -157,7 +166,10 @@ try {
   check(/Condition(good|fair|poor), as the inventory recorded it/.test(card), 'the card gives the condition the inventory recorded');
   const href = await page.getAttribute('#street-link', 'href');
   check(/^\/\?region=\w+&species=\w+&age=\d+$/.test(href), `the card links to the street page: ${href}`);
-  await waitUntil('the card\'s charts', () => page.evaluate(() => window.sylvaCity.cardCharts > 0), 120);
+  await waitUntil('the card\'s charts', () => page.evaluate(() => window.sylvaCity.cardCharts > 0), 240);
+  const waited = await page.evaluate(() => window.sylvaCity.cardWaiting);
+  check(busy >= 2 && /Waiting for 3 growths on the server/.test(waited), `a busy server's 503 waited out: the card said "${waited}", then drew its charts`);
+  await page.unroute('**/api/growth?*');
   if (shots) writeFileSync(`${shots}/city-card.png`, await page.screenshot());
 
   // 7. The epoch slider swaps the tileset in place.
