@@ -185,6 +185,14 @@ pub struct Holding {
     pub growing: usize,
 }
 
+/// What a growth's size is learnt by: its region, species and whether it is pruned (a pruned
+/// tree is smaller); seeds differ less, and the sixteenth added to what one took covers them.
+type SizeKey = (String, String, bool);
+
+fn size_key(key: &Key) -> SizeKey {
+    (key.region.clone(), key.code.clone(), key.pruned.is_some())
+}
+
 /// The cache. Cheap to share behind an `Arc`.
 pub struct Cache {
     map: Mutex<HashMap<Key, Arc<Growth>>>,
@@ -194,7 +202,7 @@ pub struct Cache {
     clock: AtomicU64,
     /// What a whole growth of (region, species, pruned) took, once one finished (or at least
     /// took, for one stopped short).
-    sizes: Mutex<HashMap<(String, String, bool), usize>>,
+    sizes: Mutex<HashMap<SizeKey, usize>>,
     /// Refusals so far.
     pub refusals: Refusals,
     room_wait: std::time::Duration,
@@ -274,7 +282,10 @@ impl Cache {
 
     /// What is held, in use and expected, read at one moment.
     pub fn holding(&self) -> Holding {
-        let map = self.map();
+        self.tally(&self.map())
+    }
+
+    fn tally(&self, map: &HashMap<Key, Arc<Growth>>) -> Holding {
         let bytes = self.ledger.bytes();
         let held: usize = map.values().map(|g| g.bytes()).sum();
         let running = map.values().filter(|g| g.running());
@@ -288,36 +299,38 @@ impl Cache {
         }
     }
 
+    /// Bytes alive plus what the running growths are still expected to add.
+    fn committed(&self, map: &HashMap<Key, Arc<Growth>>) -> usize {
+        let now = self.tally(map);
+        now.bytes + now.expected
+    }
+
     /// Bytes a whole growth of `key` is expected to take: what the species took the last
     /// time it grew whole (pruned or not, as asked: a pruned tree is smaller), else
     /// [`BYTES_PER_AGE`] for each of its ages.
     pub fn expected(&self, key: &Key, m: &Measured) -> usize {
-        let sizes = self.sizes.lock().unwrap_or_else(|e| e.into_inner());
-        let own = (key.region.clone(), key.code.clone(), key.pruned.is_some());
-        if let Some(&bytes) = sizes.get(&own) {
-            return bytes;
-        }
-        BYTES_PER_AGE * ages_of(m).len()
+        self.learnt(key)
+            .unwrap_or_else(|| BYTES_PER_AGE * ages_of(m).len())
+    }
+
+    /// What a whole growth of `key`'s species took, once one has grown (or at least took, for
+    /// one stopped short).
+    fn learnt(&self, key: &Key) -> Option<usize> {
+        self.sizes().get(&size_key(key)).copied()
     }
 
     fn learn(&self, key: &Key, bytes: usize) {
-        let mut sizes = self.sizes.lock().unwrap_or_else(|e| e.into_inner());
-        let own = (key.region.clone(), key.code.clone(), key.pruned.is_some());
-        sizes.insert(own, bytes);
+        self.sizes().insert(size_key(key), bytes);
     }
 
     fn learn_at_least(&self, key: &Key, bytes: usize) {
-        let mut sizes = self.sizes.lock().unwrap_or_else(|e| e.into_inner());
-        let own = (key.region.clone(), key.code.clone(), key.pruned.is_some());
-        let size = sizes.entry(own).or_insert(0);
+        let mut sizes = self.sizes();
+        let size = sizes.entry(size_key(key)).or_insert(0);
         *size = (*size).max(bytes);
     }
 
-    /// Bytes alive plus what the running growths are still expected to add.
-    fn committed(&self, map: &HashMap<Key, Arc<Growth>>) -> usize {
-        let held: usize = map.values().map(|g| g.bytes()).sum();
-        let claimed: usize = map.values().map(|g| g.claim()).sum();
-        self.ledger.bytes().saturating_sub(held) + claimed
+    fn sizes(&self) -> MutexGuard<'_, HashMap<SizeKey, usize>> {
+        self.sizes.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// Drops the least recently used finished growths that no request holds until `more`
@@ -357,15 +370,14 @@ impl Cache {
             self.refusals.busy.fetch_add(1, Ordering::Relaxed);
             return Err(Refused::Busy { growing });
         }
-        let expected = self.expected(&key, measured);
-        let known = {
-            let sizes = self.sizes.lock().unwrap_or_else(|e| e.into_inner());
-            sizes.contains_key(&(key.region.clone(), key.code.clone(), key.pruned.is_some()))
+        let expected = match self.learnt(&key) {
+            Some(took) if took > self.bound => {
+                self.refusals.too_large.fetch_add(1, Ordering::Relaxed);
+                return Err(Refused::TooLarge { expected: took });
+            }
+            Some(took) => took,
+            None => BYTES_PER_AGE * ages_of(measured).len(),
         };
-        if expected > self.bound && known {
-            self.refusals.too_large.fetch_add(1, Ordering::Relaxed);
-            return Err(Refused::TooLarge { expected });
-        }
         // A first guess over the bound is tried at the bound: the growth shows what it takes.
         let expected = expected.min(self.bound);
         if !self.make_room(&mut map, expected) {

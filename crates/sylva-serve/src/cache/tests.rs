@@ -12,9 +12,11 @@ fn key(code: &str, seed: u64) -> Key {
     }
 }
 
-/// Awaits `g` to its end, checking the cache's count against its bound at every step.
-async fn watched(cache: &Cache, g: &Growth) {
-    while g.running() {
+/// Awaits `g` to its end, checking the cache's count against its bound at every step, and
+/// then its thread letting go of it (it marks the growth ended a moment before, and until
+/// then the cache cannot drop it: something holds it).
+async fn watched(cache: &Cache, g: &Arc<Growth>) {
+    while g.running() || Arc::strong_count(g) > 2 {
         assert!(
             cache.bytes() <= cache.bound(),
             "{} > {}",
