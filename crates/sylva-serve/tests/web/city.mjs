@@ -6,15 +6,14 @@
 // timings: trees shown after opening (target 5 s), frames a second while turning (10), a
 // click's answer (300 ms), and the server's memory.
 //
-//   node city.mjs path/to/sylva SHOTS [CITY]
+//   node city.mjs path/to/sylva SHOTS [CITY] [--prepared DIR]
 //
-// Without CITY it writes a small demo city itself (`sylva city-demo`, `sylva city --years 0,20
-// --report`), and the same trees spread over kilometres, as sparse as a census sample (issue X:
-// a real inventory opened on empty ground); with CITY (a folder `sylva city` wrote, such as
-// the 100,000-tree demo) it times that one.
+// Without CITY it writes a small demo city itself, and the same trees spread over kilometres
+// (demo-cities.mjs), or takes them from DIR where demo-cities.mjs wrote them already; with
+// CITY (a folder `sylva city` wrote, such as the 100,000-tree demo) it times that one.
 
 import { chromium } from 'playwright-core';
-import { execFileSync, spawnSync } from 'node:child_process';
+import { spawnSync } from 'node:child_process';
 import { mkdirSync, mkdtempSync, readFileSync, writeFileSync, rmSync, copyFileSync } from 'node:fs';
 import { createServer } from 'node:http';
 import { request } from 'node:http';
@@ -22,10 +21,14 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { startServer, waitUntil, check } from './common.mjs';
 import { propertyTable } from './glb.mjs';
+import { writeDemoCities, demoCitiesIn } from './demo-cities.mjs';
 
-const bin = process.argv[2] || new URL('../../../../target/debug/sylva', import.meta.url).pathname;
-const shots = process.argv[3] || null;
-const given = process.argv[4] || null;
+const args = process.argv.slice(2);
+const at = args.indexOf('--prepared');
+const prepared = at >= 0 ? args.splice(at, 2)[1] : null;
+const bin = args[0] || new URL('../../../../target/debug/sylva', import.meta.url).pathname;
+const shots = args[1] || null;
+const given = args[2] || null;
 if (shots) mkdirSync(shots, { recursive: true });
 const work = mkdtempSync(join(tmpdir(), 'sylva-city-view-'));
 
@@ -33,24 +36,17 @@ const work = mkdtempSync(join(tmpdir(), 'sylva-city-view-'));
 let city = given;
 let sparse = null;
 if (!city) {
-  city = join(work, 'modesto-demo');
-  execFileSync(bin, ['city-demo', '-o', join(work, 'demo.csv'), '--trees', '300', '--region', 'InlVal', '--seed', '3'], { stdio: 'ignore' });
-  const t0 = Date.now();
-  // A cache of its own, so that the sparse city below grows nothing again.
-  const cache = ['--cache', join(work, 'grown')];
-  execFileSync(bin, ['city', join(work, 'demo.csv'), '-o', city, '--years', '0,20', '--report', '--dxf', '--variants', '1', ...cache], { stdio: 'ignore' });
-  console.log(`demo city written in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+  const demo = prepared ? demoCitiesIn(prepared) : writeDemoCities(bin, join(work, 'demo'));
+  city = demo.city;
+  sparse = demo.sparse;
   // Its planting plans (--dxf) and what they are drawn from, for ezdxf in pytest
   // (crates/sylva-py/tests/test_cad.py reads SHOTS/dxf).
   if (shots) {
     mkdirSync(join(shots, 'dxf'), { recursive: true });
-    copyFileSync(join(work, 'demo.csv'), join(shots, 'dxf', 'demo.csv'));
+    copyFileSync(demo.csv, join(shots, 'dxf', 'demo.csv'));
     copyFileSync(join(city, 'summary.json'), join(shots, 'dxf', 'summary.json'));
     for (const y of [0, 20]) copyFileSync(join(city, `year-${y}`, 'planting-plan.dxf'), join(shots, 'dxf', `planting-plan-${y}.dxf`));
   }
-  sparse = join(work, 'sparse-census');
-  writeFileSync(join(work, 'sparse.csv'), spread(readFileSync(join(work, 'demo.csv'), 'utf8'), 12));
-  execFileSync(bin, ['city', join(work, 'sparse.csv'), '-o', sparse, '--years', '0', '--variants', '1', ...cache], { stdio: 'ignore' });
 }
 const name = city.split('/').filter(Boolean).pop();
 const notCity = join(work, 'holiday-photos');
@@ -300,22 +296,6 @@ async function fitted(page, label) {
 
 // A census-layout CSV (latitude and longitude columns) with every tree's distance from the
 // first multiplied by `k`: the same trees along streets `k` times longer.
-function spread(text, k) {
-  const lines = text.trim().split('\n');
-  const head = lines[0].split(',');
-  const [lat, lon] = [head.indexOf('latitude'), head.indexOf('longitude')];
-  let origin = null;
-  return [lines[0], ...lines.slice(1).map((line) => {
-    const f = line.split(',');
-    const y = Number(f[lat]), x = Number(f[lon]);
-    if (f.length !== head.length || !Number.isFinite(y) || !Number.isFinite(x) || !f[lat] || !f[lon]) return line;
-    origin ??= [y, x];
-    f[lat] = (origin[0] + (y - origin[0]) * k).toFixed(8);
-    f[lon] = (origin[1] + (x - origin[1]) * k).toFixed(8);
-    return f.join(',');
-  })].join('\n') + '\n';
-}
-
 function target(what, ms, most) {
   console.log(`${what}: ${ms.toFixed(0)} ms (target ${most} ms: ${ms <= most ? 'met' : 'MISSED'})`);
   check(ms <= 5 * most, `${what} within five times the target`);
