@@ -115,6 +115,18 @@ impl Deadline {
 /// small species takes to reach its first ages.
 pub const RETRY_SECONDS: u32 = 2;
 
+/// A 503 while `growing` growths run: `message`, then when to ask again (also in the
+/// `Retry-After` header).
+fn busy(message: String, growing: usize) -> ApiError {
+    ApiError::busy(
+        format!("{message}; ask again in {RETRY_SECONDS} s"),
+        Busy {
+            retry_after: RETRY_SECONDS,
+            growing,
+        },
+    )
+}
+
 impl State {
     /// The growth of a species, started if need be.
     fn growth(
@@ -138,34 +150,27 @@ impl State {
         let mb = |bytes: usize| bytes.div_ceil(1 << 20);
         let bound = mb(self.cache.bound());
         match refused {
-            Refused::Busy { growing } => ApiError::busy(
+            Refused::Busy { growing } => busy(
                 format!(
                     "busy: waiting for {growing} growths ({growing} species are growing, the \
-                     most at once); ask again in {RETRY_SECONDS} s"
+                     most at once)"
                 ),
-                Busy {
-                    retry_after: RETRY_SECONDS,
-                    growing,
-                },
+                growing,
             ),
             Refused::Full {
                 expected,
                 committed,
                 growing,
-            } => ApiError::busy(
+            } => busy(
                 format!(
                     "busy: waiting for {growing} growths; the trees in memory and growing \
                      ({} MiB) leave no room under the server's bound for grown trees ({bound} \
-                     MiB) for {} (about {} MiB) until they finish or their requests end; ask \
-                     again in {RETRY_SECONDS} s",
+                     MiB) for {} (about {} MiB) until they finish or their requests end",
                     mb(committed),
                     m.label(),
                     mb(expected)
                 ),
-                Busy {
-                    retry_after: RETRY_SECONDS,
-                    growing,
-                },
+                growing,
             ),
             Refused::TooLarge { expected } => ApiError {
                 status: StatusCode::INSUFFICIENT_STORAGE,
@@ -194,22 +199,14 @@ impl State {
         deadline: Deadline,
         wait: impl std::future::Future<Output = T>,
     ) -> Result<T, ApiError> {
-        let busy = |message: String| {
-            ApiError::busy(
-                message,
-                Busy {
-                    retry_after: RETRY_SECONDS,
-                    growing: self.cache.growing(),
-                },
-            )
-        };
+        let refuse = |message: String| busy(message, self.cache.growing());
         let got = tokio::time::timeout_at(deadline.0, wait)
             .await
             .map_err(|_| {
                 self.cache.refusals.waited.fetch_add(1, Ordering::Relaxed);
-                busy(format!(
+                refuse(format!(
                     "{}: still growing after {} s ({} of its {} ages grown; waiting for {} \
-                 growths); ask again in {RETRY_SECONDS} s",
+                 growths)",
                     m.label(),
                     self.wait_limit.as_secs(),
                     growth.reached(),
@@ -218,10 +215,9 @@ impl State {
                 ))
             })?;
         if growth.stopped() {
-            return Err(busy(format!(
+            return Err(refuse(format!(
                 "{}: its growth was stopped at {} of {} ages to keep the server's memory \
-                 bound, and grows again when the trees in use make room; ask again in \
-                 {RETRY_SECONDS} s",
+                 bound, and grows again when the trees in use make room",
                 m.label(),
                 growth.reached(),
                 growth.ages.len()
