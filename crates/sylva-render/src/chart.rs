@@ -7,6 +7,7 @@ use plotters::prelude::*;
 use sylva::growth::Measured;
 use sylva::growth::Targets;
 use sylva::growth::survey::report::{AgeRecord, CHARTED};
+use sylva::street::accounts::items::{Benefit, Cost, Item};
 use sylva::street::{Basis, YearAccount};
 
 /// What plotters may fail with, boxed.
@@ -83,10 +84,10 @@ fn draw_growth(m: &Measured, history: &[AgeRecord]) -> Drawn<Picture> {
     Ok(rgb_picture(&buffer, w, h))
 }
 
-/// Linsen et al.'s (2005) yearly bars, in i-Tree Streets' categories: benefits stacked above
-/// zero (CO2, stormwater, cooling, heating saved, air quality, aesthetics), costs, a winter
-/// heating penalty and BVOC emissions below, and the net as a line; read from the account of
-/// `basis` (the typical position or this site).
+/// Linsen et al.'s (2005) yearly bars, every item of the account's table
+/// (`sylva::street::accounts::items`): i-Tree Streets' benefit categories stacked above zero,
+/// the costs below with a winter heating penalty and BVOC emissions, and the net as a line;
+/// read from the account of `basis` (the typical position or this site).
 pub fn benefit_chart(
     m: &Measured,
     accounts: &[YearAccount],
@@ -124,36 +125,9 @@ fn draw_benefits(
         }
         lines.truncate(8);
         let (plot, notes) = root.split_vertically(h - 30 - 22 * lines.len() as u32);
-        let ups = |a: &YearAccount| {
-            let v = a.money(basis);
-            let carbon = v.carbon.unwrap_or(0.0) + v.co2_avoided.unwrap_or(0.0);
-            [
-                Some(carbon),
-                v.stormwater,
-                v.cooling,
-                v.heating,
-                v.air_quality,
-                v.aesthetics,
-            ]
-            .map(|x| x.unwrap_or(0.0).max(0.0))
-        };
-        let downs = |a: &YearAccount| {
-            let c = a.costs.unwrap_or_default();
-            let v = a.money(basis);
-            [
-                -v.heating.unwrap_or(0.0).min(0.0),
-                -v.bvoc.unwrap_or(0.0).min(0.0),
-                c.planting,
-                c.pruning,
-                c.removal,
-                c.sidewalk,
-                c.cleanup,
-                c.other,
-                c.average,
-                c.cycles,
-                c.utility,
-            ]
-        };
+        let bars = bars(basis);
+        let ups = |a: &YearAccount| bars.iter().map(|b| b.up(a)).collect::<Vec<f64>>();
+        let downs = |a: &YearAccount| bars.iter().map(|b| b.down(a)).collect::<Vec<f64>>();
         let top = accounts
             .iter()
             .map(|a| ups(a).iter().sum::<f64>())
@@ -190,53 +164,13 @@ fn draw_benefits(
             .y_desc("$ per year")
             .label_style(("sans-serif", 16))
             .draw()?;
-        let up_colours = [
-            RGBColor(60, 130, 60),
-            RGBColor(60, 110, 190),
-            RGBColor(230, 170, 40),
-            RGBColor(220, 110, 40),
-            RGBColor(120, 190, 210),
-            RGBColor(200, 120, 190),
-        ];
-        let up_names = [
-            "CO2 taken up and avoided",
-            "stormwater held",
-            "cooling saved",
-            "heating saved",
-            "air quality",
-            "aesthetics",
-        ];
-        let down_colours = [
-            RGBColor(150, 90, 160),
-            RGBColor(90, 150, 150),
-            RGBColor(120, 80, 50),
-            RGBColor(190, 100, 60),
-            RGBColor(200, 60, 60),
-            RGBColor(110, 110, 110),
-            RGBColor(170, 150, 120),
-            RGBColor(150, 150, 200),
-            RGBColor(200, 120, 120),
-            RGBColor(225, 160, 90),
-            RGBColor(90, 90, 160),
-        ];
-        let down_names = [
-            "heating penalty",
-            "BVOCs emitted",
-            "planting",
-            "pruning",
-            "removal",
-            "sidewalk repair",
-            "clean-up",
-            "pest, liability, administration",
-            "costs (programme average)",
-            "pruning cycles (city)",
-            "line clearance (utility)",
-        ];
-        for (k, (colour, name)) in up_colours.into_iter().zip(up_names).enumerate() {
+        for (k, bar) in bars.iter().enumerate() {
             if accounts.iter().all(|a| ups(a)[k] == 0.0) {
                 continue;
             }
-            let bars = accounts.iter().map(|a| {
+            let [r, g, b] = bar.item.rgb();
+            let colour = RGBColor(r, g, b);
+            let rects = accounts.iter().map(|a| {
                 let v = ups(a);
                 let below: f64 = v[..k].iter().sum();
                 Rectangle::new(
@@ -244,15 +178,25 @@ fn draw_benefits(
                     colour.filled(),
                 )
             });
-            chart.draw_series(bars)?.label(name).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 6), (x + 14, y + 6)], colour.filled())
-            });
+            chart
+                .draw_series(rects)?
+                .label(bar.item.label)
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 6), (x + 14, y + 6)], colour.filled())
+                });
         }
-        for (k, (colour, name)) in down_colours.into_iter().zip(down_names).enumerate() {
+        for (k, bar) in bars.iter().enumerate() {
             if accounts.iter().all(|a| downs(a)[k] == 0.0) {
                 continue;
             }
-            let bars = accounts.iter().map(|a| {
+            let [r, g, b] = bar.item.rgb();
+            let colour = RGBColor(r, g, b);
+            // A benefit drawn below the line (a heating penalty, BVOCs) is named as such.
+            let label = match bar.benefit {
+                Some(_) => format!("{} (below zero)", bar.item.label),
+                None => bar.item.label.to_string(),
+            };
+            let rects = accounts.iter().map(|a| {
                 let v = downs(a);
                 let above: f64 = v[..k].iter().sum();
                 Rectangle::new(
@@ -260,9 +204,12 @@ fn draw_benefits(
                     colour.filled(),
                 )
             });
-            chart.draw_series(bars)?.label(name).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 6), (x + 14, y + 6)], colour.filled())
-            });
+            chart
+                .draw_series(rects)?
+                .label(label)
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 6), (x + 14, y + 6)], colour.filled())
+                });
         }
         chart
             .draw_series(LineSeries::new(
@@ -290,6 +237,50 @@ fn draw_benefits(
     Ok(rgb_picture(&buffer, w, h))
 }
 
+/// One series of the bars: a benefit category or a cost item of the account's table
+/// (`sylva::street::accounts::items`), every one of them in the table's order.
+struct Bar {
+    item: &'static Item,
+    benefit: Option<Benefit>,
+    cost: Option<Cost>,
+    basis: Basis,
+}
+
+impl Bar {
+    /// What it adds above zero in a year: a benefit's positive dollars.
+    fn up(&self, a: &YearAccount) -> f64 {
+        (self.benefit)
+            .and_then(|b| a.money(self.basis).get(b))
+            .map_or(0.0, |v| v.max(0.0))
+    }
+
+    /// What it takes below zero: a negative benefit (a heating penalty, BVOCs) or a cost.
+    fn down(&self, a: &YearAccount) -> f64 {
+        match (self.benefit, self.cost) {
+            (Some(b), _) => -a.money(self.basis).get(b).unwrap_or(0.0).min(0.0),
+            (_, Some(c)) => a.costs.map_or(0.0, |y| y[c]),
+            _ => 0.0,
+        }
+    }
+}
+
+/// Every item of the account's table as a series, benefits first.
+fn bars(basis: Basis) -> Vec<Bar> {
+    let benefits = Benefit::ALL.map(|b| Bar {
+        item: b.item(),
+        benefit: Some(b),
+        cost: None,
+        basis,
+    });
+    let costs = Cost::ALL.map(|c| Bar {
+        item: c.item(),
+        benefit: None,
+        cost: Some(c),
+        basis,
+    });
+    benefits.into_iter().chain(costs).collect()
+}
+
 /// plotters' RGB buffer as a picture.
 fn rgb_picture(buffer: &[u8], width: u32, height: u32) -> Picture {
     Picture {
@@ -300,5 +291,20 @@ fn rgb_picture(buffer: &[u8], width: u32, height: u32) -> Picture {
             .flat_map(|p| [p[0], p[1], p[2], 255])
             .collect(),
         stats: FrameStats::default(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sylva::street::accounts::items;
+
+    /// The bars are every item of the account's one table, once each, in its order: a new
+    /// item is drawn without touching the chart.
+    #[test]
+    fn the_bars_draw_every_item_of_the_table() {
+        let drawn: Vec<&str> = bars(Basis::Site).iter().map(|b| b.item.key).collect();
+        let table: Vec<&str> = items::all().map(|i| i.key).collect();
+        assert_eq!(drawn, table);
     }
 }

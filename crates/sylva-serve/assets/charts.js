@@ -77,30 +77,16 @@ export function lineChart(canvas, quantity, series, age) {
   }
 }
 
-// What the bars show of a year's account (`street` in the growth rows).
-// i-Tree Streets' categories; a negative value (a winter heating penalty, BVOCs emitted) is
-// drawn below the line.
-export const BENEFITS = [
-  ['carbon', 'CO₂ taken up', '#5b8c5a'],
-  ['co2_avoided', 'CO₂ avoided', '#8fb58a'],
-  ['stormwater', 'Rain held', '#4a87b5'],
-  ['cooling', 'Cooling', '#e0a43a'],
-  ['heating', 'Heating', '#b5654a'],
-  ['air_quality', 'Air quality', '#78bed2'],
-  ['bvoc', 'BVOCs emitted', '#5a9696'],
-  ['aesthetics', 'Aesthetics', '#c878be'],
-];
-export const COSTS = [
-  ['planting', 'Planting', '#8c6d9e'],
-  ['pruning', 'Pruning', '#a07a52'],
-  ['removal', 'Removal', '#7d7d7d'],
-  ['sidewalk', 'Sidewalk', '#b09a70'],
-  ['cleanup', 'Clean-up', '#6f8f8f'],
-  ['pest_liability_administration', 'Pest, liability, admin', '#8a8fc0'],
-  ['average', 'Programme average', '#9c5b5b'],
-  ['cycles', 'Pruning cycles', '#d08a2e'],
-  ['line_clearance_utility', 'Line clearance (utility)', '#5a5aa0'],
-];
+// What the bars show of a year's account (`street` in the growth rows): every item of the
+// library's one table of account items (`sylva::street::accounts::items`, served as
+// /api/items), benefits keyed in `value_usd` and costs in `cost_usd`. A negative benefit (a
+// winter heating penalty, BVOCs emitted) is drawn below the line.
+const ITEMS = await fetch('/api/items').then((r) => {
+  if (!r.ok) throw new Error(`/api/items: HTTP ${r.status}`);
+  return r.json();
+});
+export const BENEFITS = ITEMS.filter((i) => i.side === 'benefit').map((i) => [i.key, i.label, i.colour]);
+export const COSTS = ITEMS.filter((i) => i.side === 'cost').map((i) => [i.key, i.label, i.colour, i.payer]);
 
 // `items`: [{ label, colour, street }].
 export function barChart(canvas, items) {

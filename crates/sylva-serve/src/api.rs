@@ -41,6 +41,14 @@ fn regions_json(state: &State) -> serde_json::Value {
     to_json(&list)
 }
 
+/// The account's items (`sylva::street::accounts::items`): each benefit and cost's key,
+/// label, unit, colour and who pays, which the page's charts draw from.
+pub async fn items(AxumState(state): AxumState<Arc<State>>) -> Response {
+    once(&state, "items", || {
+        to_json(&sylva::street::accounts::items::all().collect::<Vec<_>>())
+    })
+}
+
 /// A JSON answer made once and kept.
 fn once(state: &State, name: &str, make: impl FnOnce() -> serde_json::Value) -> Response {
     let kept = state

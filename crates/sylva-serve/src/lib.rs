@@ -177,6 +177,7 @@ pub fn router(state: Arc<State>) -> Router {
         .route("/api/regions", get(api::regions))
         .route("/api/species", get(api::species))
         .route("/api/sites", get(api::site_list))
+        .route("/api/items", get(api::items))
         .route("/api/status", get(status::status))
         .route("/api/growth", get(api::growth))
         .route("/api/tree.glb", get(api::tree_glb))

@@ -70,6 +70,40 @@ async fn regions_and_species_list_the_database() {
     assert_eq!(sites[0]["site"]["wire"][0]["height"], 8.5);
 }
 
+/// The page's charts draw every item of the library's one table of account items: the API
+/// serves the table whole, and `charts.js` names no item itself, so an item added to the
+/// table is drawn and keyed without touching the page.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_page_draws_every_account_item_from_the_one_table() {
+    use sylva::street::accounts::items;
+    let s = state();
+    let served = json(&s, "/api/items").await;
+    let served = served.as_array().unwrap();
+    let table: Vec<_> = items::all().collect();
+    assert_eq!(served.len(), table.len());
+    for (row, item) in served.iter().zip(&table) {
+        assert_eq!(row["key"], item.key);
+        assert_eq!(row["label"], item.label);
+        assert_eq!(row["colour"], item.colour);
+        assert_eq!(row["unit"], item.unit);
+        match item.payer {
+            Some(p) => assert_eq!(row["payer"], p.name()),
+            None => assert!(row["payer"].is_null()),
+        }
+    }
+    let (status, _, charts) = get(&s, "/charts.js").await;
+    assert_eq!(status, StatusCode::OK);
+    let charts = String::from_utf8(charts).unwrap();
+    assert!(charts.contains("'/api/items'"), "charts.js reads the table");
+    for item in &table {
+        assert!(
+            !charts.contains(&format!("'{}'", item.key)),
+            "charts.js names `{}` itself: it must come from /api/items",
+            item.key
+        );
+    }
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_grown_tree_comes_back_as_a_readable_glb_of_its_measured_height() {
     let s = state();

@@ -90,7 +90,7 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
             "removal",
             "sidewalk",
             "cleanup",
-            "other",
+            "pest_liability_administration",
             "average",
             "cycles",
             "line_clearance_utility",
@@ -210,14 +210,17 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         .unwrap()
         .to_rgb8();
     assert_eq!(bars.dimensions(), (1500, 900));
-    // Benefit bars up (cooling's amber, stormwater's blue), cost bars down (planting's brown).
+    // Benefit bars up (cooling, stormwater), cost bars down (planting), each in its colour
+    // in the one table of account items.
+    use sylva::street::accounts::items::{Benefit, Cost};
     let count = |rgb: [u8; 3]| bars.pixels().filter(|p| p.0 == rgb).count();
-    for (what, rgb) in [
-        ("cooling", [230, 170, 40]),
-        ("stormwater", [60, 110, 190]),
-        ("planting", [120, 80, 50]),
+    for item in [
+        Benefit::Cooling.item(),
+        Benefit::Stormwater.item(),
+        Cost::Planting.item(),
     ] {
-        assert!(count(rgb) > 500, "{what}: {} pixels", count(rgb));
+        let n = count(item.rgb());
+        assert!(n > 500, "{}: {n} pixels", item.key);
     }
     // --json carries the same account.
     let run = sylva(&[
@@ -469,6 +472,14 @@ fn rank_lists_a_regions_species_by_net_benefit_with_their_first_conflicts() {
         for (name, v) in cats {
             assert!(!v.is_null(), "{name}: {r}");
         }
+        // Costs by item are the one table's items, each by its key.
+        let items = r["costs_by_item_usd"].as_object().unwrap();
+        let keys: Vec<&str> = sylva::street::accounts::items::COSTS
+            .iter()
+            .map(|i| i.key)
+            .collect();
+        assert_eq!(items.len(), keys.len(), "{r}");
+        assert!(keys.iter().all(|k| items.contains_key(*k)), "{r}");
     }
     // The site model set beside i-Tree's figures around the standard house.
     let rows = json_lines(&[

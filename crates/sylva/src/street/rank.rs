@@ -1,7 +1,7 @@
 //! A region's species side by side: each grown year by year on the same site, its benefits
 //! and costs summed over the years, and the first year it runs into the street.
 
-use super::accounts::costs::YearCosts;
+use super::accounts::items::Cost;
 use super::accounts::ledger::YearAccount;
 use super::accounts::money::Basis;
 use super::accounts::pruner::PruningYear;
@@ -68,31 +68,15 @@ impl Ranked {
         out
     }
 
-    /// Costs over the years per tree planted, item by item, dollars: the city's items, the
-    /// site's pruning cycles, and the utility's line clearance (none where the run has no
-    /// costs).
-    pub fn costs_by_item(&self) -> Vec<(&'static str, Option<f64>)> {
-        let items = |c: &YearCosts| {
-            [
-                ("planting", c.planting),
-                ("pruning", c.pruning),
-                ("pruning_cycles", c.cycles),
-                ("removal", c.removal),
-                ("sidewalk_repair", c.sidewalk),
-                ("cleanup", c.cleanup),
-                ("pest_liability_administration", c.other),
-                ("programme_average", c.average),
-                ("line_clearance_utility", c.utility),
-            ]
-        };
-        let mut out: Vec<(&'static str, Option<f64>)> = items(&YearCosts::default())
-            .map(|(n, _)| (n, None))
-            .to_vec();
+    /// Costs over the years per tree planted, item by item (`items.rs`'s [`Cost`]), dollars:
+    /// the city's, the utility's and the owners' (none where the run has no costs).
+    pub fn costs_by_item(&self) -> Vec<(Cost, Option<f64>)> {
+        let mut out: Vec<(Cost, Option<f64>)> = Cost::ALL.map(|c| (c, None)).to_vec();
         for a in &self.accounts {
             let Some(c) = &a.costs else { continue };
-            for (i, (name, v)) in items(c).into_iter().enumerate() {
+            for (i, (item, v)) in c.items().enumerate() {
                 // Planting is paid for every tree planted, the rest for the living.
-                let weight = if name == "planting" {
+                let weight = if item == Cost::Planting {
                     1.0
                 } else {
                     a.cohort.alive

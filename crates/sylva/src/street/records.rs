@@ -205,7 +205,11 @@ impl RankRow {
             per_tree_planted: true,
             alive_at_end: round(r.alive_at_end(), 1e4),
             survival: r.survival.clone(),
-            costs_by_item_usd: dollars(&r.costs_by_item()),
+            costs_by_item_usd: dollars(
+                &(r.costs_by_item().into_iter())
+                    .map(|(c, v)| (c.item().key, v))
+                    .collect::<Vec<_>>(),
+            ),
             typical: NetRecord::of(r, Basis::Typical),
             site: NetRecord::of(r, Basis::Site),
             first_conflicts: first,

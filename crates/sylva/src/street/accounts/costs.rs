@@ -17,6 +17,7 @@
 //! year's chance of dying (street::accounts::survival) times the removal price at its DBH, so that
 //! weighting a year by the share alive gives the cost per tree planted.
 
+use crate::street::accounts::items::{Cost, Payer};
 use crate::street::accounts::prices::{non_negative, parse, read, value};
 use crate::street::error::StreetError;
 use serde::Deserialize;
@@ -105,53 +106,48 @@ pub enum Costs {
     Average(Average),
 }
 
-/// One year's costs of one living tree, dollars.
+/// One year's costs of one living tree, dollars, by item (`items.rs`'s [`Cost`]: its key,
+/// label and who pays it).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct YearCosts {
-    /// Planting and establishment.
-    pub planting: f64,
-    /// Pruning on the cost table's own cycle (none where a site's cycles are charged).
-    pub pruning: f64,
-    /// Removal: the year's chance of coming out times its price.
-    pub removal: f64,
-    /// Sidewalk repair.
-    pub sidewalk: f64,
-    /// Clean-up.
-    pub cleanup: f64,
-    /// Pest management, liability and administration.
-    pub other: f64,
-    /// A programme's average, where no items are known (less its pruning share where a site's
-    /// cycles are charged).
-    pub average: f64,
-    /// The city's pruning cycles the site's regime cut this year, where the tree was grown
-    /// with it (`street::accounts::pruner`): they replace `pruning` and the average's pruning share.
-    pub cycles: f64,
-    /// The utility's line clearance this year: not the city's money, but a cost of the tree.
-    pub utility: f64,
+pub struct YearCosts([f64; Cost::COUNT]);
+
+impl std::ops::Index<Cost> for YearCosts {
+    type Output = f64;
+    fn index(&self, item: Cost) -> &f64 {
+        &self.0[item as usize]
+    }
+}
+
+impl std::ops::IndexMut<Cost> for YearCosts {
+    fn index_mut(&mut self, item: Cost) -> &mut f64 {
+        &mut self.0[item as usize]
+    }
 }
 
 impl YearCosts {
-    /// All of them, the utility's included.
-    pub fn total(&self) -> f64 {
-        self.city() + self.utility
+    /// Every item with its dollars, in report order.
+    pub fn items(&self) -> impl Iterator<Item = (Cost, f64)> + '_ {
+        Cost::ALL.into_iter().map(|c| (c, self[c]))
     }
 
-    /// What the city pays.
-    pub fn city(&self) -> f64 {
-        self.planting
-            + self.pruning
-            + self.removal
-            + self.sidewalk
-            + self.cleanup
-            + self.other
-            + self.average
-            + self.cycles
+    /// All of them, whoever pays.
+    pub fn total(&self) -> f64 {
+        self.0.iter().sum()
+    }
+
+    /// What `payer` pays.
+    pub fn paid_by(&self, payer: Payer) -> f64 {
+        self.items()
+            .filter(|(c, _)| c.payer() == payer)
+            .map(|(_, v)| v)
+            .sum()
     }
 
     /// Per tree planted, where `alive` of the trees planted stand through the year: planting
     /// is paid for every tree planted, the rest for the living.
     pub fn per_planted(&self, alive: f64) -> f64 {
-        self.planting + alive * (self.total() - self.planting)
+        let planting = self[Cost::Planting];
+        planting + alive * (self.total() - planting)
     }
 }
 
@@ -338,10 +334,9 @@ impl Costs {
         let c = match self {
             Costs::Average(a) => {
                 let share = if cycles_charged { a.pruning_share } else { 0.0 };
-                return YearCosts {
-                    average: a.per_tree_per_year * (1.0 - share),
-                    ..Default::default()
-                };
+                let mut y = YearCosts::default();
+                y[Cost::Average] = a.per_tree_per_year * (1.0 - share);
+                return y;
             }
             Costs::Itemised(c) => c,
         };
@@ -357,19 +352,16 @@ impl Costs {
         };
         let chance = c.removal_chance_per_year.unwrap_or(death_chance);
         let yearly = |v: Option<f64>| v.unwrap_or(0.0);
-        YearCosts {
-            planting,
-            pruning,
-            removal: chance * self.removal_price(dbh_cm).unwrap_or(0.0),
-            sidewalk: yearly(c.sidewalk_repair_per_year),
-            cleanup: yearly(c.cleanup_per_year),
-            other: yearly(c.pest_per_year)
-                + yearly(c.liability_per_year)
-                + yearly(c.administration_per_year),
-            average: 0.0,
-            cycles: 0.0,
-            utility: 0.0,
-        }
+        let mut y = YearCosts::default();
+        y[Cost::Planting] = planting;
+        y[Cost::Pruning] = pruning;
+        y[Cost::Removal] = chance * self.removal_price(dbh_cm).unwrap_or(0.0);
+        y[Cost::Sidewalk] = yearly(c.sidewalk_repair_per_year);
+        y[Cost::Cleanup] = yearly(c.cleanup_per_year);
+        y[Cost::Other] = yearly(c.pest_per_year)
+            + yearly(c.liability_per_year)
+            + yearly(c.administration_per_year);
+        y
     }
 }
 
@@ -460,15 +452,15 @@ mod tests {
         let c = Costs::load(&costs).unwrap();
         assert!(matches!(c, Costs::Itemised(_)));
         let y = c.year(1.0, 2.0, 0.0, false);
-        assert_eq!(y.planting, 250.0);
-        assert_eq!(y.pruning, 10.0);
+        assert_eq!(y[Cost::Planting], 250.0);
+        assert_eq!(y[Cost::Pruning], 10.0);
         let y = c.year(20.0, 40.0, 0.0, false);
-        assert_eq!(y.planting, 0.0);
-        assert_eq!(y.pruning, 60.0);
-        assert!((y.removal - 8.0).abs() < 1e-12);
+        assert_eq!(y[Cost::Planting], 0.0);
+        assert_eq!(y[Cost::Pruning], 60.0);
+        assert!((y[Cost::Removal] - 8.0).abs() < 1e-12);
         assert!((y.total() - (60.0 + 8.0 + 4.0 + 3.0)).abs() < 1e-12);
         // A site's cycles replace the table's own pruning.
-        assert_eq!(c.year(20.0, 40.0, 0.0, true).pruning, 0.0);
+        assert_eq!(c.year(20.0, 40.0, 0.0, true)[Cost::Pruning], 0.0);
         std::fs::write(&costs, GOOD.replace("cycle_years = 5", "cycle_years = 0")).unwrap();
         let e = Costs::load(&costs).unwrap_err().to_string();
         assert!(e.contains("pruning.cycle_years"), "{e}");
@@ -519,8 +511,8 @@ mod tests {
         assert_eq!(c.removal_price(150.0), Some(1563.0));
         // A dying tree's removal is its chance times the price.
         let y = c.year(10.0, 20.0, 0.05, false);
-        assert!((y.removal - 0.05 * 184.0).abs() < 1e-9);
-        assert_eq!(c.year(1.0, 1.0, 0.0, false).planting, 75.0);
+        assert!((y[Cost::Removal] - 0.05 * 184.0).abs() < 1e-9);
+        assert_eq!(c.year(1.0, 1.0, 0.0, false)[Cost::Planting], 75.0);
         let missing = c.not_computed().join(" ");
         assert!(
             missing.contains("clean-up") && missing.contains("pest"),
@@ -561,8 +553,8 @@ mod tests {
         .to_string();
         assert!(e.contains("pruning_share"), "{e}");
         let modesto = Costs::modesto_average();
-        assert_eq!(modesto.year(10.0, 20.0, 0.0, false).average, 28.77);
-        assert!((modesto.year(10.0, 20.0, 0.0, true).average - 14.385).abs() < 1e-9);
+        assert_eq!(modesto.year(10.0, 20.0, 0.0, false)[Cost::Average], 28.77);
+        assert!((modesto.year(10.0, 20.0, 0.0, true)[Cost::Average] - 14.385).abs() < 1e-9);
         assert!(modesto.source().contains("1997-98"));
     }
 }

@@ -18,6 +18,7 @@ use crate::Skeleton;
 use crate::growth::{Dimensions, Measured};
 use crate::street::accounts::carbon::{BiomassGroup, co2_sequestered_kg, co2_stored_kg};
 use crate::street::accounts::costs::{Costs, YearCosts};
+use crate::street::accounts::items::Cost;
 use crate::street::accounts::money::{Basis, Money};
 use crate::street::accounts::prices::Prices;
 use crate::street::accounts::survival::{Cohort, Survival};
@@ -118,8 +119,8 @@ impl YearAccount {
         if let Some(costs) = &mut self.costs {
             let span = span.max(1.0);
             let (all, line) = cycle.as_ref().map_or((0.0, 0.0), |c| (c.cost, c.line_cost));
-            costs.cycles = (all - line) / span;
-            costs.utility = line / span;
+            costs[Cost::Cycles] = (all - line) / span;
+            costs[Cost::LineClearance] = line / span;
         }
         self.pruning = cycle.map(|mut c| {
             c.settle(&self.conflicts);
@@ -436,7 +437,7 @@ impl Assessor {
                 // A species whose data begin after its first year is planted in the first year
                 // of its run all the same.
                 if first && age > 1.0 {
-                    y.planting += c.planting_price();
+                    y[Cost::Planting] += c.planting_price();
                 }
                 y
             }),

@@ -1,6 +1,9 @@
 //! A year's benefits in dollars, in i-Tree Streets' categories, and which account (the typical
 //! position or this site) a net is read from. Shared by the typical-position account
-//! (`typical.rs`) and the year's ledger (`ledger.rs`).
+//! (`typical.rs`) and the year's ledger (`ledger.rs`). The categories' keys, labels and colours
+//! are `items.rs`'s [`Benefit`]s.
+
+use crate::street::accounts::items::Benefit;
 
 /// A year's benefits in dollars, in i-Tree Streets' categories; `None` where a model or a
 /// price is missing.
@@ -30,18 +33,23 @@ impl Money {
         self.categories().iter().flat_map(|c| c.1).sum()
     }
 
-    /// Each category with its name, in report order.
-    pub fn categories(&self) -> [(&'static str, Option<f64>); 8] {
-        [
-            ("carbon", self.carbon),
-            ("co2_avoided", self.co2_avoided),
-            ("stormwater", self.stormwater),
-            ("cooling", self.cooling),
-            ("heating", self.heating),
-            ("air_quality", self.air_quality),
-            ("bvoc", self.bvoc),
-            ("aesthetics", self.aesthetics),
-        ]
+    /// One category's dollars, where computed.
+    pub fn get(&self, b: Benefit) -> Option<f64> {
+        match b {
+            Benefit::Carbon => self.carbon,
+            Benefit::Co2Avoided => self.co2_avoided,
+            Benefit::Stormwater => self.stormwater,
+            Benefit::Cooling => self.cooling,
+            Benefit::Heating => self.heating,
+            Benefit::AirQuality => self.air_quality,
+            Benefit::Bvoc => self.bvoc,
+            Benefit::Aesthetics => self.aesthetics,
+        }
+    }
+
+    /// Each category with its key, in report order.
+    pub fn categories(&self) -> [(&'static str, Option<f64>); Benefit::COUNT] {
+        Benefit::ALL.map(|b| (b.item().key, self.get(b)))
     }
 }
 

@@ -318,6 +318,7 @@ mod tests {
     use super::*;
     use crate::growth::Database;
     use crate::street::accounts::costs::YearCosts;
+    use crate::street::accounts::items::Cost;
     use crate::street::rank::{Pruning, Study, run};
 
     fn narrow() -> Site {
@@ -386,9 +387,9 @@ mod tests {
                 .map(|a| a.costs.map_or(0.0, |c| f(&c)))
                 .sum()
         };
-        assert_eq!(per_tree(&pruned, &|c| c.pruning), 0.0);
-        assert!(per_tree(&grown, &|c| c.pruning) > 0.0);
-        let cycles = per_tree(&pruned, &|c| c.cycles + c.utility);
+        assert_eq!(per_tree(&pruned, &|c| c[Cost::Pruning]), 0.0);
+        assert!(per_tree(&grown, &|c| c[Cost::Pruning]) > 0.0);
+        let cycles = per_tree(&pruned, &|c| c[Cost::Cycles] + c[Cost::LineClearance]);
         assert!(
             (cycles - total.cost).abs() < 1e-6,
             "{cycles} {}",

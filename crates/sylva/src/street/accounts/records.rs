@@ -7,12 +7,14 @@
 
 use crate::growth::CutKind;
 use crate::street::accounts::costs::YearCosts;
+use crate::street::accounts::items::Benefit;
 use crate::street::accounts::ledger::YearAccount;
 use crate::street::accounts::money::{Basis, Money};
 use crate::street::accounts::pruner::PruningYear;
 use crate::street::accounts::typical::Typical;
 use crate::street::work::conflicts::{Conflict, Kind};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// `v` to `1/k`.
 fn round(v: f64, k: f64) -> f64 {
@@ -24,69 +26,26 @@ fn round_some(v: Option<f64>, k: f64) -> Option<f64> {
     v.map(|v| round(v, k))
 }
 
-/// Dollars in each of i-Tree's benefit categories, to the cent.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[allow(missing_docs)]
-pub struct MoneyRecord {
-    pub carbon: Option<f64>,
-    pub co2_avoided: Option<f64>,
-    pub stormwater: Option<f64>,
-    pub cooling: Option<f64>,
-    pub heating: Option<f64>,
-    pub air_quality: Option<f64>,
-    pub bvoc: Option<f64>,
-    pub aesthetics: Option<f64>,
+/// Dollars in each of i-Tree's benefit categories, to the cent, by [`Benefit`] key (`null`
+/// where not computed).
+pub type MoneyRecord = BTreeMap<String, Option<f64>>;
+
+/// `m` to the cent.
+pub fn money_record(m: &Money) -> MoneyRecord {
+    (Benefit::ALL.iter())
+        .map(|&b| (b.item().key.to_string(), round_some(m.get(b), 100.0)))
+        .collect()
 }
 
-impl MoneyRecord {
-    /// `m` to the cent.
-    pub fn of(m: &Money) -> MoneyRecord {
-        let c = |v: Option<f64>| round_some(v, 100.0);
-        MoneyRecord {
-            carbon: c(m.carbon),
-            co2_avoided: c(m.co2_avoided),
-            stormwater: c(m.stormwater),
-            cooling: c(m.cooling),
-            heating: c(m.heating),
-            air_quality: c(m.air_quality),
-            bvoc: c(m.bvoc),
-            aesthetics: c(m.aesthetics),
-        }
-    }
-}
+/// A year's costs by item, dollars to the cent, by
+/// [`Cost`](crate::street::accounts::items::Cost) key.
+pub type CostsRecord = BTreeMap<String, f64>;
 
-/// A year's costs by item, dollars to the cent.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[allow(missing_docs)]
-pub struct CostsRecord {
-    pub planting: f64,
-    pub pruning: f64,
-    pub removal: f64,
-    pub sidewalk: f64,
-    pub cleanup: f64,
-    pub average: f64,
-    /// The site's pruning cycles carried out on the grown tree.
-    pub cycles: f64,
-    pub pest_liability_administration: f64,
-    pub line_clearance_utility: f64,
-}
-
-impl CostsRecord {
-    /// `c` to the cent.
-    pub fn of(c: &YearCosts) -> CostsRecord {
-        let d = |v: f64| round(v, 100.0);
-        CostsRecord {
-            planting: d(c.planting),
-            pruning: d(c.pruning),
-            removal: d(c.removal),
-            sidewalk: d(c.sidewalk),
-            cleanup: d(c.cleanup),
-            average: d(c.average),
-            cycles: d(c.cycles),
-            pest_liability_administration: d(c.other),
-            line_clearance_utility: d(c.utility),
-        }
-    }
+/// `c` to the cent.
+pub fn costs_record(c: &YearCosts) -> CostsRecord {
+    (c.items())
+        .map(|(item, v)| (item.item().key.to_string(), round(v, 100.0)))
+        .collect()
 }
 
 /// Kinds of conflict by name.
@@ -204,7 +163,7 @@ impl TypicalRecord {
             air_removed_kg: round(m.air.removed_kg(), 1e3),
             bvoc_kg: round(m.air.bvoc_kg, 1e3),
             leaf_gain_m2: round(m.leaf_gain_m2, 10.0),
-            value_usd: MoneyRecord::of(&t.money),
+            value_usd: money_record(&t.money),
             net_usd: round(a.net(Basis::Typical), 100.0),
             planted_net_usd: round(a.planted_net(Basis::Typical), 100.0),
         }
@@ -271,8 +230,8 @@ impl AccountRecord {
             air_removed_kg: round_some(a.air.map(|q| q.removed_kg()), 1e3),
             bvoc_kg: round_some(a.air.map(|q| q.bvoc_kg), 1e3),
             leaf_gain_m2: round(a.leaf_gain_m2, 10.0),
-            value_usd: MoneyRecord::of(&a.money),
-            cost_usd: a.costs.as_ref().map(CostsRecord::of),
+            value_usd: money_record(&a.money),
+            cost_usd: a.costs.as_ref().map(costs_record),
             pruning: a.pruning.as_ref().map(PruningRecord::of),
             net_usd: round(a.net(Basis::Site), 100.0),
             alive_share: round(a.cohort.alive, 1e4),

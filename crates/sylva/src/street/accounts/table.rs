@@ -2,15 +2,28 @@
 //! serves them (an empty cell or `null` where a model or a price is missing, never a zero).
 
 use crate::growth::CutKind;
+use crate::street::accounts::items::{Benefit, Cost};
 use crate::street::accounts::ledger::YearAccount;
 use crate::street::accounts::money::Basis;
 use crate::street::accounts::pruner::PruningYear;
 use crate::street::accounts::typical::Typical;
 use crate::street::work::conflicts::{Conflict, Kind};
 use std::fmt::Write as _;
+use std::sync::OnceLock;
 
 /// A column: its name and how a cell is written from an account.
-type Column = (&'static str, fn(&YearAccount) -> String);
+struct Column {
+    name: String,
+    cell: Box<dyn Fn(&YearAccount) -> String + Send + Sync>,
+}
+
+/// A column of a fixed name.
+fn column(name: &str, cell: impl Fn(&YearAccount) -> String + Send + Sync + 'static) -> Column {
+    Column {
+        name: name.to_string(),
+        cell: Box::new(cell),
+    }
+}
 
 fn cell(v: Option<f64>, digits: usize) -> String {
     v.map_or(String::new(), |v| format!("{v:.digits$}"))
@@ -21,171 +34,153 @@ fn typical(a: &YearAccount, f: fn(&Typical) -> Option<f64>, digits: usize) -> St
 }
 
 /// Every column after a growth report's own: the grown tree on this site, then i-Tree's
-/// typical position, then costs and both nets.
-const COLUMNS: &[Column] = &[
-    ("co2_stored_kg", |a| cell(a.co2_stored_kg, 1)),
-    ("co2_sequestered_kg", |a| cell(a.co2_sequestered_kg, 2)),
-    ("co2_avoided_kg", |a| cell(a.co2_avoided_kg, 2)),
-    ("interception_m3", |a| cell(a.interception_m3, 3)),
-    ("cooling_kwh", |a| {
-        cell(a.energy.map(|e| e.electricity_kwh()), 1)
-    }),
-    ("natural_gas_kbtu", |a| {
-        cell(a.energy.map(|e| e.natural_gas_kbtu()), 1)
-    }),
-    ("shade_cooling_kwh", |a| {
-        cell(a.energy.map(|e| e.shade_cooling_kwh), 1)
-    }),
-    ("heating_penalty_kbtu", |a| {
-        cell(a.energy.map(|e| e.heating_penalty_kbtu), 1)
-    }),
-    ("useful_winter_share", |a| {
-        cell(a.energy.map(|e| e.useful_winter_share), 3)
-    }),
-    ("climate_cooling_kwh", |a| {
-        cell(a.energy.and_then(|e| e.climate).map(|c| c.0), 1)
-    }),
-    ("climate_heating_kbtu", |a| {
-        cell(a.energy.and_then(|e| e.climate).map(|c| c.1), 1)
-    }),
-    ("facade_shaded_m2h", |a| {
-        cell(a.energy.map(|e| e.summer.shaded_m2h), 0)
-    }),
-    ("air_removed_kg", |a| cell(a.air.map(|q| q.removed_kg()), 3)),
-    ("bvoc_kg", |a| cell(a.air.map(|q| q.bvoc_kg), 3)),
-    ("leaf_gain_m2", |a| format!("{:.1}", a.leaf_gain_m2)),
-    ("value_carbon_usd", |a| cell(a.money.carbon, 2)),
-    ("value_co2_avoided_usd", |a| cell(a.money.co2_avoided, 2)),
-    ("value_stormwater_usd", |a| cell(a.money.stormwater, 2)),
-    ("value_cooling_usd", |a| cell(a.money.cooling, 2)),
-    ("value_heating_usd", |a| cell(a.money.heating, 2)),
-    ("value_air_quality_usd", |a| cell(a.money.air_quality, 2)),
-    ("value_bvoc_usd", |a| cell(a.money.bvoc, 2)),
-    ("value_aesthetics_usd", |a| cell(a.money.aesthetics, 2)),
-    ("typical_row", |a| {
-        a.typical.as_ref().map_or(String::new(), |t| t.row.clone())
-    }),
-    ("typical_held", |a| {
-        a.typical
-            .as_ref()
-            .map_or(String::new(), |t| t.held.to_string())
-    }),
-    ("typical_electricity_kwh", |a| {
-        typical(a, |t| Some(t.amounts.electricity_kwh), 1)
-    }),
-    ("typical_natural_gas_kbtu", |a| {
-        typical(a, |t| Some(t.amounts.natural_gas_kbtu), 1)
-    }),
-    ("typical_stormwater_m3", |a| {
-        typical(a, |t| Some(t.amounts.stormwater_m3), 3)
-    }),
-    ("typical_co2_sequestered_kg", |a| {
-        typical(a, |t| Some(t.amounts.co2_sequestered_kg), 2)
-    }),
-    ("typical_co2_avoided_kg", |a| {
-        typical(a, |t| Some(t.amounts.co2_avoided_kg), 2)
-    }),
-    ("typical_air_removed_kg", |a| {
-        typical(a, |t| Some(t.amounts.air.removed_kg()), 3)
-    }),
-    ("typical_bvoc_kg", |a| {
-        typical(a, |t| Some(t.amounts.air.bvoc_kg), 3)
-    }),
-    ("typical_leaf_gain_m2", |a| {
-        typical(a, |t| Some(t.amounts.leaf_gain_m2), 1)
-    }),
-    ("typical_value_carbon_usd", |a| {
-        typical(a, |t| t.money.carbon, 2)
-    }),
-    ("typical_value_co2_avoided_usd", |a| {
-        typical(a, |t| t.money.co2_avoided, 2)
-    }),
-    ("typical_value_stormwater_usd", |a| {
-        typical(a, |t| t.money.stormwater, 2)
-    }),
-    ("typical_value_cooling_usd", |a| {
-        typical(a, |t| t.money.cooling, 2)
-    }),
-    ("typical_value_heating_usd", |a| {
-        typical(a, |t| t.money.heating, 2)
-    }),
-    ("typical_value_air_quality_usd", |a| {
-        typical(a, |t| t.money.air_quality, 2)
-    }),
-    ("typical_value_bvoc_usd", |a| {
-        typical(a, |t| t.money.bvoc, 2)
-    }),
-    ("typical_value_aesthetics_usd", |a| {
-        typical(a, |t| t.money.aesthetics, 2)
-    }),
-    ("cost_planting_usd", |a| {
-        cell(a.costs.map(|c| c.planting), 2)
-    }),
-    ("cost_pruning_usd", |a| cell(a.costs.map(|c| c.pruning), 2)),
-    ("cost_removal_usd", |a| cell(a.costs.map(|c| c.removal), 2)),
-    ("cost_sidewalk_usd", |a| {
-        cell(a.costs.map(|c| c.sidewalk), 2)
-    }),
-    ("cost_cleanup_usd", |a| cell(a.costs.map(|c| c.cleanup), 2)),
-    ("cost_average_usd", |a| cell(a.costs.map(|c| c.average), 2)),
-    ("cost_cycles_usd", |a| cell(a.costs.map(|c| c.cycles), 2)),
-    ("cost_other_usd", |a| cell(a.costs.map(|c| c.other), 2)),
-    ("cost_line_clearance_utility_usd", |a| {
-        cell(a.costs.map(|c| c.utility), 2)
-    }),
-    ("net_usd", |a| format!("{:.2}", a.net(Basis::Site))),
-    ("typical_net_usd", |a| {
-        a.typical
-            .as_ref()
-            .map_or(String::new(), |_| format!("{:.2}", a.net(Basis::Typical)))
-    }),
-    // Per tree planted: the living tree's figures weighted by the share standing.
-    ("alive_share", |a| format!("{:.4}", a.cohort.alive)),
-    ("died_share", |a| format!("{:.4}", a.cohort.died)),
-    ("planted_net_usd", |a| {
-        format!("{:.2}", a.planted_net(Basis::Site))
-    }),
-    ("typical_planted_net_usd", |a| {
-        a.typical.as_ref().map_or(String::new(), |_| {
-            format!("{:.2}", a.planted_net(Basis::Typical))
-        })
-    }),
-    ("conflicts", |a| conflicts_cell(&a.conflicts)),
-    // This year's pruning, empty where no cycle fell due (or the tree was not pruned).
-    ("pruning", |a| {
-        pruning_cell(a, |p| {
-            let reasons: Vec<&str> = p.reasons.iter().map(|r| r.name()).collect();
-            reasons.join(";")
-        })
-    }),
-    ("pruning_removal_cuts", |a| {
-        pruning_cell(a, |p| p.count(CutKind::Removal).to_string())
-    }),
-    ("pruning_reduction_cuts", |a| {
-        pruning_cell(a, |p| p.count(CutKind::Reduction).to_string())
-    }),
-    ("pruning_largest_cut_cm", |a| {
-        pruning_cell(a, |p| format!("{:.1}", 100.0 * p.cuts.largest_diameter()))
-    }),
-    ("pruning_wood_m3", |a| {
-        pruning_cell(a, |p| format!("{:.4}", p.wood_m3()))
-    }),
-    ("pruning_leaf_m2", |a| {
-        pruning_cell(a, |p| format!("{:.1}", p.leaf_m2()))
-    }),
-    ("pruning_visits", |a| {
-        pruning_cell(a, |p| p.visits.to_string())
-    }),
-    ("pruning_cost_usd", |a| {
-        pruning_cell(a, |p| format!("{:.2}", p.cost))
-    }),
-    ("pruning_resolved", |a| {
-        pruning_cell(a, |p| kinds_cell(&p.resolved()))
-    }),
-    ("pruning_unresolved", |a| {
-        pruning_cell(a, |p| kinds_cell(&p.unresolved))
-    }),
-];
+/// typical position, then costs and both nets. The benefits' and costs' columns are one per
+/// item of `items.rs`, named by its key.
+fn columns() -> &'static [Column] {
+    static COLUMNS: OnceLock<Vec<Column>> = OnceLock::new();
+    COLUMNS.get_or_init(|| {
+        let mut out = vec![
+            column("co2_stored_kg", |a| cell(a.co2_stored_kg, 1)),
+            column("co2_sequestered_kg", |a| cell(a.co2_sequestered_kg, 2)),
+            column("co2_avoided_kg", |a| cell(a.co2_avoided_kg, 2)),
+            column("interception_m3", |a| cell(a.interception_m3, 3)),
+            column("cooling_kwh", |a| {
+                cell(a.energy.map(|e| e.electricity_kwh()), 1)
+            }),
+            column("natural_gas_kbtu", |a| {
+                cell(a.energy.map(|e| e.natural_gas_kbtu()), 1)
+            }),
+            column("shade_cooling_kwh", |a| {
+                cell(a.energy.map(|e| e.shade_cooling_kwh), 1)
+            }),
+            column("heating_penalty_kbtu", |a| {
+                cell(a.energy.map(|e| e.heating_penalty_kbtu), 1)
+            }),
+            column("useful_winter_share", |a| {
+                cell(a.energy.map(|e| e.useful_winter_share), 3)
+            }),
+            column("climate_cooling_kwh", |a| {
+                cell(a.energy.and_then(|e| e.climate).map(|c| c.0), 1)
+            }),
+            column("climate_heating_kbtu", |a| {
+                cell(a.energy.and_then(|e| e.climate).map(|c| c.1), 1)
+            }),
+            column("facade_shaded_m2h", |a| {
+                cell(a.energy.map(|e| e.summer.shaded_m2h), 0)
+            }),
+            column("air_removed_kg", |a| cell(a.air.map(|q| q.removed_kg()), 3)),
+            column("bvoc_kg", |a| cell(a.air.map(|q| q.bvoc_kg), 3)),
+            column("leaf_gain_m2", |a| format!("{:.1}", a.leaf_gain_m2)),
+        ];
+        for b in Benefit::ALL {
+            let key = b.item().key;
+            out.push(column(&format!("value_{key}_usd"), move |a| {
+                cell(a.money.get(b), 2)
+            }));
+        }
+        out.extend([
+            column("typical_row", |a| {
+                a.typical.as_ref().map_or(String::new(), |t| t.row.clone())
+            }),
+            column("typical_held", |a| {
+                a.typical
+                    .as_ref()
+                    .map_or(String::new(), |t| t.held.to_string())
+            }),
+            column("typical_electricity_kwh", |a| {
+                typical(a, |t| Some(t.amounts.electricity_kwh), 1)
+            }),
+            column("typical_natural_gas_kbtu", |a| {
+                typical(a, |t| Some(t.amounts.natural_gas_kbtu), 1)
+            }),
+            column("typical_stormwater_m3", |a| {
+                typical(a, |t| Some(t.amounts.stormwater_m3), 3)
+            }),
+            column("typical_co2_sequestered_kg", |a| {
+                typical(a, |t| Some(t.amounts.co2_sequestered_kg), 2)
+            }),
+            column("typical_co2_avoided_kg", |a| {
+                typical(a, |t| Some(t.amounts.co2_avoided_kg), 2)
+            }),
+            column("typical_air_removed_kg", |a| {
+                typical(a, |t| Some(t.amounts.air.removed_kg()), 3)
+            }),
+            column("typical_bvoc_kg", |a| {
+                typical(a, |t| Some(t.amounts.air.bvoc_kg), 3)
+            }),
+            column("typical_leaf_gain_m2", |a| {
+                typical(a, |t| Some(t.amounts.leaf_gain_m2), 1)
+            }),
+        ]);
+        for b in Benefit::ALL {
+            let key = b.item().key;
+            out.push(column(&format!("typical_value_{key}_usd"), move |a| {
+                cell(a.typical.as_ref().and_then(|t| t.money.get(b)), 2)
+            }));
+        }
+        for c in Cost::ALL {
+            let key = c.item().key;
+            out.push(column(&format!("cost_{key}_usd"), move |a| {
+                cell(a.costs.map(|y| y[c]), 2)
+            }));
+        }
+        out.extend([
+            column("net_usd", |a| format!("{:.2}", a.net(Basis::Site))),
+            column("typical_net_usd", |a| {
+                a.typical
+                    .as_ref()
+                    .map_or(String::new(), |_| format!("{:.2}", a.net(Basis::Typical)))
+            }),
+            // Per tree planted: the living tree's figures weighted by the share standing.
+            column("alive_share", |a| format!("{:.4}", a.cohort.alive)),
+            column("died_share", |a| format!("{:.4}", a.cohort.died)),
+            column("planted_net_usd", |a| {
+                format!("{:.2}", a.planted_net(Basis::Site))
+            }),
+            column("typical_planted_net_usd", |a| {
+                a.typical.as_ref().map_or(String::new(), |_| {
+                    format!("{:.2}", a.planted_net(Basis::Typical))
+                })
+            }),
+            column("conflicts", |a| conflicts_cell(&a.conflicts)),
+            // This year's pruning, empty where no cycle fell due (or the tree was not pruned).
+            column("pruning", |a| {
+                pruning_cell(a, |p| {
+                    let reasons: Vec<&str> = p.reasons.iter().map(|r| r.name()).collect();
+                    reasons.join(";")
+                })
+            }),
+            column("pruning_removal_cuts", |a| {
+                pruning_cell(a, |p| p.count(CutKind::Removal).to_string())
+            }),
+            column("pruning_reduction_cuts", |a| {
+                pruning_cell(a, |p| p.count(CutKind::Reduction).to_string())
+            }),
+            column("pruning_largest_cut_cm", |a| {
+                pruning_cell(a, |p| format!("{:.1}", 100.0 * p.cuts.largest_diameter()))
+            }),
+            column("pruning_wood_m3", |a| {
+                pruning_cell(a, |p| format!("{:.4}", p.wood_m3()))
+            }),
+            column("pruning_leaf_m2", |a| {
+                pruning_cell(a, |p| format!("{:.1}", p.leaf_m2()))
+            }),
+            column("pruning_visits", |a| {
+                pruning_cell(a, |p| p.visits.to_string())
+            }),
+            column("pruning_cost_usd", |a| {
+                pruning_cell(a, |p| format!("{:.2}", p.cost))
+            }),
+            column("pruning_resolved", |a| {
+                pruning_cell(a, |p| kinds_cell(&p.resolved()))
+            }),
+            column("pruning_unresolved", |a| {
+                pruning_cell(a, |p| kinds_cell(&p.unresolved))
+            }),
+        ]);
+        out
+    })
+}
 
 fn pruning_cell(a: &YearAccount, f: impl Fn(&PruningYear) -> String) -> String {
     a.pruning.as_ref().map_or(String::new(), f)
@@ -198,7 +193,10 @@ fn kinds_cell(kinds: &[Kind]) -> String {
 /// The account's CSV columns, after a growth report's own: `net_usd` is the grown tree's on
 /// this site, `typical_net_usd` i-Tree's typical position's.
 pub fn header() -> String {
-    COLUMNS.iter().map(|c| c.0).collect::<Vec<_>>().join(",")
+    (columns().iter())
+        .map(|c| c.name.as_str())
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
 /// Conflicts as one cell: `kind:part:share%` joined by `;`.
@@ -219,9 +217,8 @@ pub fn conflicts_cell(conflicts: &[Conflict]) -> String {
 
 /// One account's cells, in [`header`]'s order.
 pub fn row(a: &YearAccount) -> String {
-    COLUMNS
-        .iter()
-        .map(|c| (c.1)(a))
+    (columns().iter())
+        .map(|c| (c.cell)(a))
         .collect::<Vec<_>>()
         .join(",")
 }
@@ -236,7 +233,7 @@ pub fn join_csv(growth_csv: &str, accounts: &[YearAccount]) -> String {
             _ => accounts
                 .get(i - 1)
                 .map(row)
-                .unwrap_or_else(|| ",".repeat(COLUMNS.len() - 1)),
+                .unwrap_or_else(|| ",".repeat(columns().len() - 1)),
         };
         // Writing into a String cannot fail.
         let _ = writeln!(out, "{line},{extra}");
@@ -286,7 +283,7 @@ mod tests {
         let text = join_csv(&csv(&cohort.history[0]), &accounts);
         let mut reader = csv::Reader::from_reader(text.as_bytes());
         let header = reader.headers().unwrap().clone();
-        assert_eq!(header.len(), 18 + COLUMNS.len());
+        assert_eq!(header.len(), 18 + columns().len());
         let rows: Vec<_> = reader.records().map(|r| r.unwrap()).collect();
         assert_eq!(rows.len(), 2);
         let col = |name: &str| header.iter().position(|h| h == name).unwrap();
@@ -334,5 +331,38 @@ mod tests {
         assert!(j["typical"]["value_usd"]["aesthetics"].as_f64().unwrap() > 0.0);
         assert!(j["value_usd"]["aesthetics"].as_f64().unwrap() > 0.0);
         assert_eq!(j["conflicts"][0]["kind"], "wire");
+        // Every item of the one table is in the record and the CSV, by its key, and
+        // nothing else is.
+        use crate::street::accounts::items::{BENEFITS, COSTS};
+        let keys = |v: &serde_json::Value| -> Vec<String> {
+            let mut k: Vec<String> = v.as_object().unwrap().keys().cloned().collect();
+            k.sort();
+            k
+        };
+        let sorted = |items: &[crate::street::accounts::items::Item]| -> Vec<String> {
+            let mut k: Vec<String> = items.iter().map(|i| i.key.to_string()).collect();
+            k.sort();
+            k
+        };
+        assert_eq!(keys(&j["value_usd"]), sorted(&BENEFITS));
+        assert_eq!(keys(&j["typical"]["value_usd"]), sorted(&BENEFITS));
+        assert_eq!(keys(&j["cost_usd"]), sorted(&COSTS));
+        for item in &COSTS {
+            assert!(header.iter().any(|h| h == format!("cost_{}_usd", item.key)));
+        }
+        for item in &BENEFITS {
+            assert!(
+                header
+                    .iter()
+                    .any(|h| h == format!("value_{}_usd", item.key))
+            );
+            assert!(
+                header
+                    .iter()
+                    .any(|h| h == format!("typical_value_{}_usd", item.key))
+            );
+        }
+        let costs = header.iter().filter(|h| h.starts_with("cost_")).count();
+        assert_eq!(costs, COSTS.len());
     }
 }
