@@ -244,7 +244,7 @@ pub fn database(dir: Option<&PathBuf>) -> Result<Cow<'static, Database>> {
 /// The street's flags as a study of `years` from `seed`: the site, prices, costs and survival
 /// read and checked, and the site's pruning regime carried out unless `--no-pruning`.
 pub fn study(args: &StreetArgs, years: f64, seed: u64) -> Result<Study> {
-    Ok(Study {
+    let study = Study {
         years,
         seed,
         site: args.site.as_deref().map(Site::load).transpose()?,
@@ -258,5 +258,7 @@ pub fn study(args: &StreetArgs, years: f64, seed: u64) -> Result<Study> {
         } else {
             Pruning::Regime
         },
-    })
+    };
+    study.check()?;
+    Ok(study)
 }

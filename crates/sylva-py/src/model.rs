@@ -238,6 +238,7 @@ fn grow(
             pruning: Pruning::Off,
             ..Study::new(ages[0])
         };
+        study.check().map_err(error)?;
         let assessor = study.assessor(&m);
         if money {
             assessor.require_carbon().map_err(error)?;

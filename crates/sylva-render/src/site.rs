@@ -78,13 +78,17 @@ pub fn pruning_cycle_picture(
     let reasons: Vec<&str> = cycle.reasons.iter().map(|r| r.name()).collect();
     let lines = [
         format!(
-            "{}, age {}: {}: {} removal and {} reduction cuts (largest {:.0} cm across), \
+            "{}, age {}: {}: {} removal, {} reduction{} cuts (largest {:.0} cm across), \
              {:.1} m2 of leaf and {:.3} m3 of wood taken, {} visit(s), ${:.2}",
             m.label(),
             age_label(year),
             reasons.join(", "),
             cycle.count(CutKind::Removal),
             cycle.count(CutKind::Reduction),
+            match cycle.count(CutKind::Heading) {
+                0 => String::new(),
+                n => format!(" and {n} heading"),
+            },
             100.0 * cycle.cuts.largest_diameter(),
             cycle.leaf_m2(),
             cycle.wood_m3(),

@@ -426,8 +426,10 @@ async fn pruning_on_cuts_the_tree_for_its_site_and_charges_the_cycles() {
     let rows = |g: &serde_json::Value| g["rows"].as_array().unwrap().clone();
     let (cut, grown) = (rows(&cut), rows(&grown));
     assert_eq!(cut.len(), grown.len());
-    // The utility clears the wire at 8: the cut tree has the cycle, its cost and no wire
-    // conflict left; the tree never cut has none of these and runs into the wire.
+    // The utility clears the wire at 8, for its clearance and the regrowth before its next
+    // visit: the cut tree has the cycle, its cost and the line's check, and never a leaf or
+    // wood inside the line's minimum; the tree never cut has none of these and runs into the
+    // wire.
     let at = |rows: &[serde_json::Value], age: f64| {
         rows.iter().find(|r| r["age"] == age).unwrap()["street"].clone()
     };
@@ -441,13 +443,18 @@ async fn pruning_on_cuts_the_tree_for_its_site_and_charges_the_cycles() {
             .any(|r| r == "line clearance"),
         "{c8}"
     );
+    let line = &c8["lines"][0];
     assert!(
-        pruning["resolved"]
+        line["visit"]["scheduled"] == true && line["breach"] == false,
+        "{c8}"
+    );
+    assert!(
+        (cut.iter()).all(|r| r["street"]["lines"]
             .as_array()
             .unwrap()
             .iter()
-            .any(|k| k == "wire"),
-        "{c8}"
+            .all(|l| l["breach"] == false)),
+        "no breach at any age"
     );
     // Line clearance is the utility's to pay: charged to the tree, apart from the city's.
     assert!(

@@ -353,7 +353,7 @@ pub const BENCH_SITE: &str = "[street]\ncurb = -0.6\nsidewalk = [0.6, 2.1]\n\
 roadway_clearance = 4.3\nsidewalk_clearance = 2.4\n[facade]\nsetback = 3.1\nheight = 7.0\n\
 width = 12.0\nfaces = 180.0\nwindow_share = 0.4\n[[awning]]\nbottom = 2.6\ntop = 3.1\n\
 reach = 1.2\nalong = [-3.0, 3.0]\n[[sign]]\nbottom = 3.4\ntop = 4.2\nreach = 0.9\n\
-along = [2.0, 3.0]\n[[wire]]\nheight = 8.5\noffset = -0.3\nclearance = 3.0\n[[light]]\n\
+along = [2.0, 3.0]\n[[wire]]\nheight = 8.5\noffset = -0.3\nvoltage_kv = 12.0\n[[light]]\n\
 x = 7.0\ny = -0.7\nheight = 6.0\nclearance = 1.0\n";
 
 /// A street tree grown yearly and accounted each year: the growth's time beside the

@@ -70,6 +70,48 @@ impl Condition {
     }
 }
 
+/// Where a tree's bed lies against the curb, as the census records it (`curb_loc`: OnCurb,
+/// OffsetFromCurb): the place Sylva's roots model reads (`sylva::street::work::roots`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Curb {
+    /// Along the curb (the census maps it 2.5 ft from it).
+    Along,
+    /// Offset from the curb (mapped 12 ft from it).
+    Offset,
+}
+
+impl Curb {
+    /// The place of a value as written (any case, spaces or underscores), if it is one.
+    pub fn parse(value: &str) -> Option<Curb> {
+        let v: String = (value.trim().to_ascii_lowercase().chars())
+            .filter(|c| c.is_ascii_alphabetic())
+            .collect();
+        match v.as_str() {
+            "oncurb" | "curb" | "along" | "alongcurb" => Some(Curb::Along),
+            "offsetfromcurb" | "offset" => Some(Curb::Offset),
+            _ => None,
+        }
+    }
+
+    /// Its name in the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Curb::Along => "along the curb",
+            Curb::Offset => "offset from the curb",
+        }
+    }
+
+    /// The trunk's distance from the pavement the roots model reads for it, m: the census's
+    /// own placing of its points.
+    pub fn distance_m(self) -> f64 {
+        match self {
+            Curb::Along => sylva::street::work::roots::ON_CURB_M,
+            Curb::Offset => sylva::street::work::roots::OFFSET_M,
+        }
+    }
+}
+
 /// What was seen of one tree. `None`: not recorded (no column, an empty cell, or a value
 /// Sylva cannot place, kept in `unread`).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -84,6 +126,8 @@ pub struct Observed {
     pub trunk_wire_or_lights: Option<bool>,
     /// Paving stones or a grate on its roots.
     pub root_paving: Option<bool>,
+    /// Where its bed lies against the curb.
+    pub curb: Option<Curb>,
     /// Values that could not be placed: (column, value).
     pub unread: Vec<(String, String)>,
 }
@@ -102,6 +146,8 @@ pub struct ObservedColumns {
     pub trunk: [Option<String>; 2],
     /// Paving stones, and grates, on the roots.
     pub roots: [Option<String>; 2],
+    /// The bed's place against the curb.
+    pub curb: Option<String>,
 }
 
 /// A yes/no value as the census writes it (Yes/No, Damage/NoDamage) or as others do
@@ -134,6 +180,7 @@ impl ObservedColumns {
                 or(&self.roots[0], &["root_stone"]),
                 or(&self.roots[1], &["root_grate"]),
             ],
+            curb: or(&self.curb, &["curb_loc", "curb_location"]),
         }
     }
 
@@ -188,6 +235,12 @@ impl ObservedColumns {
         o.trunk_wire_or_lights = either(trunk[0], trunk[1]);
         let roots = [flag(&self.roots[0]), flag(&self.roots[1])];
         o.root_paving = either(roots[0], roots[1]);
+        if let Some(v) = get(&self.curb) {
+            o.curb = Curb::parse(&v);
+            if o.curb.is_none() {
+                kept.push((self.curb.clone().unwrap_or_default(), v));
+            }
+        }
         o.unread = kept;
         o
     }

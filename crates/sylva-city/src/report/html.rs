@@ -1,19 +1,21 @@
 //! The city's report as a page of HTML tables (`CityReport::html`).
 
 use crate::report::published::Comparison;
-use crate::report::{CityReport, observed, predicted};
+use crate::report::{CityReport, observed, pavement, predicted};
 use crate::trees::benefits::CATEGORIES;
 use std::fmt::Write as _;
 use sylva::growth::DBH_CLASS_EDGES_CM;
 
+/// `s` safe in HTML text.
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
 impl CityReport {
     /// As a page of HTML tables.
     pub fn html(&self) -> String {
-        let esc = |s: &str| {
-            s.replace('&', "&amp;")
-                .replace('<', "&lt;")
-                .replace('>', "&gt;")
-        };
         let money = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("${v:.0}"));
         let mut h = String::from(
             "<!doctype html><meta charset=\"utf-8\"><title>Sylva: the city's trees</title>\
@@ -206,26 +208,24 @@ impl CityReport {
     }
 
     /// Sylva's site model on a typical street beside what was recorded: each species' first
-    /// flare and wire conflicts, and the shares of its trees under and over that DBH with a
-    /// damaged sidewalk, and with lights or wires in the branches.
+    /// age in the lines' clearance, and the shares of its trees under and over that DBH with
+    /// lights or wires in the branches.
     fn predicted_html(&self, h: &mut String, name: &dyn Fn(&str) -> String) {
+        self.pavement_html(h);
         if self.predicted.is_empty() {
             return;
         }
         let _ = writeln!(
             h,
-            "<h3>Beside Sylva's site model on a typical street</h3><p>Each species as grown \
-             for the city, unpruned, set on <code>{}</code> (a 1.2 m strip between curb and \
-             sidewalk, lines overhead at 8.5 m): the first age class whose trunk's flare \
-             reaches the curb or the sidewalk, and the first whose crown enters the lines' \
-             clearance, with the DBH the equations give then; beside them, the recorded shares of its trees under and at \
-             or over that DBH. The events differ: roots lift a flag well beyond the flare, years \
-             before the trunk's base reaches it, so damage is recorded on trees smaller than \
-             the flare conflict; and the census's lights or wires in the branches are mostly \
-             string lights and wires hung in the tree, not the utility lines the site model \
-             clears, so they follow the street's decorations more than the crown's \
-             reach.</p><table><tr><th>Species</th><th>Flare reaches the pavement</th>\
-             <th>Sidewalk damaged, under · at or over</th><th>Crown into the lines' clearance</th>\
+            "<h3>Lines: beside Sylva's site model on a typical street</h3><p>Each species as \
+             grown for the city, unpruned, set on <code>{}</code> (a 1.2 m strip between curb \
+             and sidewalk, a line overhead at 8.5 m): the first age class whose crown enters \
+             the line's clearance, with the DBH the equations give then; beside it, the \
+             recorded shares of its trees under and at or over that DBH with lights or wires \
+             in the branches. The events differ: the census's lights or wires in the branches \
+             are mostly string lights and wires hung in the tree, not the utility lines the \
+             site model clears, so they follow the street's decorations more than the crown's \
+             reach.</p><table><tr><th>Species</th><th>Crown into the line's clearance</th>\
              <th>Lights or wires in the branches, under · at or over</th></tr>",
             predicted::SITE.0
         );
@@ -260,15 +260,75 @@ impl CityReport {
                 };
             let _ = writeln!(
                 h,
-                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
                 name(&p.code),
-                when(p.flare, p.years),
-                split(p.flare, &|r| r.sidewalk_damage),
                 when(p.wire, p.years),
                 split(p.wire, &|r| r.branch_lights)
             );
         }
         h.push_str("</table>\n");
+    }
+
+    /// Sylva's roots model beside the sidewalk damage recorded: by DBH class, by place
+    /// against the curb and by species, each difference past 10 points marked, with whether
+    /// the class's sampling error covers it.
+    fn pavement_html(&self, h: &mut String) {
+        let Some(p) = &self.pavement else { return };
+        let _ = writeln!(
+            h,
+            "<h3>Sidewalk damage: recorded beside Sylva's roots model</h3><p>Each tree \
+             standing with its sidewalk recorded is given the share of such trees the roots \
+             model finds beside a damaged flag (<code>sylva::street::work::roots</code>: fitted \
+             to New York's 2015 Street Tree Census, by the tree's DBH, its bed's place against \
+             the curb, read as along it where not recorded, and its species' rooting habit, \
+             its own, its genus's or the census's mean); the shares are set beside the \
+             recorded ones. A difference past {:.0} points is marked, and said to lie within \
+             the class's sampling error (two standard errors of its trees' share) where it \
+             does.</p>",
+            100.0 * pavement::EXPLAINED_PAST
+        );
+        let table = |h: &mut String, title: &str, rows: &[(&pavement::Class, Option<&str>)]| {
+            let _ = writeln!(
+                h,
+                "<table><tr><th>{title}</th><th>Trees recorded</th><th>Recorded damaged</th>\
+                 <th>Roots model</th><th>Difference</th></tr>"
+            );
+            for (c, habit) in rows {
+                let d = c.difference();
+                let mark = if d.abs() > pavement::EXPLAINED_PAST {
+                    c.sampling()
+                        .unwrap_or_else(|| "past the sampling error".into())
+                } else {
+                    String::new()
+                };
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{}{}</td><td>{}</td><td>{:.1}%</td><td>{:.1}%</td>\
+                     <td>{:+.1} points{}</td></tr>",
+                    esc(&c.class),
+                    habit.map_or(String::new(), |h| format!(" <small>(rooting: {h})</small>")),
+                    c.trees,
+                    100.0 * c.observed,
+                    100.0 * c.predicted,
+                    100.0 * d,
+                    if mark.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" <small>{}</small>", esc(&mark))
+                    }
+                );
+            }
+            h.push_str("</table>\n");
+        };
+        let mut first = vec![(&p.all, None)];
+        first.extend(p.by_place.iter().map(|c| (c, None)));
+        table(h, "Place against the curb", &first);
+        let dbh: Vec<_> = p.by_dbh.iter().map(|c| (c, None)).collect();
+        table(h, "DBH class", &dbh);
+        let species: Vec<_> = (p.by_species.iter())
+            .map(|(c, habit)| (c, Some(habit.as_str())))
+            .collect();
+        table(h, "Species", &species);
     }
 
     /// Benefits per tree at the first epoch by category, Sylva's own beside i-Tree's typical

@@ -10,6 +10,7 @@
 
 pub(crate) mod html;
 pub mod observed;
+pub mod pavement;
 pub mod predicted;
 pub mod published;
 
@@ -124,8 +125,10 @@ pub struct CityReport {
     /// and DBH class.
     pub observed: observed::Observations,
     /// Sylva's site model on a typical street beside the problems recorded: each species'
-    /// first flare and wire conflicts (`predicted`), where problems were recorded.
+    /// first age in the lines' clearance (`predicted`), where problems were recorded.
     pub predicted: Vec<predicted::Predicted>,
+    /// Sylva's roots model beside the sidewalk damage recorded (`pavement`), where any was.
+    pub pavement: Option<pavement::Pavement>,
     /// Per tree at the first epoch: i-Tree Streets' typical-position energy, carbon,
     /// stormwater, air quality and aesthetics, $ a year.
     pub typical_per_tree_usd: [Option<f64>; 5],
@@ -267,6 +270,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
     grown.sort();
     grown.dedup();
     let predicted = predicted::predicted(plan, prototypes, &grown);
+    let pavement = pavement::pavement(plan);
     let trees: usize = species.values().map(|s| s.trees).sum();
     let per_tree = |v: Option<f64>| v.map(|v| v / trees.max(1) as f64);
     let typical_per_tree_usd: [Option<f64>; 5] = std::array::from_fn(|k| {
@@ -414,6 +418,7 @@ pub fn report(plan: &Plan, prototypes: &HashMap<ProtoKey, Prototype>) -> CityRep
         published,
         observed,
         predicted,
+        pavement,
     }
 }
 

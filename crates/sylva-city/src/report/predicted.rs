@@ -1,15 +1,14 @@
 //! Sylva's own site model beside what the inventory recorded (issue Z2): each species with
 //! problems recorded, as grown for the city (its age classes, unpruned), set on a typical
 //! narrow street (`trees::typical`: a 1.2 m strip between curb and sidewalk, distribution
-//! lines over it at 8.5 m). The first age class whose tree's flare reaches the curb or the
-//! sidewalk, and the first whose crown enters the lines' clearance, are set beside the trees
-//! the surveyors found with a damaged sidewalk, and with lights or wires in their branches,
-//! under and over that DBH: the first check of Sylva's conflicts against what a city saw.
+//! lines over it at 8.5 m). The first age class whose crown enters the lines' clearance is set
+//! beside the trees the surveyors found with lights or wires in their branches, under and over
+//! that DBH. (Sidewalk damage is the roots model's, `pavement`: the age a trunk's flare reaches
+//! the curb says nothing of the flags roots lift well beyond it, years before.)
 //!
-//! The two are not the same event, and the report says so: a flag is lifted by roots, which
-//! spread far beyond the flare and heave pavement years before the trunk's base reaches it;
-//! and the census's "lights or wires in the branches" are mostly string lights and wires hung
-//! in the tree (its data dictionary), not the utility lines Sylva's site model clears.
+//! The two are not the same event, and the report says so: the census's "lights or wires in
+//! the branches" are mostly string lights and wires hung in the tree (its data dictionary),
+//! not the utility lines Sylva's site model clears.
 
 use crate::trees::plan::{Plan, ProtoKey};
 use crate::trees::prototypes::Prototype;
@@ -33,8 +32,6 @@ pub struct Predicted {
     pub code: String,
     /// The oldest age class grown for the city, years: nothing is said beyond it.
     pub years: f64,
-    /// The trunk's flare first reaches the curb or the sidewalk.
-    pub flare: Option<First>,
     /// The crown first enters the lines' clearance.
     pub wire: Option<First>,
 }
@@ -63,7 +60,6 @@ pub fn predicted(
             Some(Predicted {
                 code: key.1.clone(),
                 years: classes.last().map_or(0.0, |p| f64::from(p.key.age)),
-                flare: first(&|p| p.typical_street.flare),
                 wire: first(&|p| p.typical_street.wire),
             })
         })

@@ -265,6 +265,7 @@ pub fn rank(
 ) -> Result<Vec<Ranked>, StreetError> {
     let basis = request.basis();
     let study = &request.study;
+    study.check()?;
     let mut out: Vec<Ranked> = request
         .species(db)?
         .into_par_iter()

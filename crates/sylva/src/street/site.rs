@@ -27,7 +27,10 @@
 //! [[wire]]
 //! height = 8.5
 //! offset = -0.6              # y of the line
-//! clearance = 3.0            # radial clearance the utility requires
+//! voltage_kv = 12.0          # optional: GO 95's clearances for the keys below not given
+//! clearance = 1.22           # radial clearance at the time of cutting (GO 95: 4 ft, 2.4-72 kV)
+//! minimum = 0.46             # radial clearance kept at all times (GO 95: 18 in, 0.75-22.5 kV)
+//! access = "street"          # or "backyard": the crew that reaches the tree (its price)
 //! cycle = 4                  # years between line clearances (optional: see [pruning])
 //!
 //! [[light]]
@@ -94,6 +97,11 @@ pub struct WallBox {
 }
 
 /// An overhead line along the street.
+///
+/// Two radii around it: the **clearance** the utility's crew cuts the tree to at each visit
+/// (and beyond it the regrowth the tree makes before the next, `street::accounts::pruner`),
+/// and the **minimum** no leaf or wood may enter at any time. California's General Order 95
+/// gives both by the line's voltage ([`go95`]); a site may give them itself.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Wire {
@@ -101,11 +109,57 @@ pub struct Wire {
     pub height: f64,
     /// y of the line, m.
     pub offset: f64,
-    /// Radial clearance the utility requires, m: what line clearance cuts to.
+    /// Radial clearance at the time of cutting, m: what line clearance cuts to, before the
+    /// crew's allowance for regrowth. GO 95's for `voltage_kv` where not given.
+    #[serde(default = "unset")]
     pub clearance: f64,
+    /// Radial clearance kept at all times, m. GO 95's for `voltage_kv` where not given.
+    #[serde(default = "unset")]
+    pub minimum: f64,
+    /// The line's voltage, kV, where its clearances are GO 95's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub voltage_kv: Option<f64>,
+    /// How the utility's crew reaches the tree.
+    #[serde(default)]
+    pub access: Access,
     /// Years between its line clearances (`[pruning]`'s `line_cycle` where not given).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cycle: Option<i64>,
+}
+
+/// How a utility's crew reaches a tree: its crew and so its hourly rate.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Access {
+    /// From the street, a two-person crew with an aerial lift.
+    #[default]
+    Street,
+    /// Behind buildings, a three-person climbing crew.
+    Backyard,
+}
+
+/// A clearance the file left for GO 95 to give.
+fn unset() -> f64 {
+    f64::NAN
+}
+
+/// California Public Utilities Commission, General Order 95: the radial clearances of bare
+/// line conductors from vegetation, m, for a line of `kv` kilovolts: at the time of trimming
+/// (Appendix E, "Guidelines to Rule 35", the normal case: 4 ft for 2.4 to 72 kV, 6 ft to
+/// 110 kV, 10 ft to 300 kV, 15 ft above) and at all times (Rule 35, Table 1, Case 13: 18 in
+/// for 750 V to 22.5 kV; the Table's other voltage columns were not read, so above 22.5 kV a
+/// site gives its own `minimum`). `None` for a voltage GO 95 gives no figure for here.
+pub fn go95(kv: f64) -> (Option<f64>, Option<f64>) {
+    const FOOT: f64 = 0.3048;
+    let trimming = match kv {
+        kv if (2.4..72.0).contains(&kv) => Some(4.0 * FOOT),
+        kv if (72.0..110.0).contains(&kv) => Some(6.0 * FOOT),
+        kv if (110.0..300.0).contains(&kv) => Some(10.0 * FOOT),
+        kv if kv >= 300.0 => Some(15.0 * FOOT),
+        _ => None,
+    };
+    let always = (0.75..=22.5).contains(&kv).then_some(1.5 * FOOT);
+    (trimming, always)
 }
 
 /// A street light's lamp.
@@ -201,6 +255,37 @@ pub struct Site {
     /// How the street prunes the tree (`street::work::pruning`); the default standard where absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pruning: Option<PruningSpec>,
+    /// What the street does at planting to spare its pavement from the roots.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mitigation: Option<Mitigation>,
+}
+
+/// What a street does at planting to spare its pavement from the tree's roots
+/// (`street::work::roots` for their effects; the run's cost table prices them).
+///
+/// ```toml
+/// [mitigation]
+/// root_barrier_m = 6.0        # a linear root barrier this long along the curb and sidewalk
+/// cutout_m = 0.5              # the pavement cut back this far from the trunk ...
+/// cutout_m2 = 1.5             # ... removing this much of it
+/// flexible_pavement_m2 = 9.0  # the flags beside the tree laid in rubber or modular pavers
+/// ```
+#[derive(Clone, Debug, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Mitigation {
+    /// Length of a linear root barrier installed at planting, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root_barrier_m: Option<f64>,
+    /// How much farther from the trunk the pavement is cut back (a larger bed or cut-out, or
+    /// a sidewalk curving away), m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cutout_m: Option<f64>,
+    /// The pavement removed for it, m².
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cutout_m2: Option<f64>,
+    /// Sidewalk beside the tree laid in rubber or modular pavers instead of concrete, m².
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flexible_pavement_m2: Option<f64>,
 }
 
 /// Checks a site's `[pruning]` keys, its wires' cycles and the clearances pruning cuts to;
@@ -288,8 +373,52 @@ impl Site {
                     .map(|s| format!(" (line {})", text[..s.start].lines().count().max(1)))
                     .unwrap_or_default(),
         })?;
+        let mut site = site;
+        site.resolve_wires(file)?;
         site.check(file)?;
         Ok(site)
+    }
+
+    /// Fills each wire's clearances GO 95 gives for its voltage where the file left them out;
+    /// an error names the key where neither is given.
+    fn resolve_wires(&mut self, file: &str) -> Result<(), StreetError> {
+        for w in &mut self.wire {
+            let (trimming, always) = match w.voltage_kv {
+                Some(kv) if !(kv.is_finite() && kv > 0.0 && kv <= 1000.0) => {
+                    return Err(bad_value(
+                        file,
+                        "wire.voltage_kv",
+                        kv,
+                        "a line voltage above 0 and at most 1000 kV",
+                    ));
+                }
+                Some(kv) => go95(kv),
+                None => (None, None),
+            };
+            for (key, value, given) in [
+                ("wire.clearance", &mut w.clearance, trimming),
+                ("wire.minimum", &mut w.minimum, always),
+            ] {
+                if !value.is_nan() {
+                    continue;
+                }
+                *value = given.ok_or_else(|| {
+                    let why = match w.voltage_kv {
+                        Some(kv) => format!(
+                            "a distance in metres: GO 95 gives none read here for {kv} kV \
+                             (voltage_kv gives the clearance at trimming for 2.4 kV and up, \
+                             the minimum for 0.75 to 22.5 kV)"
+                        ),
+                        None => "a distance in metres, or voltage_kv for GO 95's".to_string(),
+                    };
+                    StreetError::Syntax {
+                        file: file.to_string(),
+                        message: format!("`{key}` is not given: expected {why}"),
+                    }
+                })?;
+            }
+        }
+        Ok(())
     }
 
     fn check(&self, file: &str) -> Result<(), StreetError> {
@@ -389,12 +518,26 @@ impl Site {
             }
         }
         for w in &self.wire {
-            all_finite("wire", &[w.height, w.offset, w.clearance])?;
+            all_finite("wire", &[w.height, w.offset, w.clearance, w.minimum])?;
             if w.height.is_nan() || w.height <= 0.0 {
                 return bad("wire.height", w.height, "a height above the ground (> 0 m)");
             }
             if w.clearance.is_nan() || w.clearance < 0.0 {
                 return bad("wire.clearance", w.clearance, "a distance >= 0 m");
+            }
+            if w.minimum.is_nan() || w.minimum <= 0.0 {
+                return bad("wire.minimum", w.minimum, "a distance above 0 m");
+            }
+            if w.minimum > w.clearance {
+                return bad(
+                    "wire.minimum",
+                    w.minimum,
+                    &format!(
+                        "at most the clearance at cutting ({} m): crews cut to the clearance, \
+                         and regrowth may close it only down to the minimum",
+                        w.clearance
+                    ),
+                );
             }
         }
         for (i, l) in self.light.iter().enumerate() {
@@ -447,6 +590,28 @@ impl Site {
                 );
             }
         }
+        if let Some(m) = &self.mitigation {
+            for (key, v) in [
+                ("mitigation.root_barrier_m", m.root_barrier_m),
+                ("mitigation.cutout_m", m.cutout_m),
+                ("mitigation.cutout_m2", m.cutout_m2),
+                ("mitigation.flexible_pavement_m2", m.flexible_pavement_m2),
+            ] {
+                if let Some(v) = v
+                    && !(v.is_finite() && v > 0.0 && v <= 100.0)
+                {
+                    return bad(key, v, "a positive length (m) or area (m²), at most 100");
+                }
+            }
+            if m.cutout_m.is_some() != m.cutout_m2.is_some() {
+                return bad(
+                    "mitigation.cutout_m2",
+                    m.cutout_m2.unwrap_or(f64::NAN),
+                    "given with cutout_m: the pavement a cut-out removes, m², and how far it \
+                     moves the pavement from the trunk, m",
+                );
+            }
+        }
         check_pruning(self, file)
     }
 }
@@ -476,6 +641,7 @@ along = [-2.0, 2.0]
 height = 8.5
 offset = -0.6
 clearance = 3.0
+minimum = 0.46
 [[light]]
 x = 6.0
 y = -0.7
@@ -525,5 +691,45 @@ high = 2.4
             "[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]",
         ));
         assert!(e.contains("sight_triangle.corners"), "{e}");
+    }
+
+    #[test]
+    fn a_wires_clearances_are_its_own_or_go95s_by_voltage() {
+        let by_voltage = GOOD.replace("clearance = 3.0\nminimum = 0.46\n", "voltage_kv = 12.0\n");
+        let w = &Site::parse(&by_voltage, "site.toml").unwrap().wire[0];
+        // GO 95: 4 ft at trimming for 2.4-72 kV, 18 in at all times for 0.75-22.5 kV.
+        assert!((w.clearance - 1.2192).abs() < 1e-9 && (w.minimum - 0.4572).abs() < 1e-9);
+        assert_eq!(w.access, Access::Street);
+        // A file's own figure stands over GO 95's.
+        let own = by_voltage.replace(
+            "voltage_kv = 12.0\n",
+            "voltage_kv = 12.0\nclearance = 3.0\n",
+        );
+        assert_eq!(
+            Site::parse(&own, "site.toml").unwrap().wire[0].clearance,
+            3.0
+        );
+        assert_eq!(go95(115.0), (Some(10.0 * 0.3048), None));
+        // Neither given: the key is named with what it may be.
+        let e = error(&GOOD.replace("minimum = 0.46\n", ""));
+        assert!(
+            e.contains("site.toml") && e.contains("wire.minimum") && e.contains("voltage_kv"),
+            "{e}"
+        );
+        // GO 95 has no minimum read here for 69 kV.
+        let e = error(&by_voltage.replace("voltage_kv = 12.0", "voltage_kv = 69.0"));
+        assert!(e.contains("wire.minimum") && e.contains("69 kV"), "{e}");
+        // The minimum kept at all times may not exceed the clearance cut to.
+        let e = error(&GOOD.replace("minimum = 0.46", "minimum = 3.5"));
+        assert!(
+            e.contains("wire.minimum") && e.contains("at most the clearance"),
+            "{e}"
+        );
+        let e = error(&GOOD.replace("minimum = 0.46", "minimum = 0.0"));
+        assert!(e.contains("wire.minimum"), "{e}");
+        let e = error(&by_voltage.replace("voltage_kv = 12.0", "voltage_kv = -3.0"));
+        assert!(e.contains("wire.voltage_kv"), "{e}");
+        let e = error(&GOOD.replace("minimum = 0.46", "minimum = 0.46\naccess = \"roof\""));
+        assert!(e.contains("roof") && e.contains("backyard"), "{e}");
     }
 }

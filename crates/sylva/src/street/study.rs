@@ -8,6 +8,7 @@ use super::accounts::ledger::{Assessor, YearAccount};
 use super::accounts::prices::Prices;
 use super::accounts::pruner::{Pruner, PruningYear};
 use super::accounts::survival::Survival;
+use super::error::StreetError;
 use super::site::Site;
 use super::work::conflicts::{Conflict, Kind};
 use crate::Skeleton;
@@ -59,6 +60,19 @@ impl Study {
             survival: None,
             pruning: Pruning::Regime,
         }
+    }
+
+    /// Checks what the study's files say together: every mitigation the site asks for is
+    /// priced by its costs (or the built-in table). Run before anything grows, so a gap is an
+    /// error naming the file and the key, with nothing written.
+    pub fn check(&self) -> Result<(), StreetError> {
+        if let Some(m) = self.site.as_ref().and_then(|s| s.mitigation.as_ref()) {
+            self.costs
+                .as_ref()
+                .unwrap_or_else(|| Costs::sized())
+                .mitigation(m)?;
+        }
+        Ok(())
     }
 
     /// The account keeper of species `m` under this study: its site, prices, costs and
@@ -203,16 +217,26 @@ impl StreetTree {
             Spread::PerYear => self.last_age.map_or(age, |a| age - a),
         };
         self.last_age = Some(age);
-        let cycle = (self.pruner.as_ref())
+        let cycle = (self.pruner.as_mut())
             .and_then(|(_, p)| p.advance(&mut self.cohort.growers[0], age, each));
+        let lines = (self.pruner.as_mut()).map_or(Vec::new(), |(_, p)| p.take_lines());
         let skeleton =
             (self.cohort.advance_to(age).pop()).expect("a cohort of one tree gives one skeleton");
         let record = *(self.cohort.history[0].last()).expect("advance_to records the age");
+        // A tree the street cuts is accounted at the DBH the equations give, which the growth
+        // holds its pipe model to: a cut takes wood above the trunk but none of its girth,
+        // while the survey's reading, on a trunk cut back over laterals that leave it below
+        // breast height, or a tree cut below it, would fall.
+        let mut dims = record.model;
+        if self.pruner.is_some() {
+            dims.dbh = record.measured.dbh;
+        }
         let mut accounts: Vec<YearAccount> = (self.assessors.iter_mut())
-            .map(|a| a.year(age, &record.model, &skeleton))
+            .map(|a| a.year(age, &dims, &skeleton))
             .collect();
         if let Some((s, _)) = &self.pruner {
             accounts[*s].record_pruning(cycle, span);
+            accounts[*s].lines = lines;
         }
         let new_conflicts: Vec<Conflict> = (accounts.first())
             .map_or(&[][..], |a| &a.conflicts)

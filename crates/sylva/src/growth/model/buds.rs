@@ -33,7 +33,7 @@ pub(super) const LATERALS_PER_SHOOT: usize = 2;
 /// Longest shoot regrowth after a cut makes in a year, m: the most yearly length growth
 /// measured on pruned street trees, in the first year after pruning (about 1.5 m in green ash,
 /// Norway and silver maple: Follett et al. 2016, Arboric. Urban For. 42(3):133-145).
-const LONGEST_REGROWTH: f32 = 1.5;
+pub const LONGEST_REGROWTH: f32 = 1.5;
 /// Share of the season in which a shoot elongates.
 pub(super) const GROWING_SEASON: f64 = 0.5;
 

@@ -37,6 +37,12 @@ pub enum CutKind {
     Removal,
     /// A stem taken back to a lateral.
     Reduction,
+    /// A stem cut between unions (topping, a utility's round-over): only line clearance makes
+    /// it, where a trunk or leader in the line's clearance has no lateral to be cut back to,
+    /// since the line's minimum clearance must hold. It leaves a stub whose decay A300
+    /// forbids it for (80% of headed silver maple leaders decayed from the cut: Dahle et al.
+    /// 2006, Arboric. Urban For. 32(6):260-264).
+    Heading,
 }
 
 /// Where one cut was made: for pictures and accounts.
@@ -119,6 +125,30 @@ impl Grower {
     /// further out on the same branch are made instead where they fit. Routine pruning takes
     /// no more than a quarter of a tree's foliage at one visit (`street::accounts::pruner`).
     pub fn cut_within(&mut self, zone: &(dyn Fn(Vec3, u8) -> bool + Sync), most_leaf: f64) -> Cuts {
+        self.cut_with(zone, most_leaf, None)
+    }
+
+    /// Like [`Grower::cut`], by directional pruning (ANSI A300 Part 7's line clearance;
+    /// utilities' specifications: branches growing toward the conductor are cut back, those
+    /// growing away are kept): a stem is cut back to the highest lateral below the zone that
+    /// does not grow toward it, `away(point)` being the direction away from the zone there;
+    /// only where it has none, to the highest lateral of any direction.
+    /// A trunk or stem in the zone with no lateral below it to be cut back to is headed back
+    /// to below the zone ([`CutKind::Heading`]): a line's minimum clearance must hold.
+    pub fn cut_directional(
+        &mut self,
+        zone: &(dyn Fn(Vec3, u8) -> bool + Sync),
+        away: &dyn Fn(Vec3) -> Vec3,
+    ) -> Cuts {
+        self.cut_with(zone, f64::INFINITY, Some(away))
+    }
+
+    fn cut_with(
+        &mut self,
+        zone: &(dyn Fn(Vec3, u8) -> bool + Sync),
+        most_leaf: f64,
+        away: Option<&dyn Fn(Vec3) -> Vec3>,
+    ) -> Cuts {
         let inside = self.in_zone(zone);
         let mut cuts = Cuts::default();
         let (before, missing) = (self.young_shoot(), self.missing_share());
@@ -130,11 +160,14 @@ impl Grower {
             let segs = self.branches[b].segments.clone();
             match segs.iter().position(|&s| inside[s as usize]) {
                 None => {}
-                Some(k) => match self.lateral_below(b, &segs, k) {
+                Some(k) => match self.lateral_below(b, &segs, k, away) {
                     Some((j, c)) if cuts.leaf_area + self.reduction_takes(b, j, c) > most_leaf => {
                         cuts.deferred += 1;
                     }
                     Some((j, c)) => self.reduce(b, j, c, &mut cuts),
+                    None if self.branches[b].order == 0 && away.is_some() => {
+                        self.head(b, k, &|p| zone(p, 0), &mut cuts);
+                    }
                     None if self.branches[b].order > 0 => {
                         let mut takes = Cuts::default();
                         self.take(b, &mut takes);
@@ -208,7 +241,9 @@ impl Grower {
                     takes.leaf_area
                 }
             };
-            let cut = (k > 0).then(|| self.lateral_below(c, &segs, k)).flatten();
+            let cut = (k > 0)
+                .then(|| self.lateral_below(c, &segs, k, None))
+                .flatten();
             if cuts.leaf_area + takes(self, cut) > most_leaf {
                 cuts.deferred += 1;
                 continue;
@@ -250,8 +285,36 @@ impl Grower {
     /// The lateral branch `b` may be cut back to, clear of the zone that its segment `k`
     /// (of `segs`) is the first to reach: the highest live child on a segment below `k`
     /// whose diameter is at least `LATERAL_SHARE` of `b`'s just above it. Its segment's
-    /// index in `segs`, and the child.
-    fn lateral_below(&self, b: usize, segs: &[u32], k: usize) -> Option<(usize, usize)> {
+    /// index in `segs`, and the child. With `away` (directional pruning), the highest such
+    /// child that does not grow toward the zone, where there is one.
+    fn lateral_below(
+        &self,
+        b: usize,
+        segs: &[u32],
+        k: usize,
+        away: Option<&dyn Fn(Vec3) -> Vec3>,
+    ) -> Option<(usize, usize)> {
+        if let Some(away) = away {
+            let growing_away = |c: &Branch| {
+                let first = &self.segments[c.segments[0] as usize];
+                first.direction.dot(away(first.start)) >= 0.0
+            };
+            let kept = self.lateral_where(b, segs, k, &growing_away);
+            if kept.is_some() {
+                return kept;
+            }
+        }
+        self.lateral_where(b, segs, k, &|_| true)
+    }
+
+    /// [`Grower::lateral_below`] among the children `take` accepts.
+    fn lateral_where(
+        &self,
+        b: usize,
+        segs: &[u32],
+        k: usize,
+        take: &dyn Fn(&Branch) -> bool,
+    ) -> Option<(usize, usize)> {
         let mut best: Option<(usize, f32, f32, usize)> = None;
         for &c in &self.branches[b].children {
             let child = &self.branches[c as usize];
@@ -261,7 +324,7 @@ impl Grower {
             let Some(j) = segs[..k].iter().position(|&s| s == from) else {
                 continue;
             };
-            if !child.alive {
+            if !child.alive || !take(child) {
                 continue;
             }
             // The stem just above the union is the next segment's base.
@@ -300,18 +363,68 @@ impl Grower {
         }
     }
 
+    /// A heading cut: stem `b` cut where its segment `k`, the first to reach the zone
+    /// (`inside(point)`), enters it, having no lateral to be cut back to below it.
+    fn head(&mut self, b: usize, k: usize, inside: &dyn Fn(Vec3) -> bool, cuts: &mut Cuts) {
+        let segs = self.branches[b].segments.clone();
+        let seg = self.segments[segs[k] as usize];
+        let n = (seg.length / SAMPLE).ceil().max(1.0) as usize;
+        let enter = (0..=n)
+            .map(|i| seg.length * i as f32 / n as f32)
+            .find(|&t| inside(seg.start + seg.direction * t))
+            .unwrap_or(0.0);
+        // Where the segment enters at its start, the cut is at the end of the one before.
+        let (j, keep) = if enter > SAMPLE || k == 0 {
+            (k, enter.max(1e-3))
+        } else {
+            (k - 1, self.segments[segs[k - 1] as usize].length)
+        };
+        let sj = segs[j];
+        let gone = (self.branches[b].children.iter())
+            .copied()
+            .filter(|&ch| {
+                let child = &self.branches[ch as usize];
+                child.parent.is_some_and(|(_, from)| {
+                    segs[j + 1..].contains(&from)
+                        || (from == sj
+                            && self.segments[child.segments[0] as usize]
+                                .start
+                                .distance(self.segments[sj as usize].start)
+                                > keep)
+                })
+            })
+            .collect();
+        self.truncate(b, j, keep, gone, CutKind::Heading, cuts);
+    }
+
     /// A reduction cut: branch `b` taken back to its child `c`, which grows from `b`'s
     /// segment `j`. What lies beyond the union becomes a dead branch of its own, so every
     /// pass that asks whether wood is alive leaves it out.
     fn reduce(&mut self, b: usize, j: usize, c: usize, cuts: &mut Cuts) {
+        let (keep, gone) = self.cut_back(b, j, c);
+        self.truncate(b, j, keep, gone, CutKind::Reduction, cuts);
+    }
+
+    /// Branch `b` cut `keep` m along its segment `j`, with its children `gone`: what lies
+    /// beyond becomes a dead branch of its own.
+    fn truncate(
+        &mut self,
+        b: usize,
+        j: usize,
+        keep: f32,
+        gone: Vec<u32>,
+        kind: CutKind,
+        cuts: &mut Cuts,
+    ) {
         let sj = self.branches[b].segments[j];
         let seg = self.segments[sj as usize];
-        let (keep, gone) = self.cut_back(b, j, c);
-        let stem = self.radius_of(self.branches[b].segments[j + 1]);
+        // The stem where it is cut: just above the union a reduction cut leaves, or the
+        // segment itself where a heading cut falls within its last one.
+        let stem = self.radius_of(*self.branches[b].segments.get(j + 1).unwrap_or(&sj));
         cuts.marks.push(CutMark {
             at: seg.start + seg.direction * keep,
             radius: stem,
-            kind: CutKind::Reduction,
+            kind,
         });
         // What goes: the segments past `j`, and the children beyond the cut.
         let moved: Vec<u32> = self.branches[b].segments[j + 1..].to_vec();
@@ -375,7 +488,7 @@ impl Grower {
         for bud in self.buds.iter_mut().filter(|bud| bud.segment == sj) {
             bud.at = (bud.at * seg.length / keep.max(1e-6)).min(1.0);
         }
-        self.set_sprouts(b, sj, keep, stem, CutKind::Reduction);
+        self.set_sprouts(b, sj, keep, stem, kind);
     }
 
     /// Where cutting branch `b` back to its child `c` on its segment `j` leaves its collar

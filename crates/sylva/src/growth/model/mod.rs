@@ -52,6 +52,7 @@ mod tests;
 mod turnover;
 mod wood;
 
+pub use buds::LONGEST_REGROWTH;
 pub use cuts::{CutKind, CutMark, Cuts};
 
 /// Exponent of the pipe model: parent^n = sum of children^n. 2 is da Vinci's rule, the

@@ -65,7 +65,7 @@ impl Grower {
         kind: CutKind,
     ) {
         let per_kind = match kind {
-            CutKind::Reduction => 1.0,
+            CutKind::Reduction | CutKind::Heading => 1.0,
             CutKind::Removal => 0.5,
         };
         if radius < SPROUTING_RADIUS {

@@ -72,10 +72,25 @@ impl Grower {
     /// Database's own DBH of such trees is: in its raw data (TS3, columns dbh1-dbh8), 265 of
     /// the 363 trees measured with two or more stems have a DBH equal to that sum (within
     /// 0.15 cm), and none the plain sum of their diameters.
+    ///
+    /// A trunk the street has cut back (`Branch::headed`) may have handed its crown to laterals
+    /// that leave it below z: the survey reads such a tree as one forking below breast height,
+    /// by the stems crossing z, and so does this, counting every live branch of the trunk that
+    /// leaves it below z and crosses z. Read on the trunk alone, a cut-back stub carrying a
+    /// few tips past z was held to the whole DBH, and the pipe model made its base metres
+    /// thick.
     fn diameter_carried(&self, carried: &[f32], z: f32) -> f32 {
         let n = PIPE_EXPONENT;
+        let headed = self.branches[0].headed;
+        let crossing = |branch: &Branch| {
+            branch.order == 0
+                || (headed
+                    && branch.order == 1
+                    && branch.parent.is_some_and(|(p, _)| p == 0)
+                    && self.segments[branch.segments[0] as usize].start.z <= z)
+        };
         let mut radii = self.branches.iter().filter_map(|branch| {
-            if !branch.alive || branch.order != 0 {
+            if !branch.alive || !crossing(branch) {
                 return None;
             }
             let seg = self.axis_segment_at(branch, z)?;

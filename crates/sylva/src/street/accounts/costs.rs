@@ -20,6 +20,7 @@
 use crate::street::accounts::items::{Cost, Payer};
 use crate::street::accounts::prices::{non_negative, parse, read, value};
 use crate::street::error::StreetError;
+use crate::street::site::{Access, Mitigation};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -37,6 +38,9 @@ pub struct Class {
     pub price_per_cm_dbh: Option<f64>,
     /// Years between prunings (pruning classes only).
     pub cycle_years: Option<f64>,
+    /// A utility's price of a tree worked from behind buildings, by a climbing crew
+    /// (line-clearance classes only; `price` is then the street crew's).
+    pub backyard_price: Option<f64>,
 }
 
 impl Class {
@@ -50,6 +54,9 @@ impl Class {
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Itemised {
+    /// The file the table was read from (errors name it).
+    #[serde(skip)]
+    pub file: String,
     /// Where the costs come from.
     pub source: String,
     /// The year of the dollars.
@@ -67,11 +74,27 @@ pub struct Itemised {
     pub removal: Vec<Class>,
     /// Removal and stump grinding, $ per cm of DBH (where no `[[removal]]` classes are given).
     pub removal_per_cm_dbh: Option<f64>,
+    /// The utility's price of one line-clearance visit to a tree (a tree worked), by DBH
+    /// class; the built-in table's where a table gives none (the utility's price is not the
+    /// city's).
+    #[serde(default)]
+    pub line_clearance: Vec<Class>,
     /// A fixed chance a year that a living tree must come out (storm, decline). Without it the
     /// chance is the run's survival's.
     pub removal_chance_per_year: Option<f64>,
-    /// Sidewalk and curb repair charged to the tree per year.
+    /// Sidewalk, curb and sewer repair charged to the tree per year, a flat figure (a city's
+    /// own average): where the tree's place is not known, or the table has no
+    /// `[sidewalk_damage]`.
     pub sidewalk_repair_per_year: Option<f64>,
+    /// Sidewalk and curb damage priced per repair, by the tree's chance of damaging the
+    /// pavement each year (`street::work::roots`), where the tree's site is known.
+    pub sidewalk_damage: Option<SidewalkDamage>,
+    /// Sewer repair charged to the tree per year where `[sidewalk_damage]` prices the
+    /// sidewalk and curb (the flat figure holds it otherwise).
+    pub sewer_repair_per_year: Option<f64>,
+    /// Prices of what a site may do at planting to spare its pavement (`[mitigation]` of the
+    /// site); the built-in table's where a table gives none.
+    pub mitigation: Option<MitigationPrices>,
     /// Leaf, litter and storm clean-up per year.
     pub cleanup_per_year: Option<f64>,
     /// Pest and disease management per year.
@@ -80,6 +103,52 @@ pub struct Itemised {
     pub liability_per_year: Option<f64>,
     /// Administration and inspection per year.
     pub administration_per_year: Option<f64>,
+}
+
+/// Sidewalk and curb damage priced per repair: the yearly chance that the tree's roots damage
+/// the pavement (`street::work::roots`) times what a repair costs, split between the city and
+/// the property owners, with the trip-and-fall claims and the administration that come with
+/// repairs.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SidewalkDamage {
+    /// One repair of the sidewalk beside a tree, $.
+    pub repair_per_incident: f64,
+    /// Curb and gutter repair per dollar of sidewalk repair.
+    pub curb_per_sidewalk: f64,
+    /// The share of sidewalk repair the property owners pay, 0 to 1.
+    pub owners_share_sidewalk: f64,
+    /// The share of curb and gutter repair the property owners pay, 0 to 1.
+    pub owners_share_curb: f64,
+    /// Trip-and-fall payments and legal staff per dollar of repair (the city's).
+    pub liability_per_repair: f64,
+    /// Inspection and administration of repairs per dollar of repair (the city's).
+    pub administration_per_repair: f64,
+}
+
+impl SidewalkDamage {
+    /// Sidewalk and curb repair per incident, the city's and the owners', and the city's
+    /// liability and administration with it, $.
+    fn split(&self) -> (f64, f64, f64) {
+        let sidewalk = self.repair_per_incident;
+        let curb = sidewalk * self.curb_per_sidewalk;
+        let owners = sidewalk * self.owners_share_sidewalk + curb * self.owners_share_curb;
+        let city = sidewalk + curb - owners;
+        let with = (sidewalk + curb) * (self.liability_per_repair + self.administration_per_repair);
+        (city, owners, with)
+    }
+}
+
+/// Prices of the mitigations a site may choose (`site.rs`'s `Mitigation`), $.
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MitigationPrices {
+    /// A linear root barrier installed, per metre.
+    pub root_barrier_per_m: Option<f64>,
+    /// Pavement removed for a larger bed, a cut-out or a curving sidewalk, per m².
+    pub cutout_per_m2: Option<f64>,
+    /// Rubber or modular pavers laid instead of concrete, more per m² than concrete.
+    pub flexible_pavement_per_m2: Option<f64>,
 }
 
 /// A programme's average cost per tree and year.
@@ -99,6 +168,7 @@ pub struct Average {
 
 /// What a tree costs.
 #[derive(Clone, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)] // a run holds one, read every year: no box to chase
 pub enum Costs {
     /// Item by item.
     Itemised(Itemised),
@@ -201,7 +271,7 @@ impl Costs {
             ("pest management", c.pest_per_year),
             ("liability", c.liability_per_year),
             ("administration", c.administration_per_year),
-            ("sidewalk repair", c.sidewalk_repair_per_year),
+            ("sewer repair", c.sewer_repair_per_year),
         ] {
             if v.is_none() {
                 out.push(name);
@@ -209,6 +279,9 @@ impl Costs {
         }
         if c.removal.is_empty() && c.removal_per_cm_dbh.is_none() {
             out.push("removal");
+        }
+        if c.sidewalk_repair_per_year.is_none() && c.sidewalk_damage.is_none() {
+            out.push("sidewalk repair");
         }
         if out.is_empty() {
             return Vec::new();
@@ -244,13 +317,15 @@ impl Costs {
             }
             return Ok(Costs::Average(a));
         }
-        let costs: Itemised = parse(text, file)?;
+        let mut costs: Itemised = parse(text, file)?;
+        costs.file = file.to_string();
         for (key, v) in [
             ("planting", Some(costs.planting)),
             ("establishment_per_year", Some(costs.establishment_per_year)),
             ("establishment_years", Some(costs.establishment_years)),
             ("removal_per_cm_dbh", costs.removal_per_cm_dbh),
             ("sidewalk_repair_per_year", costs.sidewalk_repair_per_year),
+            ("sewer_repair_per_year", costs.sewer_repair_per_year),
             ("cleanup_per_year", costs.cleanup_per_year),
             ("pest_per_year", costs.pest_per_year),
             ("liability_per_year", costs.liability_per_year),
@@ -270,6 +345,47 @@ impl Costs {
                 "a chance, 0 to 1",
             ));
         }
+        if let Some(m) = &costs.mitigation {
+            for (key, v) in [
+                ("mitigation.root_barrier_per_m", m.root_barrier_per_m),
+                ("mitigation.cutout_per_m2", m.cutout_per_m2),
+                (
+                    "mitigation.flexible_pavement_per_m2",
+                    m.flexible_pavement_per_m2,
+                ),
+            ] {
+                if let Some(v) = v {
+                    non_negative(file, key, v)?;
+                }
+            }
+        }
+        if let Some(d) = &costs.sidewalk_damage {
+            for (key, v) in [
+                ("sidewalk_damage.repair_per_incident", d.repair_per_incident),
+                ("sidewalk_damage.curb_per_sidewalk", d.curb_per_sidewalk),
+                (
+                    "sidewalk_damage.liability_per_repair",
+                    d.liability_per_repair,
+                ),
+                (
+                    "sidewalk_damage.administration_per_repair",
+                    d.administration_per_repair,
+                ),
+            ] {
+                non_negative(file, key, v)?;
+            }
+            for (key, v) in [
+                (
+                    "sidewalk_damage.owners_share_sidewalk",
+                    d.owners_share_sidewalk,
+                ),
+                ("sidewalk_damage.owners_share_curb", d.owners_share_curb),
+            ] {
+                if !(0.0..=1.0).contains(&v) {
+                    return Err(value(file, key, v, "a share, 0 to 1"));
+                }
+            }
+        }
         if costs.pruning.is_empty() {
             return Err(value(
                 file,
@@ -278,8 +394,9 @@ impl Costs {
                 "at least one [[pruning]] class",
             ));
         }
-        check_classes(file, "pruning", &costs.pruning, true)?;
-        check_classes(file, "removal", &costs.removal, false)?;
+        check_classes(file, "pruning", &costs.pruning, Table::Pruning)?;
+        check_classes(file, "removal", &costs.removal, Table::Removal)?;
+        check_classes(file, "line_clearance", &costs.line_clearance, Table::Line)?;
         if !costs.removal.is_empty() && costs.removal_per_cm_dbh.is_some() {
             return Err(StreetError::Syntax {
                 file: file.to_string(),
@@ -299,6 +416,63 @@ impl Costs {
         };
         let class = class_of(&c.pruning, dbh_cm)?;
         Some((class.price_at(dbh_cm), class.cycle_years.unwrap_or(1.0)))
+    }
+
+    /// The utility's price of one line-clearance visit to a tree of `dbh_cm` that its crew
+    /// reaches by `access`: this table's `[[line_clearance]]` classes, else the built-in
+    /// table's.
+    pub fn line_visit(&self, dbh_cm: f64, access: Access) -> f64 {
+        let own = match self {
+            Costs::Itemised(c) if !c.line_clearance.is_empty() => Some(&c.line_clearance),
+            _ => None,
+        };
+        let classes = match (own, Costs::sized()) {
+            (Some(classes), _) => classes,
+            (None, Costs::Itemised(c)) => &c.line_clearance,
+            (None, Costs::Average(_)) => return 0.0,
+        };
+        class_of(classes, dbh_cm).map_or(0.0, |k| match access {
+            Access::Backyard => k.backyard_price.unwrap_or_else(|| k.price_at(dbh_cm)),
+            Access::Street => k.price_at(dbh_cm),
+        })
+    }
+
+    /// What `site`'s mitigations cost at planting, $: each priced by this table, else by the
+    /// built-in one; an error names the price neither table gives (and the file this one was
+    /// read from). Nothing for a site without any.
+    pub fn mitigation(&self, m: &Mitigation) -> Result<f64, StreetError> {
+        let price = |key: &str, pick: fn(&MitigationPrices) -> Option<f64>| {
+            let own = match self {
+                Costs::Itemised(c) => c.mitigation.as_ref().and_then(pick),
+                Costs::Average(_) => None,
+            };
+            let builtin = match Costs::sized() {
+                Costs::Itemised(c) => c.mitigation.as_ref().and_then(pick),
+                Costs::Average(_) => None,
+            };
+            own.or(builtin).ok_or_else(|| StreetError::Syntax {
+                file: match self {
+                    Costs::Itemised(c) => c.file.clone(),
+                    Costs::Average(_) => "the programme average".into(),
+                },
+                message: format!(
+                    "`mitigation.{key}` is not given, and the built-in table has no sourced \
+                     price for it: the site's [mitigation] asks for it; give it in the costs \
+                     file's [mitigation] table"
+                ),
+            })
+        };
+        let mut total = 0.0;
+        if let Some(length) = m.root_barrier_m {
+            total += length * price("root_barrier_per_m", |p| p.root_barrier_per_m)?;
+        }
+        if let Some(area) = m.cutout_m2 {
+            total += area * price("cutout_per_m2", |p| p.cutout_per_m2)?;
+        }
+        if let Some(area) = m.flexible_pavement_m2 {
+            total += area * price("flexible_pavement_per_m2", |p| p.flexible_pavement_per_m2)?;
+        }
+        Ok(total)
     }
 
     /// The price of buying and planting a tree; none in a programme average.
@@ -322,13 +496,17 @@ impl Costs {
 
     /// The costs of one living tree of `dbh_cm` in the year that ends at `age`, whose chance
     /// of dying in that year is `death_chance` (street::accounts::survival; a table's own
-    /// `removal_chance_per_year` takes its place). `cycles_charged`: a site's pruning cycles
-    /// are charged apart, so the table's own pruning (or the average's pruning share) is not.
+    /// `removal_chance_per_year` takes its place) and, where its site is known, of damaging
+    /// the pavement beside it `damage_chance` (`street::work::roots`: the table's
+    /// `[sidewalk_damage]` prices it, else its flat figures stand). `cycles_charged`: a site's
+    /// pruning cycles are charged apart, so the table's own pruning (or the average's pruning
+    /// share) is not.
     pub fn year(
         &self,
         age: f64,
         dbh_cm: f64,
         death_chance: f64,
+        damage_chance: Option<f64>,
         cycles_charged: bool,
     ) -> YearCosts {
         let c = match self {
@@ -356,11 +534,22 @@ impl Costs {
         y[Cost::Planting] = planting;
         y[Cost::Pruning] = pruning;
         y[Cost::Removal] = chance * self.removal_price(dbh_cm).unwrap_or(0.0);
-        y[Cost::Sidewalk] = yearly(c.sidewalk_repair_per_year);
         y[Cost::Cleanup] = yearly(c.cleanup_per_year);
-        y[Cost::Other] = yearly(c.pest_per_year)
-            + yearly(c.liability_per_year)
-            + yearly(c.administration_per_year);
+        match (&c.sidewalk_damage, damage_chance) {
+            (Some(d), Some(chance)) => {
+                let (city, owners, with) = d.split();
+                y[Cost::Sidewalk] = chance * city;
+                y[Cost::SidewalkOwners] = chance * owners;
+                y[Cost::Sewer] = yearly(c.sewer_repair_per_year);
+                y[Cost::Other] = yearly(c.pest_per_year) + chance * with;
+            }
+            _ => {
+                y[Cost::Sidewalk] = yearly(c.sidewalk_repair_per_year);
+                y[Cost::Other] = yearly(c.pest_per_year)
+                    + yearly(c.liability_per_year)
+                    + yearly(c.administration_per_year);
+            }
+        }
         y
     }
 }
@@ -372,13 +561,26 @@ fn class_of(classes: &[Class], dbh_cm: f64) -> Option<&Class> {
         .or(classes.last())
 }
 
+/// Which table a run of DBH classes is: what else its classes take.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Table {
+    /// Pruning: each class its cycle.
+    Pruning,
+    /// Removal.
+    Removal,
+    /// The utility's line clearance: a street crew's price and, optionally, a backyard
+    /// crew's.
+    Line,
+}
+
 /// DBH classes must run from 0 upwards with no gap or overlap, each with one price.
 fn check_classes(
     file: &str,
     table: &str,
     classes: &[Class],
-    pruning: bool,
+    kind: Table,
 ) -> Result<(), StreetError> {
+    let pruning = kind == Table::Pruning;
     let mut last = 0.0;
     for k in classes {
         let from = k.from_dbh_cm.unwrap_or(last);
@@ -433,6 +635,20 @@ fn check_classes(
             }
             _ => {}
         }
+        match (kind, k.backyard_price) {
+            (Table::Line, Some(v)) => {
+                non_negative(file, &format!("{table}.backyard_price"), v)?;
+            }
+            (_, Some(_)) => {
+                return Err(StreetError::Syntax {
+                    file: file.to_string(),
+                    message: format!(
+                        "[[{table}]] classes take no `backyard_price` (only [[line_clearance]])"
+                    ),
+                });
+            }
+            _ => {}
+        }
         last = k.up_to_dbh_cm;
     }
     Ok(())
@@ -451,16 +667,16 @@ mod tests {
         std::fs::write(&costs, GOOD).unwrap();
         let c = Costs::load(&costs).unwrap();
         assert!(matches!(c, Costs::Itemised(_)));
-        let y = c.year(1.0, 2.0, 0.0, false);
+        let y = c.year(1.0, 2.0, 0.0, None, false);
         assert_eq!(y[Cost::Planting], 250.0);
         assert_eq!(y[Cost::Pruning], 10.0);
-        let y = c.year(20.0, 40.0, 0.0, false);
+        let y = c.year(20.0, 40.0, 0.0, None, false);
         assert_eq!(y[Cost::Planting], 0.0);
         assert_eq!(y[Cost::Pruning], 60.0);
         assert!((y[Cost::Removal] - 8.0).abs() < 1e-12);
         assert!((y.total() - (60.0 + 8.0 + 4.0 + 3.0)).abs() < 1e-12);
         // A site's cycles replace the table's own pruning.
-        assert_eq!(c.year(20.0, 40.0, 0.0, true)[Cost::Pruning], 0.0);
+        assert_eq!(c.year(20.0, 40.0, 0.0, None, true)[Cost::Pruning], 0.0);
         std::fs::write(&costs, GOOD.replace("cycle_years = 5", "cycle_years = 0")).unwrap();
         let e = Costs::load(&costs).unwrap_err().to_string();
         assert!(e.contains("pruning.cycle_years"), "{e}");
@@ -510,9 +726,9 @@ mod tests {
         assert_eq!(c.removal_price(70.0), Some(670.0));
         assert_eq!(c.removal_price(150.0), Some(1563.0));
         // A dying tree's removal is its chance times the price.
-        let y = c.year(10.0, 20.0, 0.05, false);
+        let y = c.year(10.0, 20.0, 0.05, None, false);
         assert!((y[Cost::Removal] - 0.05 * 184.0).abs() < 1e-9);
-        assert_eq!(c.year(1.0, 1.0, 0.0, false)[Cost::Planting], 75.0);
+        assert_eq!(c.year(1.0, 1.0, 0.0, None, false)[Cost::Planting], 75.0);
         let missing = c.not_computed().join(" ");
         assert!(
             missing.contains("clean-up") && missing.contains("pest"),
@@ -530,8 +746,8 @@ mod tests {
         )
         .unwrap();
         let c = Costs::load(&path).unwrap();
-        assert_eq!(c.year(1.0, 2.0, 0.0, false).total(), 40.0);
-        assert_eq!(c.year(30.0, 50.0, 0.1, true).total(), 40.0);
+        assert_eq!(c.year(1.0, 2.0, 0.0, None, false).total(), 40.0);
+        assert_eq!(c.year(30.0, 50.0, 0.1, None, true).total(), 40.0);
         std::fs::write(
             &path,
             "source = \"x\"\nyear = 2020\nper_tree_per_year = -4.0\n",
@@ -553,8 +769,11 @@ mod tests {
         .to_string();
         assert!(e.contains("pruning_share"), "{e}");
         let modesto = Costs::modesto_average();
-        assert_eq!(modesto.year(10.0, 20.0, 0.0, false)[Cost::Average], 28.77);
-        assert!((modesto.year(10.0, 20.0, 0.0, true)[Cost::Average] - 14.385).abs() < 1e-9);
+        assert_eq!(
+            modesto.year(10.0, 20.0, 0.0, None, false)[Cost::Average],
+            28.77
+        );
+        assert!((modesto.year(10.0, 20.0, 0.0, None, true)[Cost::Average] - 14.385).abs() < 1e-9);
         assert!(modesto.source().contains("1997-98"));
     }
 }

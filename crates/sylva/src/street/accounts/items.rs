@@ -117,7 +117,20 @@ pub const COSTS: [Item; Cost::COUNT] = [
     cost("planting", "Planting", "#8c6d9e", Payer::City),
     cost("pruning", "Pruning", "#a07a52", Payer::City),
     cost("removal", "Removal", "#7d7d7d", Payer::City),
-    cost("sidewalk", "Sidewalk", "#b09a70", Payer::City),
+    cost(
+        "sidewalk",
+        "Sidewalk and curb (city)",
+        "#b09a70",
+        Payer::City,
+    ),
+    cost(
+        "sidewalk_owners",
+        "Sidewalk and curb (owners)",
+        "#d8c49a",
+        Payer::Owners,
+    ),
+    cost("sewer", "Sewer repair", "#6e7c5a", Payer::City),
+    cost("mitigation", "Root mitigation", "#4f8f7a", Payer::City),
     cost("cleanup", "Clean-up", "#6f8f8f", Payer::City),
     cost(
         "pest_liability_administration",
@@ -179,8 +192,14 @@ pub enum Cost {
     Pruning,
     /// Removal: the year's chance of coming out times its price.
     Removal,
-    /// Sidewalk repair.
+    /// The city's share of sidewalk and curb repair.
     Sidewalk,
+    /// The property owners' share of sidewalk and curb repair.
+    SidewalkOwners,
+    /// Sewer repair.
+    Sewer,
+    /// What the site does at planting to spare its pavement from the roots.
+    Mitigation,
     /// Clean-up.
     Cleanup,
     /// Pest management, liability and administration.
@@ -195,13 +214,16 @@ pub enum Cost {
 
 impl Cost {
     /// How many there are.
-    pub const COUNT: usize = 9;
+    pub const COUNT: usize = 12;
     /// Every item, in report order.
     pub const ALL: [Cost; Cost::COUNT] = [
         Cost::Planting,
         Cost::Pruning,
         Cost::Removal,
         Cost::Sidewalk,
+        Cost::SidewalkOwners,
+        Cost::Sewer,
+        Cost::Mitigation,
         Cost::Cleanup,
         Cost::Other,
         Cost::Average,

@@ -30,6 +30,7 @@ use crate::street::energy::shade::{Energy, Sky, energy};
 use crate::street::error::StreetError;
 use crate::street::site::Site;
 use crate::street::work::conflicts::{Conflict, conflicts_with, leaf_outside_zones};
+use crate::street::work::roots::{RootDamage, Rooting, distance_to_pavement, mitigated_share};
 
 /// One year of one tree.
 #[derive(Clone, Debug, PartialEq)]
@@ -70,6 +71,10 @@ pub struct YearAccount {
     /// This year's pruning, where a cycle fell due and the tree was grown with the site's
     /// regime ([`crate::street::accounts::pruner`]).
     pub pruning: Option<crate::street::accounts::pruner::PruningYear>,
+    /// Each of the site's lines in every whole year since the account before, where the tree
+    /// was grown with the site's regime: how near the tree came before the year's cuts, and
+    /// the utility's visit.
+    pub lines: Vec<crate::street::accounts::pruner::LineYear>,
     /// The share of the trees planted that stand through this year, and that die in it
     /// ([`crate::street::accounts::survival`]): every other figure is a living tree's.
     pub cohort: Cohort,
@@ -145,6 +150,14 @@ pub struct Assessor {
     most_leaf: f64,
     /// The age of the last account, years.
     last_age: Option<f64>,
+    /// The grown DBH of the last account, cm.
+    last_dbh: Option<f64>,
+    /// Where there is a site: how far the trunk stands from the pavement, m, the species'
+    /// rooting habit, and the share of the damage and its repairs the site's mitigations
+    /// leave: the roots' chance of damaging it (`street::work::roots`).
+    pavement: Option<(f64, Rooting, f64)>,
+    /// What the site's mitigations cost at planting, $.
+    mitigation: f64,
     survival: Survival,
     cycles_charged: bool,
     missing: Vec<String>,
@@ -217,6 +230,20 @@ impl Assessor {
                     .into(),
             );
         }
+        let pavement = site.as_ref().map(|s| {
+            (
+                distance_to_pavement(s),
+                RootDamage::builtin().rooting(&m.species.scientific),
+                mitigated_share(s),
+            )
+        });
+        let mitigation = match (site.as_ref().and_then(|s| s.mitigation.as_ref()), &costs) {
+            (Some(m), Some(c)) => c.mitigation(m).unwrap_or_else(|e| {
+                missing.push(format!("root mitigation: {e}"));
+                0.0
+            }),
+            _ => 0.0,
+        };
         Assessor {
             measured: m.clone(),
             group,
@@ -230,6 +257,9 @@ impl Assessor {
             last: None,
             most_leaf: 0.0,
             last_age: None,
+            last_dbh: None,
+            pavement,
+            mitigation,
             survival: Survival::builtin(region),
             cycles_charged: false,
             missing,
@@ -419,6 +449,14 @@ impl Assessor {
         } else {
             0.0
         };
+        // The roots' chance of damaging the pavement this year, as a yearly rate over the
+        // years this account stands for; the first year of a run grows from last year's DBH
+        // by the measured curve.
+        let before = (self.last_dbh).unwrap_or_else(|| self.measured.dbh((age - 1.0).max(0.0)));
+        self.last_dbh = Some(dbh);
+        let damage_chance = self.pavement.as_ref().map(|(distance, rooting, share)| {
+            share * RootDamage::builtin().chance(before, dbh, *distance, rooting) / span.max(1.0)
+        });
         YearAccount {
             age,
             dbh_cm: dbh,
@@ -433,15 +471,20 @@ impl Assessor {
             money,
             typical,
             costs: self.costs.as_ref().map(|c| {
-                let mut y = c.year(age, dbh, death_chance, self.cycles_charged);
+                let mut y = c.year(age, dbh, death_chance, damage_chance, self.cycles_charged);
                 // A species whose data begin after its first year is planted in the first year
                 // of its run all the same.
                 if first && age > 1.0 {
                     y[Cost::Planting] += c.planting_price();
                 }
+                // The site's mitigations are made at planting.
+                if first {
+                    y[Cost::Mitigation] = self.mitigation;
+                }
                 y
             }),
             pruning: None,
+            lines: Vec::new(),
             conflicts,
             leaf_outside_zones_m2,
             cohort,

@@ -10,7 +10,7 @@ use crate::street::accounts::costs::YearCosts;
 use crate::street::accounts::items::Benefit;
 use crate::street::accounts::ledger::YearAccount;
 use crate::street::accounts::money::{Basis, Money};
-use crate::street::accounts::pruner::PruningYear;
+use crate::street::accounts::pruner::{LineYear, PruningYear};
 use crate::street::accounts::typical::Typical;
 use crate::street::work::conflicts::{Conflict, Kind};
 use serde::{Deserialize, Serialize};
@@ -61,10 +61,15 @@ pub struct PruningRecord {
     pub reasons: Vec<String>,
     pub removal_cuts: usize,
     pub reduction_cuts: usize,
+    /// Stems the utility's crew headed back between unions, having no lateral below a line's
+    /// clearance to cut back to (Dahle et al. 2006: 80% of headed leaders decay from the cut).
+    pub heading_cuts: usize,
     pub largest_cut_cm: f64,
     pub wood_removed_m3: f64,
     pub leaf_removed_m2: f64,
     pub visits: u32,
+    /// The utility's visits between its cycles, called out by a breach of a line's minimum.
+    pub hot_spots: u32,
     pub cost_usd: f64,
     pub deferred_cuts: usize,
     pub resolved: Vec<String>,
@@ -78,14 +83,74 @@ impl PruningRecord {
             reasons: p.reasons.iter().map(|r| r.name().to_string()).collect(),
             removal_cuts: p.count(CutKind::Removal),
             reduction_cuts: p.count(CutKind::Reduction),
+            heading_cuts: p.count(CutKind::Heading),
             largest_cut_cm: round(100.0 * p.cuts.largest_diameter() as f64, 10.0),
             wood_removed_m3: round(p.wood_m3(), 1e4),
             leaf_removed_m2: round(p.leaf_m2(), 10.0),
             visits: p.visits,
+            hot_spots: p.hot_spots,
             cost_usd: round(p.cost, 100.0),
             deferred_cuts: p.cuts.deferred,
             resolved: kind_names(&p.resolved()),
             unresolved: kind_names(&p.unresolved),
+        }
+    }
+}
+
+/// One line in one whole year: how near the tree came before the year's cuts, how much of its
+/// leaf was inside the line's clearance at cutting and inside its minimum, and the utility's
+/// visit.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LineRecord {
+    /// The age, years.
+    pub age: f64,
+    /// Which of the site's wires (0 the first).
+    pub wire: usize,
+    /// The nearest wood or leaf to the line, and the nearest wood, m (`null`: nothing grown).
+    pub closest_m: Option<f64>,
+    #[allow(missing_docs)]
+    pub closest_wood_m: Option<f64>,
+    /// The share of the tree's leaf area inside the clearance at cutting.
+    pub leaf_share_in_clearance: f64,
+    /// Leaf area inside the minimum clearance, m².
+    pub leaf_in_minimum_m2: f64,
+    /// Leaf or wood inside the minimum clearance.
+    pub breach: bool,
+    /// The utility's visit that year.
+    pub visit: Option<LineVisitRecord>,
+}
+
+/// The utility's visit to a tree under a line.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LineVisitRecord {
+    /// On the line's cycle (`false`: called out by a breach).
+    pub scheduled: bool,
+    /// The regrowth allowed for beyond the clearance, m.
+    pub allowance_m: f64,
+    /// The radius cut to, m.
+    pub cut_to_m: f64,
+    /// The nearest wood or leaf after the cuts, m.
+    pub closest_after_m: Option<f64>,
+}
+
+impl LineRecord {
+    /// The record of `l`.
+    pub fn of(l: &LineYear) -> LineRecord {
+        let metres = |v: f64| v.is_finite().then(|| round(v, 100.0));
+        LineRecord {
+            age: l.age,
+            wire: l.wire,
+            closest_m: metres(l.check.closest_m),
+            closest_wood_m: metres(l.check.closest_wood_m),
+            leaf_share_in_clearance: round(l.check.leaf_share_in_clearance, 1e3),
+            leaf_in_minimum_m2: round(l.check.leaf_in_minimum_m2, 100.0),
+            breach: l.breach,
+            visit: l.visit.map(|v| LineVisitRecord {
+                scheduled: v.scheduled,
+                allowance_m: round(v.allowance_m, 100.0),
+                cut_to_m: round(v.cut_to_m, 100.0),
+                closest_after_m: metres(v.closest_after_m),
+            }),
         }
     }
 }
@@ -205,6 +270,9 @@ pub struct AccountRecord {
     pub typical: Option<TypicalRecord>,
     pub leaf_outside_zones_m2: Option<f64>,
     pub conflicts: Vec<ConflictRecord>,
+    /// Each line in each whole year since the record before, where the tree was grown with
+    /// the site's regime.
+    pub lines: Vec<LineRecord>,
 }
 
 impl AccountRecord {
@@ -240,6 +308,7 @@ impl AccountRecord {
             typical: a.typical.as_ref().map(|t| TypicalRecord::of(t, a)),
             leaf_outside_zones_m2: round_some(a.leaf_outside_zones_m2, 10.0),
             conflicts: a.conflicts.iter().map(ConflictRecord::of).collect(),
+            lines: a.lines.iter().map(LineRecord::of).collect(),
         }
     }
 }

@@ -143,6 +143,27 @@ fn columns() -> &'static [Column] {
                 })
             }),
             column("conflicts", |a| conflicts_cell(&a.conflicts)),
+            // The site's lines, before the year's cuts: the nearest any wood or leaf came, the
+            // most of the leaf inside a line's clearance at cutting, and whether any entered
+            // a line's minimum; empty without a line (or where the tree was not pruned).
+            column("line_closest_m", |a| {
+                let near = (a.lines.iter())
+                    .map(|l| l.check.closest_m)
+                    .filter(|d| d.is_finite())
+                    .fold(f64::INFINITY, f64::min);
+                cell(near.is_finite().then_some(near), 2)
+            }),
+            column("line_leaf_share_in_clearance", |a| {
+                let share = (a.lines.iter()).map(|l| l.check.leaf_share_in_clearance);
+                cell(share.reduce(f64::max), 3)
+            }),
+            column("line_breach", |a| {
+                if a.lines.is_empty() {
+                    String::new()
+                } else {
+                    a.lines.iter().any(|l| l.breach).to_string()
+                }
+            }),
             // This year's pruning, empty where no cycle fell due (or the tree was not pruned).
             column("pruning", |a| {
                 pruning_cell(a, |p| {
@@ -155,6 +176,12 @@ fn columns() -> &'static [Column] {
             }),
             column("pruning_reduction_cuts", |a| {
                 pruning_cell(a, |p| p.count(CutKind::Reduction).to_string())
+            }),
+            column("pruning_heading_cuts", |a| {
+                pruning_cell(a, |p| p.count(CutKind::Heading).to_string())
+            }),
+            column("pruning_hot_spots", |a| {
+                pruning_cell(a, |p| p.hot_spots.to_string())
             }),
             column("pruning_largest_cut_cm", |a| {
                 pruning_cell(a, |p| format!("{:.1}", 100.0 * p.cuts.largest_diameter()))
@@ -268,7 +295,7 @@ mod tests {
     fn columns_line_up_and_missing_is_empty() {
         let plane = Database::builtin().find("InlVal", "PLAC").unwrap();
         let site = Site::parse(
-            "[street]\ncurb = -1.0\nsidewalk = [0.8, 3.2]\nroadway_clearance = 4.3\nsidewalk_clearance = 2.4\n[[wire]]\nheight = 5.0\noffset = 0.0\nclearance = 2.0\n",
+            "[street]\ncurb = -1.0\nsidewalk = [0.8, 3.2]\nroadway_clearance = 4.3\nsidewalk_clearance = 2.4\n[[wire]]\nheight = 5.0\noffset = 0.0\nclearance = 2.0\nminimum = 0.46\n",
             "t",
         )
         .unwrap();

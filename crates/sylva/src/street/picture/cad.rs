@@ -341,7 +341,7 @@ mod tests {
             .into();
         let site = Site::parse(
             "[street]\ncurb = -1.0\nsidewalk = [0.8, 3.2]\nroadway_clearance = 4.3\n\
-             sidewalk_clearance = 2.4\n[[wire]]\nheight = 8.5\noffset = -0.6\nclearance = 3.0\n",
+             sidewalk_clearance = 2.4\n[[wire]]\nheight = 8.5\noffset = -0.6\nclearance = 3.0\nminimum = 0.46\n",
             "test",
         )
         .unwrap();

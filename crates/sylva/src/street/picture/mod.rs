@@ -295,7 +295,9 @@ mod tests {
         );
         // A line through the crown: red in the section and in the plan.
         let wired = Site::parse(
-            &format!("{street}[[wire]]\nheight = 4.0\noffset = 0.0\nclearance = 1.0\n"),
+            &format!(
+                "{street}[[wire]]\nheight = 4.0\noffset = 0.0\nclearance = 1.0\nminimum = 0.46\n"
+            ),
             "wired",
         )
         .unwrap();
@@ -312,11 +314,13 @@ mod tests {
         let mut grower = Grower::new(plane, GrowthOptions::default());
         let street = "[street]\ncurb = -3.5\nsidewalk = [3.0, 5.0]\nroadway_clearance = 0.5\nsidewalk_clearance = 0.5\n";
         let site = Site::parse(
-            &format!("{street}[[wire]]\nheight = 6.0\noffset = 0.0\nclearance = 1.5\n"),
+            &format!(
+                "{street}[[wire]]\nheight = 6.0\noffset = 0.0\nclearance = 1.5\nminimum = 0.46\n"
+            ),
             "wired",
         )
         .unwrap();
-        let pruner = Pruner::new(&site, None).unwrap();
+        let mut pruner = Pruner::new(&site, None).unwrap();
         grower.advance_to(8.0);
         let (year, before) = pruner
             .year(&mut grower, 8.0)

@@ -20,8 +20,11 @@ pub enum Kind {
     Awning,
     /// Into a sign.
     Sign,
-    /// Inside an overhead line's clearance.
+    /// Inside an overhead line's clearance at cutting: due for line clearance.
     Wire,
+    /// Inside an overhead line's minimum clearance, which no leaf or wood may enter at any
+    /// time (GO 95's Rule 35): a breach, not a routine conflict.
+    WireMinimum,
     /// Around a street light's lamp.
     Light,
     /// Into a sight triangle's clear band.
@@ -36,11 +39,12 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in report order.
-    pub const ALL: [Kind; 9] = [
+    pub const ALL: [Kind; 10] = [
         Kind::Facade,
         Kind::Awning,
         Kind::Sign,
         Kind::Wire,
+        Kind::WireMinimum,
         Kind::Light,
         Kind::SightTriangle,
         Kind::Roadway,
@@ -55,6 +59,7 @@ impl Kind {
             Kind::Awning => "awning",
             Kind::Sign => "sign",
             Kind::Wire => "wire",
+            Kind::WireMinimum => "wire_minimum",
             Kind::Light => "light",
             Kind::SightTriangle => "sight_triangle",
             Kind::Roadway => "roadway",
@@ -212,14 +217,16 @@ impl Zones {
             }
         }
         for w in &site.wire {
-            zones.push((
-                Kind::Wire,
-                Shape::Line {
-                    y: f32(w.offset),
-                    z: f32(w.height),
-                    r2: f32(w.clearance * w.clearance),
-                },
-            ));
+            for (kind, r) in [(Kind::Wire, w.clearance), (Kind::WireMinimum, w.minimum)] {
+                zones.push((
+                    kind,
+                    Shape::Line {
+                        y: f32(w.offset),
+                        z: f32(w.height),
+                        r2: f32(r * r),
+                    },
+                ));
+            }
         }
         for l in &site.light {
             zones.push((
@@ -449,7 +456,7 @@ mod tests {
 
     #[test]
     fn a_wire_over_the_limb_is_hit_by_the_limb() {
-        let s = site("[[wire]]\nheight = 6.0\noffset = -2.5\nclearance = 1.5\n");
+        let s = site("[[wire]]\nheight = 6.0\noffset = -2.5\nclearance = 1.5\nminimum = 0.46\n");
         let c = conflicts(&tree(), &s);
         let wire = c
             .iter()
@@ -458,7 +465,7 @@ mod tests {
         assert_eq!(wire.part, Part::Limb);
         assert!((wire.leaf_share - 1.0).abs() < 1e-9);
         // Raise the wire out of reach: no conflict.
-        let s = site("[[wire]]\nheight = 9.0\noffset = -2.5\nclearance = 1.5\n");
+        let s = site("[[wire]]\nheight = 9.0\noffset = -2.5\nclearance = 1.5\nminimum = 0.46\n");
         assert!(conflicts(&tree(), &s).iter().all(|c| c.kind != Kind::Wire));
     }
 

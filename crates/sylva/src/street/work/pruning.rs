@@ -106,7 +106,7 @@ mod tests {
 
     const STREET: &str = "[street]\ncurb = -1.0\nsidewalk = [0.8, 3.2]\n\
                           roadway_clearance = 4.3\nsidewalk_clearance = 2.4\n";
-    const WIRE: &str = "[[wire]]\nheight = 8.5\noffset = -0.6\nclearance = 3.0\n";
+    const WIRE: &str = "[[wire]]\nheight = 8.5\noffset = -0.6\nclearance = 3.0\nminimum = 0.46\n";
 
     fn site(extra: &str) -> Result<Site, String> {
         Site::parse(&format!("{STREET}{extra}"), "site.toml").map_err(|e| e.to_string())
