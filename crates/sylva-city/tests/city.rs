@@ -597,3 +597,66 @@ fn a_condition_column_of_numbers_is_refused() {
         .to_string();
     assert!(e.contains("--condition-col COND: no such column"), "{e}");
 }
+
+/// Sylva's roots model beside the sidewalk damage a real census recorded: New York's 2015
+/// Street Tree Census, a random sample of 3,000 of its trees (tests/data, its original
+/// columns), planned as `sylva city` plans it (no growth needed). The sample's trees are
+/// among the census's 652,172 the model's size and place were fitted to (0.5% of them), its
+/// species' shifts fitted to other trees of the census.
+#[test]
+fn the_roots_model_matches_a_real_census_s_recorded_sidewalk_damage() {
+    use sylva_city::report::pavement::pavement;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/nyc-2015-random-3000.csv");
+    let inv = inventory::load(&path, None, &Layout::default()).unwrap();
+    let p = plan(
+        &inv,
+        &CityOptions {
+            region: Some("NoEast".into()),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let pv = pavement(&p).expect("the census records sidewalk damage");
+    let show = |c: &sylva_city::report::pavement::Class| {
+        format!(
+            "{}: {} trees, recorded {:.3}, model {:.3} (se {:.3})",
+            c.class, c.trees, c.observed, c.predicted, c.error
+        )
+    };
+    // Every living tree's sidewalk recorded, 29% damaged; the model within 3 points.
+    assert!(pv.all.trees > 2800, "{}", show(&pv.all));
+    assert!((pv.all.observed - 0.29).abs() < 0.02, "{}", show(&pv.all));
+    assert!(pv.all.difference().abs() < 0.03, "{}", show(&pv.all));
+    // By place and by DBH class, every class within 10 points or its own sampling error.
+    for c in pv.by_place.iter().chain(&pv.by_dbh) {
+        assert!(
+            c.difference().abs() <= 0.10 || c.sampling().is_some(),
+            "{}",
+            show(c)
+        );
+    }
+    // Trees offset from the curb are recorded damaged at about half the rate of those along
+    // it, and the model says so.
+    let place = |name: &str| pv.by_place.iter().find(|c| c.class == name).unwrap();
+    let (along, offset) = (place("along the curb"), place("offset from the curb"));
+    assert!(offset.observed < 0.6 * along.observed && offset.predicted < 0.6 * along.predicted);
+    // Damage rises with the trunk, recorded and modelled.
+    let first = &pv.by_dbh[0];
+    let big = pv
+        .by_dbh
+        .iter()
+        .find(|c| c.class.starts_with("45.7"))
+        .unwrap();
+    assert!(big.observed > first.observed + 0.15 && big.predicted > first.predicted + 0.15);
+    // The species with most trees: each within 10 points or its sampling error, and read by
+    // its own rooting habit.
+    assert!(pv.by_species.len() >= 10);
+    for (c, habit) in &pv.by_species {
+        assert!(
+            c.difference().abs() <= 0.10 || c.sampling().is_some(),
+            "{} ({habit})",
+            show(c)
+        );
+    }
+    assert!(pv.by_species.iter().filter(|(_, h)| h == "species").count() >= 8);
+}

@@ -6,6 +6,7 @@ use crate::shared::{database, with_progress};
 use anyhow::{Result, bail};
 use sylva::growth::Measured;
 use sylva::street::Basis;
+use sylva::street::accounts::items::Payer;
 use sylva::street::rank::{Pruning, RankRequest, rank};
 use sylva::street::records::{CalibrationRecord, RankRow, to_json};
 
@@ -62,20 +63,23 @@ pub fn run(args: &RankArgs) -> Result<()> {
         basis.name()
     );
     println!(
-        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>10} {:>10} {:>10}  {:<22} first conflict with a fixture",
+        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>8} {:>8} {:>8} {:>10} {:>10} {:<5}  {:<22} first conflict with a fixture",
         "rank",
         "species",
         "years",
         "benefits",
         "(typical)",
-        "costs",
+        "city",
+        "utility",
+        "owners",
         "net",
         "(typical)",
+        "suits",
         "clearance pruning from"
     );
     println!(
-        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>10} {:>10} {:>10}",
-        "", "", "", "this site", "position", "", "this site", "position"
+        "  {:<4} {:<34} {:>5} {:>10} {:>10} {:>8} {:>8} {:>8} {:>10} {:>10}",
+        "", "", "", "this site", "position", "costs", "costs", "costs", "this site", "position"
     );
     for (i, r) in ranked.iter().enumerate() {
         let earliest = |clearance: bool| match r.earliest(clearance) {
@@ -98,21 +102,56 @@ pub fn run(args: &RankArgs) -> Result<()> {
                 "-".into()
             }
         };
+        let has_costs = r.accounts.iter().any(|a| a.costs.is_some());
+        let paid = |p: Payer| {
+            if has_costs {
+                let v = (r.costs_by_payer().iter())
+                    .find(|(q, _)| *q == p)
+                    .map_or(0.0, |x| x.1);
+                format!("{v:.0}")
+            } else {
+                "-".into()
+            }
+        };
+        let suits = match (site.is_some(), r.unsuited().is_empty()) {
+            (false, _) => "-",
+            (true, true) => "yes",
+            (true, false) => "no",
+        };
         println!(
-            "  {:<4} {:<34} {:>5.0} {:>10} {:>10.0} {:>10} {:>10} {:>10.0}  {pruning:<22} {conflict}{carbon_missing}",
+            "  {:<4} {:<34} {:>5.0} {:>10} {:>10.0} {:>8} {:>8} {:>8} {:>10} {:>10.0} {suits:<5}  {pruning:<22} {conflict}{carbon_missing}",
             i + 1,
             r.species.label(),
             r.last_age(),
             own(r.benefits(Basis::Site)),
             r.benefits(Basis::Typical),
-            if r.accounts.iter().any(|a| a.costs.is_some()) {
-                format!("{:.0}", r.costs())
-            } else {
-                "-".into()
-            },
+            paid(Payer::City),
+            paid(Payer::Utility),
+            paid(Payer::Owners),
             own(r.net(Basis::Site)),
             r.net(Basis::Typical)
         );
+    }
+    // Where a species does not suit the site, and why; and what its conflicts cost, by who
+    // paid.
+    if site.is_some() {
+        let unsuited: Vec<&sylva::street::rank::Ranked> =
+            ranked.iter().filter(|r| !r.unsuited().is_empty()).collect();
+        if !unsuited.is_empty() {
+            println!("does not suit the site:");
+        }
+        for r in unsuited {
+            println!("  {}: {}", r.species.label(), r.unsuited().join("; "));
+        }
+        println!("the street's conflicts, over the years per tree planted, by who paid:");
+        for r in &ranked {
+            let costs: Vec<String> = (r.conflict_costs().iter())
+                .map(|(what, payer, usd)| format!("{what} ${usd:.0} ({})", payer.name()))
+                .collect();
+            if !costs.is_empty() {
+                println!("  {}: {}", r.species.label(), costs.join(", "));
+            }
+        }
     }
     // What every species lacks alike, said once.
     let common: Vec<&String> = ranked[0]

@@ -356,7 +356,14 @@ function drawConflicts() {
     const s = state.species.find((x) => x.code === code);
     if (!g) return;
     const items = g.first_conflicts.map((c) => `${c.kind.replace('_', ' ')} at ${c.age}`);
-    parts.push(`<li style="color:${COLOURS[i]}"><b>${s.common}</b>: ${items.join(', ') || 'none in its data'}</li>`);
+    // What the conflicts cost over every age shown, by who paid, and where the species does
+    // not suit the site (the library's words: sylva::street::rank::unsuited).
+    const costs = (g.conflict_costs || []).map((c) => `${c.conflict} $${Math.round(c.usd)} (${c.payer})`);
+    const suits = (g.does_not_suit || []).length
+      ? `<br><b>Does not suit this site</b>: ${g.does_not_suit.join('; ')}`
+      : '<br>Suits this site.';
+    parts.push(`<li style="color:${COLOURS[i]}"><b>${s.common}</b>: ${items.join(', ') || 'none in its data'}` +
+      `${costs.length ? `<br><small>Per tree planted over these ages: ${costs.join(', ')}</small>` : ''}${suits}</li>`);
     for (const c of g.first_conflicts) {
       if (c.age < lo || c.age > hi) continue;
       const m = document.createElement('span');

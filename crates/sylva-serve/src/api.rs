@@ -19,8 +19,8 @@ use sylva::growth::survey::report::{self, AgeRecord};
 use sylva::street::accounts::table;
 use sylva::street::picture::site_picture;
 use sylva::street::records::{
-    GrowableRecord, PageConflict, PageGrowth, PageRow, RegionLabel, RegionRecord, SpeciesLabel,
-    to_json,
+    ConflictCostRecord, GrowableRecord, PageConflict, PageGrowth, PageRow, RegionLabel,
+    RegionRecord, SpeciesLabel, to_json,
 };
 
 type Params = AxumQuery<HashMap<String, String>>;
@@ -303,6 +303,8 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
     let entries = state
         .all(&region, m, seed, pruned, Deadline::new(&state))
         .await?;
+    let accounts: Vec<&sylva::street::YearAccount> =
+        entries.iter().map(|e| &e.accounts[site]).collect();
     let body = to_json(&PageGrowth {
         species: SpeciesLabel::of(m),
         region: RegionLabel::of(m),
@@ -319,6 +321,8 @@ pub async fn growth(AxumState(state): AxumState<Arc<State>>, AxumQuery(q): Param
             age,
         })
         .collect(),
+        does_not_suit: sylva::street::rank::unsuited(&accounts),
+        conflict_costs: ConflictCostRecord::of(&accounts),
         missing: grown::missing(m, site),
     });
     let json = axum::body::Bytes::from(body.to_string());

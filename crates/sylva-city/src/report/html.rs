@@ -229,10 +229,20 @@ impl CityReport {
              <th>Lights or wires in the branches, under · at or over</th></tr>",
             predicted::SITE.0
         );
+        // A crown that grows into the line's clearance needs the utility's crews for life:
+        // the ranking (`sylva rank --site`) prices it, and says it does not suit such a site
+        // where the crews must come back between cycles.
         let when = |f: Option<predicted::First>, years: f64| {
-            f.map_or(format!("not by {years:.0} years (its oldest class)"), |f| {
-                format!("DBH {:.0} cm (age {:.0})", f.dbh_cm, f.age)
-            })
+            f.map_or(
+                format!("not by {years:.0} years (its oldest class): suits a street under lines"),
+                |f| {
+                    format!(
+                        "DBH {:.0} cm (age {:.0}): needs the utility's crews under lines \
+                         (<code>sylva rank --site</code> prices them)",
+                        f.dbh_cm, f.age
+                    )
+                },
+            )
         };
         for p in &self.predicted {
             let rows: Vec<&observed::ProblemRow> = (self.observed.problems.iter())

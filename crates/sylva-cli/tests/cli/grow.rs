@@ -46,7 +46,10 @@ fn grow_writes_a_model_per_age_a_csv_and_a_chart_and_refuses_bad_input() {
         lines[0].contains("pipe_exponent,live_branches,shed_branches,live_segments,co2_stored_kg")
     );
     assert!(lines[0].contains(",net_usd,typical_net_usd,alive_share,died_share,planted_net_usd,"));
-    assert!(lines[0].contains(",typical_planted_net_usd,conflicts,pruning,"));
+    assert!(lines[0].contains(
+        ",typical_planted_net_usd,conflicts,line_closest_m,line_leaf_share_in_clearance,\
+         line_breach,pruning,"
+    ));
     assert!(lines[0].ends_with(",pruning_resolved,pruning_unresolved"));
     let columns = lines[0].split(',').count();
     // Modelled height within 5% of the equation at every age written; the form's columns

@@ -84,20 +84,9 @@ fn a_plane_under_wires_reports_benefits_costs_and_conflicts_year_by_year() {
         // A deciduous plane's bare winter wood keeps some winter sun off the façade: a
         // penalty, never a gain.
         assert!(number(row, "heating_penalty_kbtu") >= 0.0, "{row:?}");
-        let costs: f64 = [
-            "planting",
-            "pruning",
-            "removal",
-            "sidewalk",
-            "cleanup",
-            "pest_liability_administration",
-            "average",
-            "cycles",
-            "line_clearance_utility",
-        ]
-        .iter()
-        .map(|c| number(row, &format!("cost_{c}_usd")))
-        .sum();
+        let costs: f64 = (sylva::street::accounts::items::COSTS.iter())
+            .map(|c| number(row, &format!("cost_{}_usd", c.key)))
+            .sum();
         // Every category of the site's account is priced, aesthetics too.
         assert!(number(row, "value_aesthetics_usd") >= 0.0);
         let categories = [
@@ -273,6 +262,26 @@ fn bad_sites_prices_and_costs_are_refused_before_anything_is_written() {
             vec!["light", "apart"],
         ),
         (good.replace("voltage_kv = 12.0", "voltage = 12"), "--site", vec!["voltage"]),
+        // A line's minimum clearance larger than its clearance at cutting.
+        (
+            good.replace("voltage_kv = 12.0", "clearance = 1.0\nminimum = 1.5"),
+            "--site",
+            vec!["wire.minimum", "at most the clearance"],
+        ),
+        // A strip of negative width: the curb on the building side of the trunk, or the
+        // sidewalk starting in the roadway.
+        (good.replace("curb = -0.6", "curb = 0.4"), "--site", vec!["street.curb"]),
+        (
+            good.replace("sidewalk = [0.6, 2.1]", "sidewalk = [-0.9, 2.1]"),
+            "--site",
+            vec!["street.sidewalk", "curb <= from"],
+        ),
+        // A mitigation whose price no cost table gives (the site asks for a root barrier).
+        (
+            format!("{good}\n[mitigation]\nroot_barrier_m = 6.0\n"),
+            "--site",
+            vec!["mitigation.root_barrier_m", "mitigation.root_barrier_per_m", "costs.toml"],
+        ),
         (
             "source = \"x\"\nyear = 2024\nelectricity_per_kwh = 0.3\nnatural_gas_per_kbtu = 0.01\nco2_per_kg = 0.05\n".into(),
             "--prices",

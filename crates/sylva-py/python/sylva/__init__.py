@@ -106,7 +106,9 @@ def rank(
     """``region``'s species grown yearly for ``years`` and ranked by net benefit per tree
     planted, best first, as ``sylva rank --json`` writes them: one dict per species
     (``net_usd``, ``benefits_usd``, ``costs_usd``, ``typical`` and ``site`` sums by i-Tree's
-    categories, ``first_conflicts``, ``pruning``, ``not_computed``).
+    categories, ``costs_by_item_usd`` and ``costs_by_payer_usd`` (city, utility, owners),
+    ``conflict_costs``, ``conflict_years``, ``does_not_suit``, ``first_conflicts``,
+    ``pruning``, ``not_computed``).
 
     ``species`` limits the ranking to those codes; ``site``, ``prices`` and ``costs`` are TOML
     files as ``sylva rank`` reads them; ``pruning`` is ``"regime"`` (the site's cycles cut

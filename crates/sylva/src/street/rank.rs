@@ -1,14 +1,14 @@
 //! A region's species side by side: each grown year by year on the same site, its benefits
 //! and costs summed over the years, and the first year it runs into the street.
 
-use super::accounts::items::Cost;
+use super::accounts::items::{Cost, Payer};
 use super::accounts::ledger::YearAccount;
 use super::accounts::money::Basis;
 use super::accounts::pruner::PruningYear;
 use super::error::StreetError;
 use super::study::{Spread, StreetTree};
 use super::work::conflicts::{Conflict, Kind};
-use crate::growth::{Database, Measured};
+use crate::growth::{CutKind, Database, Measured};
 use rayon::prelude::*;
 
 pub use super::study::{Pruning, Study};
@@ -68,23 +68,33 @@ impl Ranked {
         out
     }
 
-    /// Costs over the years per tree planted, item by item (`items.rs`'s [`Cost`]), dollars:
-    /// the city's, the utility's and the owners' (none where the run has no costs).
+    /// Costs over the years per tree planted, item by item ([`costs_by_item`]).
     pub fn costs_by_item(&self) -> Vec<(Cost, Option<f64>)> {
-        let mut out: Vec<(Cost, Option<f64>)> = Cost::ALL.map(|c| (c, None)).to_vec();
-        for a in &self.accounts {
-            let Some(c) = &a.costs else { continue };
-            for (i, (item, v)) in c.items().enumerate() {
-                // Planting is paid for every tree planted, the rest for the living.
-                let weight = if item == Cost::Planting {
-                    1.0
-                } else {
-                    a.cohort.alive
-                };
-                out[i].1 = Some(out[i].1.unwrap_or(0.0) + weight * v);
-            }
-        }
-        out
+        costs_by_item(&self.years())
+    }
+
+    /// Costs over the years per tree planted by who pays them ([`costs_by_payer`]).
+    pub fn costs_by_payer(&self) -> Vec<(Payer, f64)> {
+        costs_by_payer(&self.years())
+    }
+
+    /// What each of the street's conflicts cost, by who paid ([`conflict_costs`]).
+    pub fn conflict_costs(&self) -> Vec<(&'static str, Payer, f64)> {
+        conflict_costs(&self.years())
+    }
+
+    /// How many years each kind of conflict was in the way ([`conflict_years`]).
+    pub fn conflict_years(&self) -> Vec<(Kind, usize)> {
+        conflict_years(&self.years())
+    }
+
+    /// Where the species does not suit the site ([`unsuited`]).
+    pub fn unsuited(&self) -> Vec<String> {
+        unsuited(&self.years())
+    }
+
+    fn years(&self) -> Vec<&YearAccount> {
+        self.accounts.iter().collect()
     }
 
     /// The share of the trees planted alive at the end of the run.
@@ -133,6 +143,145 @@ impl Ranked {
             unresolved,
         })
     }
+}
+
+/// Costs over the years per tree planted, item by item (`items.rs`'s [`Cost`]), dollars:
+/// the city's, the utility's and the owners' (none where the run has no costs).
+pub fn costs_by_item(accounts: &[&YearAccount]) -> Vec<(Cost, Option<f64>)> {
+    let mut out: Vec<(Cost, Option<f64>)> = Cost::ALL.map(|c| (c, None)).to_vec();
+    for a in accounts {
+        let Some(c) = &a.costs else { continue };
+        for (i, (item, v)) in c.items().enumerate() {
+            // Planting, and what is done at planting, is paid for every tree planted, the rest
+            // for the living.
+            let weight = if item.at_planting() {
+                1.0
+            } else {
+                a.cohort.alive
+            };
+            out[i].1 = Some(out[i].1.unwrap_or(0.0) + weight * v);
+        }
+    }
+    out
+}
+
+/// Costs over the years per tree planted by who pays them (`items.rs`'s [`Payer`]),
+/// dollars.
+pub fn costs_by_payer(accounts: &[&YearAccount]) -> Vec<(Payer, f64)> {
+    let items = costs_by_item(accounts);
+    (Payer::ALL.into_iter())
+        .map(|p| {
+            let paid = (items.iter())
+                .filter(|(c, _)| c.payer() == p)
+                .filter_map(|(_, v)| *v)
+                .sum();
+            (p, paid)
+        })
+        .collect()
+}
+
+/// What each of the street's conflicts cost over the years per tree planted, by who paid:
+/// the line's clearance (the utility's crews), the clear heights and the building (the
+/// city's crews, whose visits also train the young tree), and the pavement the roots lift
+/// (its repairs, the city's and the owners' shares, and the claims and administration
+/// that come with them), dollars; only those that cost anything.
+pub fn conflict_costs(accounts: &[&YearAccount]) -> Vec<(&'static str, Payer, f64)> {
+    let items = costs_by_item(accounts);
+    let of = |wanted: &[Cost]| -> f64 {
+        (items.iter())
+            .filter(|(c, _)| wanted.contains(c))
+            .filter_map(|(_, v)| *v)
+            .sum()
+    };
+    [
+        ("line clearance", Payer::Utility, of(&[Cost::LineClearance])),
+        (
+            "clear heights, building and training",
+            Payer::City,
+            of(&[Cost::Cycles]),
+        ),
+        (
+            "pavement lifted by the roots",
+            Payer::City,
+            of(&[Cost::Sidewalk, Cost::Liability, Cost::Mitigation]),
+        ),
+        (
+            "pavement lifted by the roots",
+            Payer::Owners,
+            of(&[Cost::SidewalkOwners]),
+        ),
+    ]
+    .into_iter()
+    .filter(|c| c.2 > 0.0)
+    .collect()
+}
+
+/// How many years each kind of conflict was in the way, before the year's cuts or after
+/// them, or (a line) made the utility's crew cut.
+pub fn conflict_years(accounts: &[&YearAccount]) -> Vec<(Kind, usize)> {
+    (Kind::ALL.into_iter())
+        .map(|k| {
+            let years = (accounts.iter().copied())
+                .filter(|a| {
+                    a.conflicts.iter().any(|c| c.kind == k)
+                        || a.pruning.as_ref().is_some_and(|p| p.before.contains(&k))
+                        || (k == Kind::Wire && a.lines.iter().any(|l| l.visit.is_some()))
+                })
+                .count();
+            (k, years)
+        })
+        .filter(|(_, n)| *n > 0)
+        .collect()
+}
+
+/// Where the species does not suit the site, each reason in words; empty where it does:
+/// - it does not make the utility's trim cycle, the crews coming back between cycles to
+///   keep its crown out of the line (utilities remove such trees from under their lines:
+///   "Trees under the power lines such as locust, cherry and maple are removed when they're
+///   young because they are fast growers and do not make the normal trim cycle", Peninsula
+///   Light Co.'s tree trimming FAQ);
+/// - its leader had to be headed back to clear the line, having no lateral to be cut back
+///   to (Dahle et al. 2006 found 80% of headed silver maple leaders decayed from the cut);
+/// - any leaf or wood entered a line's minimum clearance;
+/// - its trunk's flare outgrew its bed, reaching the curb or the sidewalk.
+pub fn unsuited(accounts: &[&YearAccount]) -> Vec<String> {
+    let mut out = Vec::new();
+    let years: Vec<&PruningYear> = accounts.iter().filter_map(|a| a.pruning.as_ref()).collect();
+    let hot: u32 = years.iter().map(|y| y.hot_spots).sum();
+    if hot > 0 {
+        let first = (accounts.iter().copied())
+            .find(|a| a.pruning.as_ref().is_some_and(|p| p.hot_spots > 0))
+            .map_or(0.0, |a| a.age);
+        out.push(format!(
+            "does not make the utility's trim cycle: {hot} visits between cycles to keep it \
+             out of the line, from age {first:.0}"
+        ));
+    }
+    let headed: usize = years.iter().map(|y| y.count(CutKind::Heading)).sum();
+    if headed > 0 {
+        out.push(format!(
+            "its leader headed back {headed} times to clear the line (no lateral to cut \
+             back to)"
+        ));
+    }
+    let breaches = (accounts.iter().copied())
+        .flat_map(|a| &a.lines)
+        .filter(|l| l.breach)
+        .count();
+    if breaches > 0 {
+        out.push(format!(
+            "leaf or wood inside the line's minimum clearance in {breaches} years"
+        ));
+    }
+    let flare =
+        (accounts.iter().copied()).find(|a| a.conflicts.iter().any(|c| c.kind == Kind::TrunkFlare));
+    if let Some(a) = flare {
+        out.push(format!(
+            "its trunk's flare outgrows its bed, reaching the pavement at age {:.0}",
+            a.age
+        ));
+    }
+    out
 }
 
 /// A run's pruning, summed over its years.
@@ -316,5 +465,63 @@ pub fn run(m: &Measured, study: &Study) -> Ranked {
         pruned: tree.pruned(),
         benefits_lost: None,
         survival: assessor.survival().source.clone(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::street::Site;
+
+    fn narrow() -> Site {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../sites/narrow-under-wires.toml"
+        ))
+        .unwrap();
+        Site::parse(&text, "narrow-under-wires.toml").unwrap()
+    }
+
+    /// Under the narrow site's line a plane does not make the utility's trim cycle and its
+    /// conflicts cost the utility, the city and the owners; a crapemyrtle, which matures below
+    /// the line, suits it. Nothing here ranks by height: each says so from its own account.
+    #[test]
+    fn a_species_that_outgrows_the_line_does_not_suit_the_site_and_says_who_pays() {
+        let db = Database::builtin();
+        let study = Study {
+            site: Some(narrow()),
+            ..Study::new(16.0)
+        };
+        let plane = run(&db.find("InlVal", "PLAC").unwrap(), &study);
+        let myrtle = run(&db.find("InlVal", "LAIN").unwrap(), &study);
+        let unsuited = plane.unsuited();
+        assert!(
+            unsuited.iter().any(|u| u.contains("trim cycle")),
+            "{unsuited:?}"
+        );
+        assert!(myrtle.unsuited().is_empty(), "{:?}", myrtle.unsuited());
+        // Who pays what: the payers' sums are the costs; the line is the utility's alone.
+        for r in [&plane, &myrtle] {
+            let paid: f64 = r.costs_by_payer().iter().map(|p| p.1).sum();
+            assert!((paid - r.costs()).abs() < 1e-6, "{paid} {}", r.costs());
+        }
+        let line = (plane.conflict_costs().into_iter())
+            .find(|c| c.0 == "line clearance")
+            .expect("the plane's line clearance");
+        assert_eq!(line.1, Payer::Utility);
+        assert!(line.2 > 0.0);
+        assert!(
+            (plane.conflict_costs().iter())
+                .any(|c| c.0.contains("pavement") && c.1 == Payer::Owners && c.2 > 0.0)
+        );
+        assert!(
+            myrtle
+                .conflict_costs()
+                .iter()
+                .all(|c| c.1 != Payer::Utility)
+        );
+        // The years the line made the utility cut are counted as the wire's.
+        let wire = (plane.conflict_years().into_iter()).find(|k| k.0 == Kind::Wire);
+        assert!(wire.is_some_and(|(_, n)| n >= 4), "{wire:?}");
     }
 }

@@ -145,6 +145,18 @@ impl RankPruningRecord {
     }
 }
 
+/// What one of the street's conflicts cost over a ranking's years per tree planted, and who
+/// paid it.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ConflictCostRecord {
+    /// The conflict.
+    pub conflict: String,
+    /// Who paid: `city`, `utility` or `owners`.
+    pub payer: String,
+    /// Dollars.
+    pub usd: f64,
+}
+
 /// One species of a ranking (`sylva rank --json`, one line per species, best first).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct RankRow {
@@ -170,6 +182,14 @@ pub struct RankRow {
     pub survival: String,
     /// Costs by item.
     pub costs_by_item_usd: Dollars,
+    /// Costs by who pays them: `city`, `utility`, `owners`.
+    pub costs_by_payer_usd: Dollars,
+    /// What each of the street's conflicts cost, by who paid.
+    pub conflict_costs: Vec<ConflictCostRecord>,
+    /// Years each kind of conflict was in the way (or, a line, made the utility cut).
+    pub conflict_years: BTreeMap<String, usize>,
+    /// Where the species does not suit the site, with why; empty where it does.
+    pub does_not_suit: Vec<String>,
     /// The sums at typical position and on the site.
     pub typical: NetRecord,
     #[allow(missing_docs)]
@@ -210,6 +230,16 @@ impl RankRow {
                     .map(|(c, v)| (c.item().key, v))
                     .collect::<Vec<_>>(),
             ),
+            costs_by_payer_usd: dollars(
+                &(r.costs_by_payer().into_iter())
+                    .map(|(p, v)| (p.name(), Some(v)))
+                    .collect::<Vec<_>>(),
+            ),
+            conflict_costs: ConflictCostRecord::of(&r.accounts.iter().collect::<Vec<_>>()),
+            conflict_years: (r.conflict_years().into_iter())
+                .map(|(k, n)| (k.name().to_string(), n))
+                .collect(),
+            does_not_suit: r.unsuited(),
             typical: NetRecord::of(r, Basis::Typical),
             site: NetRecord::of(r, Basis::Site),
             first_conflicts: first,
@@ -381,8 +411,25 @@ pub struct PageGrowth {
     pub rows: Vec<PageRow>,
     /// The first age of each kind of conflict, by age.
     pub first_conflicts: Vec<PageConflict>,
+    /// Where the species does not suit the site, with why (`street::rank::unsuited`).
+    pub does_not_suit: Vec<String>,
+    /// What the street's conflicts cost over every age shown, per tree planted, by who paid.
+    pub conflict_costs: Vec<ConflictCostRecord>,
     /// What was not computed, with reasons.
     pub missing: Vec<String>,
+}
+
+impl ConflictCostRecord {
+    /// Each conflict's cost over `accounts`, by who paid (`street::rank::conflict_costs`).
+    pub fn of(accounts: &[&super::YearAccount]) -> Vec<ConflictCostRecord> {
+        (super::rank::conflict_costs(accounts).into_iter())
+            .map(|(conflict, payer, usd)| ConflictCostRecord {
+                conflict: conflict.to_string(),
+                payer: payer.name().to_string(),
+                usd: round(usd, 100.0),
+            })
+            .collect()
+    }
 }
 
 impl SpeciesLabel {

@@ -234,6 +234,9 @@ pub struct PruningSpec {
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Site {
+    /// The file the site was read from (errors name it).
+    #[serde(skip)]
+    pub file: String,
     /// The street.
     pub street: Street,
     /// The building wall, if there is one.
@@ -374,6 +377,7 @@ impl Site {
                     .unwrap_or_default(),
         })?;
         let mut site = site;
+        site.file = file.to_string();
         site.resolve_wires(file)?;
         site.check(file)?;
         Ok(site)

@@ -66,11 +66,15 @@ impl Study {
     /// priced by its costs (or the built-in table). Run before anything grows, so a gap is an
     /// error naming the file and the key, with nothing written.
     pub fn check(&self) -> Result<(), StreetError> {
-        if let Some(m) = self.site.as_ref().and_then(|s| s.mitigation.as_ref()) {
-            self.costs
-                .as_ref()
-                .unwrap_or_else(|| Costs::sized())
-                .mitigation(m)?;
+        if let Some(site) = &self.site
+            && let Some(m) = &site.mitigation
+        {
+            (self.costs.as_ref().unwrap_or_else(|| Costs::sized()))
+                .mitigation(m)
+                .map_err(|message| StreetError::Syntax {
+                    file: site.file.clone(),
+                    message,
+                })?;
         }
         Ok(())
     }

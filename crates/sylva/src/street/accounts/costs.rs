@@ -214,9 +214,12 @@ impl YearCosts {
     }
 
     /// Per tree planted, where `alive` of the trees planted stand through the year: planting
-    /// is paid for every tree planted, the rest for the living.
+    /// (and what is done at planting) is paid for every tree planted, the rest for the living.
     pub fn per_planted(&self, alive: f64) -> f64 {
-        let planting = self[Cost::Planting];
+        let planting: f64 = (self.items())
+            .filter(|(c, _)| c.at_planting())
+            .map(|(_, v)| v)
+            .sum();
         planting + alive * (self.total() - planting)
     }
 }
@@ -437,40 +440,42 @@ impl Costs {
         })
     }
 
-    /// What `site`'s mitigations cost at planting, $: each priced by this table, else by the
-    /// built-in one; an error names the price neither table gives (and the file this one was
-    /// read from). Nothing for a site without any.
-    pub fn mitigation(&self, m: &Mitigation) -> Result<f64, StreetError> {
-        let price = |key: &str, pick: fn(&MitigationPrices) -> Option<f64>| {
-            let own = match self {
+    /// What a site's mitigations `m` cost at planting, $: each priced by this table, else by
+    /// the built-in one. An error names the site's key that asks for a mitigation neither
+    /// table prices, the price's key, and the file this table was read from.
+    pub fn mitigation(&self, m: &Mitigation) -> Result<f64, String> {
+        let price = |asks: &str, key: &str, pick: fn(&MitigationPrices) -> Option<f64>| {
+            let table = |c: &Costs| match c {
                 Costs::Itemised(c) => c.mitigation.as_ref().and_then(pick),
                 Costs::Average(_) => None,
             };
-            let builtin = match Costs::sized() {
-                Costs::Itemised(c) => c.mitigation.as_ref().and_then(pick),
-                Costs::Average(_) => None,
-            };
-            own.or(builtin).ok_or_else(|| StreetError::Syntax {
-                file: match self {
+            table(self).or(table(Costs::sized())).ok_or_else(|| {
+                let file = match self {
                     Costs::Itemised(c) => c.file.clone(),
-                    Costs::Average(_) => "the programme average".into(),
-                },
-                message: format!(
-                    "`mitigation.{key}` is not given, and the built-in table has no sourced \
-                     price for it: the site's [mitigation] asks for it; give it in the costs \
-                     file's [mitigation] table"
-                ),
+                    Costs::Average(a) => a.source.clone(),
+                };
+                format!(
+                    "`mitigation.{asks}` asks for what no price is given for: \
+                     `mitigation.{key}` is neither in {file} nor sourced in the built-in \
+                     table; give it in a costs file's [mitigation] (--costs)"
+                )
             })
         };
         let mut total = 0.0;
         if let Some(length) = m.root_barrier_m {
-            total += length * price("root_barrier_per_m", |p| p.root_barrier_per_m)?;
+            total += length
+                * price("root_barrier_m", "root_barrier_per_m", |p| {
+                    p.root_barrier_per_m
+                })?;
         }
         if let Some(area) = m.cutout_m2 {
-            total += area * price("cutout_per_m2", |p| p.cutout_per_m2)?;
+            total += area * price("cutout_m2", "cutout_per_m2", |p| p.cutout_per_m2)?;
         }
         if let Some(area) = m.flexible_pavement_m2 {
-            total += area * price("flexible_pavement_per_m2", |p| p.flexible_pavement_per_m2)?;
+            total += area
+                * price("flexible_pavement_m2", "flexible_pavement_per_m2", |p| {
+                    p.flexible_pavement_per_m2
+                })?;
         }
         Ok(total)
     }
@@ -541,15 +546,15 @@ impl Costs {
                 y[Cost::Sidewalk] = chance * city;
                 y[Cost::SidewalkOwners] = chance * owners;
                 y[Cost::Sewer] = yearly(c.sewer_repair_per_year);
-                y[Cost::Other] = yearly(c.pest_per_year) + chance * with;
+                y[Cost::Liability] = chance * with;
             }
             _ => {
                 y[Cost::Sidewalk] = yearly(c.sidewalk_repair_per_year);
-                y[Cost::Other] = yearly(c.pest_per_year)
-                    + yearly(c.liability_per_year)
-                    + yearly(c.administration_per_year);
+                y[Cost::Liability] =
+                    yearly(c.liability_per_year) + yearly(c.administration_per_year);
             }
         }
+        y[Cost::Pest] = yearly(c.pest_per_year);
         y
     }
 }

@@ -133,11 +133,12 @@ pub const COSTS: [Item; Cost::COUNT] = [
     cost("mitigation", "Root mitigation", "#4f8f7a", Payer::City),
     cost("cleanup", "Clean-up", "#6f8f8f", Payer::City),
     cost(
-        "pest_liability_administration",
-        "Pest, liability, admin",
+        "liability_administration",
+        "Trip-and-fall, repair admin",
         "#8a8fc0",
         Payer::City,
     ),
+    cost("pest", "Pest management", "#6a7fa0", Payer::City),
     cost("average", "Programme average", "#9c5b5b", Payer::City),
     cost("cycles", "Pruning cycles (city)", "#d08a2e", Payer::City),
     cost(
@@ -202,8 +203,10 @@ pub enum Cost {
     Mitigation,
     /// Clean-up.
     Cleanup,
-    /// Pest management, liability and administration.
-    Other,
+    /// Trip-and-fall claims and the inspection and administration of sidewalk repairs.
+    Liability,
+    /// Pest management.
+    Pest,
     /// A programme's average, where no items are known.
     Average,
     /// The city's pruning cycles the site's regime cut this year.
@@ -214,7 +217,7 @@ pub enum Cost {
 
 impl Cost {
     /// How many there are.
-    pub const COUNT: usize = 12;
+    pub const COUNT: usize = 13;
     /// Every item, in report order.
     pub const ALL: [Cost; Cost::COUNT] = [
         Cost::Planting,
@@ -225,7 +228,8 @@ impl Cost {
         Cost::Sewer,
         Cost::Mitigation,
         Cost::Cleanup,
-        Cost::Other,
+        Cost::Liability,
+        Cost::Pest,
         Cost::Average,
         Cost::Cycles,
         Cost::LineClearance,
@@ -234,6 +238,12 @@ impl Cost {
     /// Its row of the table.
     pub fn item(self) -> &'static Item {
         &COSTS[self as usize]
+    }
+
+    /// Whether it is paid at planting, for every tree planted (the rest are paid for the
+    /// trees standing).
+    pub fn at_planting(self) -> bool {
+        matches!(self, Cost::Planting | Cost::Mitigation)
     }
 
     /// Who pays it.

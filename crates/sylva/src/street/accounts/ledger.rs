@@ -185,8 +185,10 @@ impl Assessor {
             ));
         }
         let has_rain = climate.and_then(|c| c.rain).is_some();
-        if site.as_ref().and_then(|s| s.facade.as_ref()).is_none() {
-            missing.push("energy: no façade to shade (give --site with a [facade])".into());
+        // Without a site the account is the typical position's, whose energy i-Tree's tables
+        // give; a site without a façade leaves its own account without energy.
+        if site.as_ref().is_some_and(|s| s.facade.is_none()) {
+            missing.push("energy: the site has no façade to shade (give it a [facade])".into());
         }
         match &prices {
             None => missing.push(format!(
