@@ -471,16 +471,8 @@ pub fn run(m: &Measured, study: &Study) -> Ranked {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::street::Site;
 
-    fn narrow() -> Site {
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../sites/narrow-under-wires.toml"
-        ))
-        .unwrap();
-        Site::parse(&text, "narrow-under-wires.toml").unwrap()
-    }
+    use crate::street::site::narrow_for_tests as narrow;
 
     /// Under the narrow site's line a plane does not make the utility's trim cycle and its
     /// conflicts cost the utility, the city and the owners; a crapemyrtle, which matures below

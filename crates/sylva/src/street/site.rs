@@ -620,6 +620,18 @@ impl Site {
     }
 }
 
+/// The repository's narrow street under wires (`sites/narrow-under-wires.toml`), for the
+/// street's tests.
+#[cfg(test)]
+pub(crate) fn narrow_for_tests() -> Site {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../sites/narrow-under-wires.toml"
+    ))
+    .expect("the narrow site");
+    Site::parse(&text, "narrow-under-wires.toml").expect("a good site")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

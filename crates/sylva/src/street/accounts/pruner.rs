@@ -512,14 +512,7 @@ mod tests {
     use crate::street::rank::{Pruning, Study, run};
     use crate::street::work::conflicts::conflicts;
 
-    fn narrow() -> Site {
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../sites/narrow-under-wires.toml"
-        ))
-        .expect("the narrow site");
-        Site::parse(&text, "narrow-under-wires.toml").expect("a good site")
-    }
+    use crate::street::site::narrow_for_tests as narrow;
 
     #[test]
     fn a_line_clearance_cycle_clears_the_wire_for_its_regrowth_and_is_the_utilitys() {

@@ -531,16 +531,9 @@ mod tests {
         // No growth, no new damage; a faster grower, more.
         assert_eq!(m.chance(30.0, 30.0, 0.6, &mean), 0.0);
         assert!(m.chance(30.0, 32.0, 0.6, &mean) > 1.9 * curb);
-        // A site's distance: the narrow strip is the census's curb, the boulevard half way.
-        let narrow = Site::parse(
-            &std::fs::read_to_string(concat!(
-                env!("CARGO_MANIFEST_DIR"),
-                "/../../sites/narrow-under-wires.toml"
-            ))
-            .unwrap(),
-            "narrow",
-        )
-        .unwrap();
+        // A site's distance: the narrow strip is the census's curb, the boulevard a quarter of
+        // the way out.
+        let narrow = crate::street::site::narrow_for_tests();
         assert!((distance_to_pavement(&narrow) - 0.6).abs() < 1e-9);
         assert_eq!(place(0.6), 0.0);
         assert!((place(1.5) - 0.255).abs() < 0.01);
