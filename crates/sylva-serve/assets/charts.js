@@ -81,15 +81,26 @@ export function lineChart(canvas, quantity, series, age) {
 // library's one table of account items (`sylva::street::accounts::items`, served as
 // /api/items), benefits keyed in `value_usd` and costs in `cost_usd`. A negative benefit (a
 // winter heating penalty, BVOCs emitted) is drawn below the line.
-const ITEMS = await fetch('/api/items').then((r) => {
-  if (!r.ok) throw new Error(`/api/items: HTTP ${r.status}`);
-  return r.json();
-});
-export const BENEFITS = ITEMS.filter((i) => i.side === 'benefit').map((i) => [i.key, i.label, i.colour]);
-export const COSTS = ITEMS.filter((i) => i.side === 'cost').map((i) => [i.key, i.label, i.colour, i.payer]);
+// Asked once, as the module loads; nothing waits on it but the bars, which are drawn when it
+// has come (a page's module graph is not held up by it).
+let BENEFITS = [];
+let COSTS = [];
+const itemsReady = fetch('/api/items')
+  .then((r) => {
+    if (!r.ok) throw new Error(`/api/items: HTTP ${r.status}`);
+    return r.json();
+  })
+  .then((items) => {
+    BENEFITS = items.filter((i) => i.side === 'benefit').map((i) => [i.key, i.label, i.colour]);
+    COSTS = items.filter((i) => i.side === 'cost').map((i) => [i.key, i.label, i.colour, i.payer]);
+  });
 
 // `items`: [{ label, colour, street }].
 export function barChart(canvas, items) {
+  if (!BENEFITS.length) {
+    itemsReady.then(() => barChart(canvas, items));
+    return;
+  }
   const [g, w, h] = prepare(canvas);
   const pad = { l: 46, r: 150, t: 10, b: 22 };
   let top = 1, bottom = 1;

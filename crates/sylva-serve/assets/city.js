@@ -396,7 +396,12 @@ async function showCard(row) {
   try {
     // A busy server (503) is waited for, and the card says what for.
     const growth = await askJson(`/api/growth?region=${encodeURIComponent(row.region)}&species=${encodeURIComponent(row.species)}`,
-      (n) => { $('card-note').textContent = probe.cardWaiting = `Growing its species for the charts: ${waitingText(n)}`; });
+      (n) => {
+        // Every message shown, in order (a real busy server may answer after the first).
+        const text = `Growing its species for the charts: ${waitingText(n)}`;
+        $('card-note').textContent = text;
+        (probe.cardWaited ||= []).push(text);
+      });
     if ($('card-title').textContent !== `${row.common_name || row.species}: tree ${row.id}`) return;
     const series = [{ colour: '#2f7d4f', rows: growth.rows }];
     for (const c of document.querySelectorAll('#card-charts canvas')) lineChart(c, c.dataset.q, series, age);

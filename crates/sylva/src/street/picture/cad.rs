@@ -188,13 +188,11 @@ fn section(d: &mut Drawing, site: &Site, (y0, y1): (f32, f32)) {
             add(rect("SITE-BUILDING", lo, (f(w.setback), f(b.top))));
         }
     }
+    // Each line, its clearance at cutting and the minimum kept at all times.
     for w in &site.wire {
-        add(circle("SITE-WIRES", (f(w.offset), f(w.height)), 0.05));
-        add(circle(
-            "SITE-WIRES",
-            (f(w.offset), f(w.height)),
-            f(w.clearance),
-        ));
+        for r in [0.05, w.clearance, w.minimum] {
+            add(circle("SITE-WIRES", (f(w.offset), f(w.height)), f(r)));
+        }
     }
     for l in &site.light {
         add(line("SITE-LIGHTS", (f(l.y), 0.0), (f(l.y), f(l.height))));

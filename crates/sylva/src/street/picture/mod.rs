@@ -190,6 +190,8 @@ fn section(
         let at = (wire.offset, wire.height);
         let r = c.pixels(wire.clearance);
         c.circle(at, r, &paint(40, 40, 40, 120), false);
+        // The minimum the utility keeps at all times, inside the clearance it cuts to.
+        c.circle(at, c.pixels(wire.minimum), &paint(160, 40, 40, 160), false);
         c.circle(at, 3.0, &paint(20, 20, 20, 255), true);
         if marked.contains(&Kind::Wire) {
             c.circle(at, r, &red, false);
