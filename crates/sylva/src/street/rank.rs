@@ -515,5 +515,20 @@ mod tests {
         // The years the line made the utility cut are counted as the wire's.
         let wire = (plane.conflict_years().into_iter()).find(|k| k.0 == Kind::Wire);
         assert!(wire.is_some_and(|(_, n)| n >= 4), "{wire:?}");
+        // What the cuts do to the tree is not priced, and the account says so; a site with
+        // no line does not.
+        let harm = |r: &Ranked| {
+            r.missing
+                .iter()
+                .any(|m| m.contains("repeated line clearance"))
+        };
+        assert!(harm(&plane), "{:?}", plane.missing);
+        let mut open = narrow();
+        open.wire.clear();
+        let unwired = Study {
+            site: Some(open),
+            ..Study::new(2.0)
+        };
+        assert!(!harm(&run(&db.find("InlVal", "PLAC").unwrap(), &unwired)));
     }
 }

@@ -190,6 +190,20 @@ impl Assessor {
         if site.as_ref().is_some_and(|s| s.facade.is_none()) {
             missing.push("energy: the site has no façade to shade (give it a [facade])".into());
         }
+        // What the utility's cuts do to the tree is measured only as decay, not as years of
+        // life or value lost: Dahle et al. (2006, AUF 32(6)) found 80% of headed silver
+        // maple leaders decayed, the columns some 2.5 times longer than the decay seen from
+        // outside, and gave no loss of life. So the harm is named, not charged; each headed
+        // leader is counted in the pruning record, and `rank` says such a species does not
+        // suit the site.
+        if site.as_ref().is_some_and(|s| !s.wire.is_empty()) {
+            missing.push(
+                "harm of repeated line clearance to the tree (decay from heading cuts, a \
+                 shorter life): no source quantifies it as life or value lost (Dahle et al. \
+                 2006 measured the decay only); the headed leaders are counted, not charged"
+                    .into(),
+            );
+        }
         match &prices {
             None => missing.push(format!(
                 "money: no built-in prices for {region} (give --prices)"

@@ -76,15 +76,15 @@ impl Reason {
 /// One year's pruning of a tree.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PruningYear {
-    /// The cycles due this year (line clearance also where a breach of a line's minimum
-    /// clearance called the utility's crew out between cycles).
+    /// The cycles due this year (line clearance also where the utility's patrol called its
+    /// crew out between cycles to a hot spot).
     pub reasons: Vec<Reason>,
     /// What the cuts took.
     pub cuts: Cuts,
     /// Crews' visits that cut something (the utility's, the city's).
     pub visits: u32,
-    /// Of those, the utility's visits between its cycles, called out by a breach of a line's
-    /// minimum clearance.
+    /// Of those, the utility's visits between its cycles: hot spots its yearly patrol saw
+    /// growing into a line's clearance at cutting before the next patrol.
     pub hot_spots: u32,
     /// Their cost, $: the utility's line clearance and the city's crews together.
     pub cost: f64,
@@ -182,7 +182,7 @@ pub struct LineYear {
 /// A visit of the utility's crew to a tree under one of its lines.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LineVisit {
-    /// On the line's cycle, or called out between cycles by a breach of its minimum.
+    /// On the line's cycle, or called out between cycles by the patrol to a hot spot.
     pub scheduled: bool,
     /// The regrowth the crew allows for before its next visit, m: the species' growth in
     /// height over the cycle, the cut held to [`MOST_CUT`].
@@ -326,8 +326,7 @@ impl Pruner {
         }
         let standing = grower.skeleton();
         let leaves = leaves_of(&standing);
-        // Every line is checked every year: a breach of its minimum calls the utility's crew
-        // out between its cycles.
+        // Every line is checked every year, as the utility's patrol does.
         let checks: Vec<LineCheck> = (self.site.wire.iter())
             .map(|w| check(&standing, &leaves, w))
             .collect();

@@ -68,7 +68,8 @@ pub struct PruningRecord {
     pub wood_removed_m3: f64,
     pub leaf_removed_m2: f64,
     pub visits: u32,
-    /// The utility's visits between its cycles, called out by a breach of a line's minimum.
+    /// The utility's visits between its cycles: hot spots its yearly patrol saw growing into
+    /// a line's clearance at cutting before the next patrol.
     pub hot_spots: u32,
     pub cost_usd: f64,
     pub deferred_cuts: usize,
