@@ -253,15 +253,16 @@ pub fn unsuited(accounts: &[&YearAccount]) -> Vec<String> {
             .find(|a| a.pruning.as_ref().is_some_and(|p| p.hot_spots > 0))
             .map_or(0.0, |a| a.age);
         out.push(format!(
-            "does not make the utility's trim cycle: {hot} visits between cycles to keep it \
-             out of the line, from age {first:.0}"
+            "does not make the utility's trim cycle: {} between cycles to keep it out of \
+             the line, from age {first:.0}",
+            counted(hot as usize, "visit", "visits")
         ));
     }
     let headed: usize = years.iter().map(|y| y.count(CutKind::Heading)).sum();
     if headed > 0 {
         out.push(format!(
-            "its leader headed back {headed} times to clear the line (no lateral to cut \
-             back to)"
+            "its leader headed back {} to clear the line (no lateral to cut back to)",
+            counted(headed, "time", "times")
         ));
     }
     let breaches = (accounts.iter().copied())
@@ -270,7 +271,8 @@ pub fn unsuited(accounts: &[&YearAccount]) -> Vec<String> {
         .count();
     if breaches > 0 {
         out.push(format!(
-            "leaf or wood inside the line's minimum clearance in {breaches} years"
+            "leaf or wood inside the line's minimum clearance in {}",
+            counted(breaches, "year", "years")
         ));
     }
     let flare =
@@ -466,6 +468,11 @@ pub fn run(m: &Measured, study: &Study) -> Ranked {
         benefits_lost: None,
         survival: assessor.survival().source.clone(),
     }
+}
+
+/// `n` and its noun: "1 visit", "9 visits".
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 #[cfg(test)]
