@@ -78,8 +78,35 @@ pub fn draw_text(picture: &mut Picture, x: f32, y: f32, size: f32, text: &str, c
     }
 }
 
-/// A copy of `picture` with a white band of `lines` below it, each line centred.
+/// `line` broken at spaces into lines no wider than `width` pixels at `size` (a word wider
+/// than that stands alone on its line).
+fn wrapped(line: &str, width: f32, size: f32) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    let mut current = String::new();
+    for word in line.split(' ') {
+        let longer = if current.is_empty() {
+            word.to_string()
+        } else {
+            format!("{current} {word}")
+        };
+        if !current.is_empty() && text_width(&longer, size) > width {
+            out.push(std::mem::replace(&mut current, word.to_string()));
+        } else {
+            current = longer;
+        }
+    }
+    out.push(current);
+    out
+}
+
+/// A copy of `picture` with a white band of `lines` below it, each line centred; a line wider
+/// than the picture goes on over as many lines as it needs.
 pub fn with_caption(picture: &Picture, lines: &[String], size: f32) -> Picture {
+    let margin = 4.0;
+    let room = picture.width as f32 - 2.0 * margin;
+    let lines: Vec<String> = (lines.iter())
+        .flat_map(|l| wrapped(l, room, size))
+        .collect();
     let line_height = (size * 1.35).ceil() as u32;
     let band = line_height * lines.len() as u32 + (size * 0.6) as u32;
     let mut out = Picture {
@@ -90,7 +117,7 @@ pub fn with_caption(picture: &Picture, lines: &[String], size: f32) -> Picture {
     };
     out.rgba[..picture.rgba.len()].copy_from_slice(&picture.rgba);
     for (k, line) in lines.iter().enumerate() {
-        let x = ((picture.width as f32 - text_width(line, size)) / 2.0).max(4.0);
+        let x = ((picture.width as f32 - text_width(line, size)) / 2.0).max(margin);
         let y = picture.height as f32 + (size * 0.3) + (k as u32 * line_height) as f32;
         draw_text(&mut out, x, y, size, line, [20, 20, 20]);
     }
@@ -173,6 +200,31 @@ mod tests {
         assert!(text_width("wide text", 16.0) > text_width("w", 16.0));
         let both = side_by_side(&[p.clone(), p], 10);
         assert_eq!((both.width, both.height), (410, 50));
+    }
+
+    /// A caption wider than its picture goes on over more lines, none cut off at the edge.
+    #[test]
+    fn a_long_caption_is_wrapped_within_the_picture() {
+        let p = Picture {
+            width: 300,
+            height: 20,
+            rgba: vec![255; 300 * 20 * 4],
+            stats: Default::default(),
+        };
+        let long = "a plane on a narrow street: first facade, awning, sign, roadway and sidewalk";
+        assert!(text_width(long, 16.0) > 300.0);
+        let one = with_caption(&p, &["short".to_string()], 16.0);
+        let c = with_caption(&p, &[long.to_string()], 16.0);
+        assert!(c.height > one.height, "{} {}", c.height, one.height);
+        // No ink in the last columns: nothing runs off the right edge.
+        let edge = (20..c.height)
+            .flat_map(|y| (c.width - 3..c.width).map(move |x| (x, y)))
+            .filter(|&(x, y)| c.pixel(x, y)[0] < 200)
+            .count();
+        assert_eq!(edge, 0);
+        let lines = wrapped(long, 292.0, 16.0);
+        assert!(lines.len() >= 2 && lines.iter().all(|l| text_width(l, 16.0) <= 292.0));
+        assert_eq!(lines.join(" "), long);
     }
 
     #[test]

@@ -48,7 +48,8 @@ pub fn first_conflicts_picture(
         ),
         "left: across the street; right: from above (bar: 5 m); a 1.8 m person".to_string(),
         "red: in the way; red outline: the zone entered this year; shaded: clear heights; \
-         circles and bands: wire and lamp clearances"
+         circles: a line's clearance at cutting (grey) and its minimum (dark red), a lamp's \
+         clearance (yellow); grey band: the line's clearance from above"
             .to_string(),
     ];
     with_caption(&drawn, &lines, TEXT)
@@ -106,7 +107,8 @@ pub fn pruning_cycle_picture(
             }
         ),
         "left: before the cuts; right: after, at one scale; blue rings: the cuts; red: in the \
-         way; circles: wire and lamp clearances; a 1.8 m person"
+         way; circles: a line's clearance at cutting (grey) and its minimum (dark red), a \
+         lamp's clearance (yellow); a 1.8 m person"
             .to_string(),
     ];
     with_caption(&drawn, &lines, TEXT)
