@@ -7,6 +7,7 @@
 //! expands as the envelope does, without any branch being told its length.
 
 use super::*;
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 /// Most markers scattered in a year: beyond this they are spaced wider, not made more.
@@ -192,12 +193,16 @@ impl Markers {
         let limit = reach * reach;
         // Taken where any wood point is not farther than the reach (a NaN distance takes it,
         // as it always has).
-        points.retain(|&m| {
-            !taken.any_near(m, |i| {
-                let d = wood_points[i as usize].distance_squared(m);
-                d.partial_cmp(&limit) != Some(std::cmp::Ordering::Greater)
+        // Each marker is looked at on any core; the free ones keep their order.
+        let points: Vec<Vec3> = points
+            .into_par_iter()
+            .filter(|&m| {
+                !taken.any_near(m, |i| {
+                    let d = wood_points[i as usize].distance_squared(m);
+                    d.partial_cmp(&limit) != Some(std::cmp::Ordering::Greater)
+                })
             })
-        });
+            .collect();
         Markers {
             points,
             reach,
@@ -214,27 +219,37 @@ impl Markers {
         for (i, (p, _)) in buds.iter().enumerate() {
             grid.insert(*p, i as u32);
         }
+        // Each marker's owner is found on any core; the owners' tallies and sums are then
+        // made in the markers' order, so the sums come out the same to the bit on any number
+        // of cores.
+        let owners: Vec<Option<(f32, u32)>> = self
+            .points
+            .par_iter()
+            .map(|&m| {
+                let mut best: Option<(f32, u32)> = None;
+                grid.near(m, |i| {
+                    let (p, d) = buds[i as usize];
+                    let to = m - p;
+                    // Most buds the grid offers lie beyond the radius: the square, with a margin
+                    // for the root's rounding, turns them away before the root is taken.
+                    if to.length_squared() > far {
+                        return;
+                    }
+                    let dist = to.length();
+                    if dist > radius || dist < 1e-5 || to.dot(d) < PERCEPTION_COS * dist {
+                        return;
+                    }
+                    if best.is_none_or(|(bd, bi)| dist < bd || (dist == bd && i < bi)) {
+                        best = Some((dist, i));
+                    }
+                });
+                best
+            })
+            .collect();
         let mut owned = vec![0u32; buds.len()];
         let mut towards = vec![Vec3::ZERO; buds.len()];
-        for &m in &self.points {
-            let mut best: Option<(f32, u32)> = None;
-            grid.near(m, |i| {
-                let (p, d) = buds[i as usize];
-                let to = m - p;
-                // Most buds the grid offers lie beyond the radius: the square, with a margin
-                // for the root's rounding, turns them away before the root is taken.
-                if to.length_squared() > far {
-                    return;
-                }
-                let dist = to.length();
-                if dist > radius || dist < 1e-5 || to.dot(d) < PERCEPTION_COS * dist {
-                    return;
-                }
-                if best.is_none_or(|(bd, bi)| dist < bd || (dist == bd && i < bi)) {
-                    best = Some((dist, i));
-                }
-            });
-            if let Some((dist, i)) = best {
+        for (&m, owner) in self.points.iter().zip(owners) {
+            if let Some((dist, i)) = owner {
                 owned[i as usize] += 1;
                 towards[i as usize] += (m - buds[i as usize].0) / dist;
             }

@@ -6,6 +6,7 @@ use super::buds::Plan;
 use super::directions::{sag_at, sag_down, within};
 use super::*;
 use glam::Vec2;
+use rayon::prelude::*;
 
 /// Widest scale of the envelope the crown's fit may use.
 const MAX_SCALE: f32 = 2.0;
@@ -244,15 +245,18 @@ impl Grower {
         // fitted with this year's enlarged leaves came out a tenth too narrow).
         let leaves = 2.0 * self.leaf_reach * self.leaf_size_boosted(1.0).0;
         let want = next.crown_diameter as f32;
+        // The shoots' tips are found on every core: bounds are minima and maxima, exact in
+        // any order, so the prediction is the same to the bit on any number of cores.
         let predicted = |scale: f32, stretch: f32| {
             let space = self.space(next, scale);
-            let (mut lo, mut hi) = (lo, hi);
-            for p in plans {
-                let l = within(&space, p.start, p.direction, p.length * stretch);
-                let tip = (p.start + p.direction * l).truncate();
-                lo = lo.min(tip);
-                hi = hi.max(tip);
-            }
+            let (lo, hi) = plans
+                .par_iter()
+                .map(|p| {
+                    let l = within(&space, p.start, p.direction, p.length * stretch);
+                    let tip = (p.start + p.direction * l).truncate();
+                    (tip, tip)
+                })
+                .reduce(|| (lo, hi), |a, b| (a.0.min(b.0), a.1.max(b.1)));
             if lo.x > hi.x {
                 return leaves;
             }
@@ -299,13 +303,13 @@ impl Grower {
         }
         let lowest = |sag: f32| {
             plans
-                .iter()
+                .par_iter()
                 .map(|p| {
                     let d = sag_down(p.direction, sag_at(sag, p.start.z, base, top));
                     let l = within(&space, p.start, d, p.length);
                     (p.start + d * l).z
                 })
-                .fold(wood, f32::min)
+                .reduce(|| wood, f32::min)
         };
         let goal = base + 0.01 * (top - base);
         if lowest(0.0) <= goal {

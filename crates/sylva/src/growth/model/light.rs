@@ -49,6 +49,8 @@ pub struct LightGrid {
     pub density: Vec<f32>,
     /// Light accumulated in each cell (0..1).
     pub light: Vec<f32>,
+    /// Each sky direction's shade (`illuminate`), kept so a step reuses the last one's memory.
+    shades: Vec<Vec<f32>>,
 }
 
 impl LightGrid {
@@ -60,6 +62,7 @@ impl LightGrid {
             size: [1; 3],
             density: Vec::new(),
             light: Vec::new(),
+            shades: Vec::new(),
         };
         g.reshape(lo, hi, cell, max_cells);
         g
@@ -161,9 +164,12 @@ impl LightGrid {
         // I_c <- I_c + I_r - I_c I_r is 1 - I_c <- (1 - I_c)(1 - I_r): each direction darkens
         // its own copy of the grid on its own thread, and the copies are multiplied in the
         // sky's order, so the result does not depend on how the work was spread.
-        let shades: Vec<Vec<f32>> = sky.par_iter().map(|ray| self.shade_of(ray)).collect();
+        let mut shades = std::mem::take(&mut self.shades);
+        shades.resize_with(sky.len(), Vec::new);
+        (sky.par_iter().zip(shades.par_iter_mut()))
+            .for_each(|(ray, shade)| self.shade_of(ray, shade));
         self.light.fill(1.0);
-        for shade in &shades {
+        for shade in &shades[..sky.len()] {
             for (l, s) in self.light.iter_mut().zip(shade) {
                 *l *= s;
             }
@@ -171,11 +177,14 @@ impl LightGrid {
         for l in &mut self.light {
             *l = 1.0 - *l;
         }
+        self.shades = shades;
     }
 
-    /// The share of each cell's light that one direction of the sky does not supply.
-    fn shade_of(&self, ray: &Ray) -> Vec<f32> {
-        let mut shade = vec![1.0f32; self.density.len()];
+    /// The share of each cell's light that one direction of the sky does not supply, into
+    /// `shade`.
+    fn shade_of(&self, ray: &Ray, shade: &mut Vec<f32>) {
+        shade.clear();
+        shade.resize(self.density.len(), 1.0);
         let [nx, ny, nz] = self.size;
         let d = ray.direction;
         // The top face for every direction; a side face where the ray enters through it.
@@ -201,11 +210,10 @@ impl LightGrid {
             let walk = Walk::new(self, start(0, 0), d);
             for j in 0..self.size[v] {
                 for i in 0..self.size[u] {
-                    walk.replay(self, start(i, j), ray.intensity, &mut shade);
+                    walk.replay(self, start(i, j), ray.intensity, shade);
                 }
             }
         }
-        shade
     }
 }
 
@@ -514,7 +522,8 @@ mod tests {
                 for start in starts {
                     reference_trace(&g, start, d, ray.intensity, &mut want);
                 }
-                let got = g.shade_of(ray);
+                let mut got = Vec::new();
+                g.shade_of(ray, &mut got);
                 let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                 assert_eq!(bits(&got), bits(&want), "{:?} along {d}", g.size);
             }

@@ -22,6 +22,7 @@
 //! pistache's 15,000 1.1 m² against 250 m² (measured on the grown trees of seed 0).
 
 use super::*;
+use rayon::prelude::*;
 
 /// Fewest and most short twigs on one long shoot (Wilson 1991: 3-9 basal short shoots per
 /// parent long shoot, more on longer parents)...
@@ -177,7 +178,9 @@ impl Grower {
 
     /// The short twigs as stems of their own, after the branches' stems (`stem_of`: each
     /// branch's stem, `u32::MAX` where it is not drawn), and where each long shoot starts
-    /// along its branch's stem (`shoot_starts`, m).
+    /// along its branch's stem (`shoot_starts`, m). Each twig is two sections and a stem,
+    /// worked out from its own data alone: the twigs are laid out on every core, each into
+    /// its own place in the lists, the same lists on any number of cores.
     pub(super) fn short_shoots_into(
         &self,
         stem_of: &[u32],
@@ -185,48 +188,75 @@ impl Grower {
         stems: &mut Vec<Stem>,
         sections: &mut Vec<CrossSection>,
     ) {
-        for t in &self.short_shoots {
-            let s = &self.segments[t.segment as usize];
-            let b = s.branch as usize;
-            if stem_of[b] == u32::MAX || !self.carries_short_shoot(t) {
-                continue;
-            }
-            let length = self.short_shoot_length(t);
-            // On the drawn wood: where its stretch's kink has set it (`bends.rs`).
-            let base = s.start + s.direction * t.along + bends.offset(t.segment, t.along);
-            // A current-year twig's radius: the pipe model's tip, never thicker than half
-            // the wood it stands on.
-            let radius = self
-                .tip_radius
-                .min(self.radius_of(t.segment) * 0.5)
-                .max(0.0008);
-            let first = sections.len() as u32;
-            let orientation = frame(t.direction);
-            sections.push(CrossSection {
-                position: base,
-                orientation,
-                radius,
-                z: 0.0,
-            });
-            sections.push(CrossSection {
-                position: base + t.direction * length,
-                orientation,
-                radius: (radius * 0.35).max(0.0008),
-                z: 1.0,
-            });
-            stems.push(Stem {
-                // Drawn as the finest stems are, whatever wood they stand on: a few vertices
-                // around, the fewest a twig reads with.
-                level: (self.branches[b].order + 1).max(3),
-                parent: Some(StemId(stem_of[b])),
+        let drawn: Vec<&ShortShoot> = (self.short_shoots.iter())
+            .filter(|t| {
+                let b = self.segments[t.segment as usize].branch as usize;
+                stem_of[b] != u32::MAX && self.carries_short_shoot(t)
+            })
+            .collect();
+        let (first_stem, first_section) = (stems.len(), sections.len());
+        let blank = CrossSection {
+            position: Vec3::ZERO,
+            orientation: Quat::IDENTITY,
+            radius: 0.0,
+            z: 0.0,
+        };
+        sections.resize(first_section + 2 * drawn.len(), blank);
+        stems.resize(
+            first_stem + drawn.len(),
+            Stem {
+                level: 0,
+                parent: None,
                 clone_of: None,
-                offset: shoot_starts[t.segment as usize] + t.along,
-                length,
-                sections: first..sections.len() as u32,
+                offset: 0.0,
+                length: 0.0,
+                sections: 0..0,
                 lobes: 0,
                 lobe_depth: 0.0,
+            },
+        );
+        (drawn.par_iter().enumerate())
+            .zip(sections[first_section..].par_chunks_mut(2))
+            .zip(stems[first_stem..].par_iter_mut())
+            .for_each(|(((k, t), ends), stem)| {
+                let s = &self.segments[t.segment as usize];
+                let b = s.branch as usize;
+                let length = self.short_shoot_length(t);
+                // On the drawn wood: where its stretch's kink has set it (`bends.rs`).
+                let base = s.start + s.direction * t.along + bends.offset(t.segment, t.along);
+                // A current-year twig's radius: the pipe model's tip, never thicker than half
+                // the wood it stands on.
+                let radius = self
+                    .tip_radius
+                    .min(self.radius_of(t.segment) * 0.5)
+                    .max(0.0008);
+                let orientation = frame(t.direction);
+                ends[0] = CrossSection {
+                    position: base,
+                    orientation,
+                    radius,
+                    z: 0.0,
+                };
+                ends[1] = CrossSection {
+                    position: base + t.direction * length,
+                    orientation,
+                    radius: (radius * 0.35).max(0.0008),
+                    z: 1.0,
+                };
+                let first = (first_section + 2 * k) as u32;
+                *stem = Stem {
+                    // Drawn as the finest stems are, whatever wood they stand on: a few
+                    // vertices around, the fewest a twig reads with.
+                    level: (self.branches[b].order + 1).max(3),
+                    parent: Some(StemId(stem_of[b])),
+                    clone_of: None,
+                    offset: shoot_starts[t.segment as usize] + t.along,
+                    length,
+                    sections: first..first + 2,
+                    lobes: 0,
+                    lobe_depth: 0.0,
+                };
             });
-        }
     }
 }
 

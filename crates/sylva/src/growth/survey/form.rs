@@ -35,15 +35,9 @@ pub fn measure_form(
     top: f64,
     crown_diameter: f64,
 ) -> FormMeasures {
-    let frame;
-    let skeleton = if skeleton.short_twigs == 0 {
-        skeleton
-    } else {
-        let mut without = skeleton.clone();
-        without.drop_short_twigs();
-        frame = without;
-        &frame
-    };
+    // Every measure below walks the frame's stems alone (`Skeleton::frame_stems`: the twigs
+    // are the last stems, so the frame's ids and sections are the whole skeleton's), and the
+    // tree is not copied to drop its twigs.
     FormMeasures {
         inner_leaf_share: inner_leaf_share(skeleton, crown_diameter as f32 / 2.0),
         leaders: leaders(skeleton, crown_base as f32, top as f32),
@@ -88,7 +82,7 @@ fn leaders(skeleton: &Skeleton, base: f32, top: f32) -> usize {
 fn leaders_at(skeleton: &Skeleton, reach: &[f32], base: f32, top: f32, height: f32) -> usize {
     // Radius where each stem crosses the plane going up (a stem may cross more than once).
     let mut crossings = Vec::new();
-    for (i, _) in skeleton.stems.iter().enumerate() {
+    for (i, _) in skeleton.frame_stems().iter().enumerate() {
         let s = skeleton.sections_of(StemId(i as u32));
         for w in s.windows(2) {
             let (a, b) = (w[0], w[1]);
@@ -110,7 +104,7 @@ fn leaders_at(skeleton: &Skeleton, reach: &[f32], base: f32, top: f32, height: f
 
 /// Highest point of each stem with everything that grows from it.
 fn reaches(skeleton: &Skeleton) -> Vec<f32> {
-    let mut reach: Vec<f32> = (0..skeleton.stems.len())
+    let mut reach: Vec<f32> = (0..skeleton.frame_stems().len())
         .map(|i| {
             let s = skeleton.sections_of(StemId(i as u32));
             s.iter()
@@ -120,7 +114,7 @@ fn reaches(skeleton: &Skeleton) -> Vec<f32> {
         .collect();
     // Lift every ancestor to its descendants' height; a parent's chain is short (the
     // branching order), so walking it from each stem is cheap.
-    for i in 0..skeleton.stems.len() {
+    for i in 0..skeleton.frame_stems().len() {
         let z = reach[i];
         let mut parent = skeleton.stems[i].parent;
         while let Some(StemId(p)) = parent {
@@ -137,7 +131,7 @@ fn reaches(skeleton: &Skeleton) -> Vec<f32> {
 
 fn scaffold_angles(skeleton: &Skeleton) -> Vec<f64> {
     let mut angles = Vec::new();
-    for (i, stem) in skeleton.stems.iter().enumerate() {
+    for (i, stem) in skeleton.frame_stems().iter().enumerate() {
         if stem.parent != Some(StemId(0)) || stem.clone_of.is_some() {
             continue;
         }
@@ -171,7 +165,7 @@ fn fork_exponents(skeleton: &Skeleton) -> Vec<f64> {
     use std::collections::BTreeMap;
     // (parent, unit position on it in 1/10,000ths) -> children's base radii
     let mut forks: BTreeMap<(u32, i64), Vec<f32>> = BTreeMap::new();
-    for (i, stem) in skeleton.stems.iter().enumerate() {
+    for (i, stem) in skeleton.frame_stems().iter().enumerate() {
         let Some(parent) = stem.parent else { continue };
         let length = skeleton.stems[parent.0 as usize].length;
         let Some(base) = skeleton.sections_of(StemId(i as u32)).first() else {
