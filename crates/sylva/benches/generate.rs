@@ -90,11 +90,11 @@ fn growth_step(c: &mut Criterion) {
     use sylva::growth::{Database, Grower, GrowthOptions};
     let measured = Database::builtin().find("InlVal", "ACSA1").unwrap();
     let options = GrowthOptions::default();
-    let dt = 1.0 / options.steps_per_year as f64;
     let mut grower = Grower::new(measured, options);
     while grower.segment_count() < 10_000 {
-        grower.step_once(dt);
+        grower.step_once(grower.step_length());
     }
+    let dt = grower.step_length();
     let mut group = c.benchmark_group("growth");
     group.sample_size(10);
     group.bench_function("step-10k-segments", |b| b.iter(|| grower.step_once(dt)));

@@ -291,7 +291,7 @@ impl GrowthStepTimes {
 /// Segment counts the growth benchmark times a step at.
 pub const GROWTH_SIZES: [usize; 4] = [5_000, 10_000, 20_000, 30_000];
 /// Steps averaged at each size: one year.
-pub const GROWTH_STEPS: usize = 20;
+pub const GROWTH_STEPS: usize = crate::growth::STEPS_PER_YEAR as usize;
 
 /// Grows a silver maple (Inland Valleys: of the Modesto seven, the one whose crown holds the
 /// most segments, past 30,000 by age 57) past each of [`GROWTH_SIZES`] segments and times
@@ -301,7 +301,6 @@ pub fn growth_steps(runs: u32) -> Result<Vec<GrowthStepTimes>, GrowthError> {
     let measured = Database::builtin().find("InlVal", "ACSA1")?;
     let (_, last_age) = measured.ages;
     let mut grower = Grower::new(measured, GrowthOptions::default());
-    let dt = 1.0 / GrowthOptions::default().steps_per_year as f64;
     let mut skeleton = grower.skeleton();
     let mut mesh = TreeMesh::default();
     let mut rows = Vec::new();
@@ -314,11 +313,11 @@ pub fn growth_steps(runs: u32) -> Result<Vec<GrowthStepTimes>, GrowthError> {
                     age: last_age,
                 });
             }
-            grower.step_once(dt);
+            grower.step_once(grower.step_length());
         }
         let (mut growth, mut light) = (0.0, 0.0);
         for _ in 0..GROWTH_STEPS {
-            grower.step_once(dt);
+            grower.step_once(grower.step_length());
             growth += grower.times.growth;
             light += grower.times.light;
         }
@@ -461,12 +460,9 @@ pub fn branching_at(
     let measured = Database::builtin().find(region, code)?;
     let last = measured.ages.1;
     let mut grower = Grower::new(measured, GrowthOptions::default());
-    let dt = 1.0 / GrowthOptions::default().steps_per_year as f64;
     let mut out = Vec::new();
     for &age in ages.iter().filter(|&&a| a <= last) {
-        while grower.age() < age - 1e-9 {
-            grower.step_once(dt);
-        }
+        grower.advance_to(age);
         let skeleton = grower.skeleton();
         out.push((
             age,

@@ -10,20 +10,22 @@ const RUDNICK_MS: (f64, f64, f64) = (40.0, 13.0, 60.0);
 pub fn bench_growth(runs: u32) -> Result<()> {
     println!();
     println!(
-        "growth steps of a silver maple (InlVal), 1/20 year each, {GROWTH_STEPS} steps per row \
-         (growth and light: their mean); light: the sky's directions spread over the cores; \
+        "growth steps of a silver maple (InlVal), 1/{GROWTH_STEPS} year each, {GROWTH_STEPS} \
+         steps per row (growth and light: their mean; year = growth and light over the row's \
+         year, what a step's length does not change); light: the sky's directions spread over the cores; \
          skeleton: wood and leaves at once, the leaves in runs of branches; mesh = skeleton and \
          mesh (quality 0.6: bark and leaves at once, leaves in runs), fastest of {runs}; x copy \
          = step total / time to copy the tree's skeleton; bark: the mesh alone with the maple's \
          bark pattern drawn (strips), and x plain: its ratio to the mesh alone without it"
     );
     println!(
-        "{:>9} {:>5} {:>8} {:>10} {:>9} {:>9} {:>13} {:>9} {:>9} {:>7} {:>8} {:>7}",
+        "{:>9} {:>5} {:>8} {:>10} {:>9} {:>8} {:>9} {:>13} {:>9} {:>9} {:>7} {:>8} {:>7}",
         "segments",
         "age",
         "leaves",
         "growth ms",
         "light ms",
+        "year ms",
         "mesh ms",
         "(skeleton ms)",
         "total ms",
@@ -34,13 +36,14 @@ pub fn bench_growth(runs: u32) -> Result<()> {
     );
     for row in growth_steps(runs)? {
         println!(
-            "{:>9} {:>5.1} {:>8} {:>10.2} {:>9.2} {:>9.2} {:>13.2} {:>9.2} {:>9.3} {:>7.0} {:>8.2} \
-             {:>7.2}",
+            "{:>9} {:>5.1} {:>8} {:>10.2} {:>9.2} {:>8.1} {:>9.2} {:>13.2} {:>9.2} {:>9.3} {:>7.0} \
+             {:>8.2} {:>7.2}",
             row.segments,
             row.age,
             row.leaves,
             row.growth_ms,
             row.light_ms,
+            (row.growth_ms + row.light_ms) * GROWTH_STEPS as f64,
             row.mesh_ms,
             row.skeleton_ms,
             row.total_ms(),

@@ -26,7 +26,9 @@ pub use data::equations::{Equation, Form};
 pub use data::habit::{Envelope, Habit, TreeForm, habit_of};
 pub use data::measured::Measured;
 pub use error::GrowthError;
-pub use model::{CutKind, CutMark, Cuts, Grower, GrowthOptions, LONGEST_REGROWTH, Targets};
+pub use model::{
+    CutKind, CutMark, Cuts, Grower, GrowthOptions, LONGEST_REGROWTH, STEPS_PER_YEAR, Targets,
+};
 pub use season::{Dress, LeafState, Month, dressed_mesh};
 pub use survey::form::{FormMeasures, measure_form};
 pub use survey::measure::{Dimensions, measure};

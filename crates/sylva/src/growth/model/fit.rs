@@ -334,6 +334,9 @@ impl Grower {
     /// the bias of the envelope's fitting (`spread`) by how the crown came out.
     pub(super) fn fit_crown(&mut self) {
         let t = self.targets_now();
+        // The corrections' rates are set per twentieth of a year (`RATE_STEP`): a longer step
+        // takes them k times over, compounded, so a year corrects as much at any step length.
+        let k = self.step_length() / RATE_STEP;
         // The vigour steers the crown that will still be there in a year: scaffolds the crown
         // base is about to pass are shed soon whatever their length. Both crowns are
         // measured in one pass, each branch's leaves placed once for both.
@@ -347,17 +350,20 @@ impl Grower {
         if leaf > 1e-3 && wood > 1e-3 {
             let (lo, hi) = LEAF_REACH_BOUNDS;
             let measured = (((diameter - wood) / (2.0 * leaf)) as f32).clamp(lo, hi);
-            self.leaf_reach += LEAF_REACH_RATE * (measured - self.leaf_reach);
+            let rate = 1.0 - (1.0 - LEAF_REACH_RATE).powf(k as f32);
+            self.leaf_reach += rate * (measured - self.leaf_reach);
         }
         if coming <= 1e-3 {
             coming = diameter;
         }
         if diameter > 1e-3 {
             let ratio = (1.1 * t.crown_diameter / coming)
-                .powf(0.5)
-                .clamp(0.95, 1.05);
+                .powf(0.5 * k)
+                .clamp(0.95f64.powf(k), 1.05f64.powf(k));
             self.vigour = (self.vigour * ratio).clamp(MIN_VIGOUR, MAX_VIGOUR);
-            let ratio = (t.crown_diameter / diameter).powf(0.2).clamp(0.995, 1.005);
+            let ratio = (t.crown_diameter / diameter)
+                .powf(0.2 * k)
+                .clamp(0.995f64.powf(k), 1.005f64.powf(k));
             self.spread = (self.spread * ratio).clamp(0.85, 1.15);
         }
     }

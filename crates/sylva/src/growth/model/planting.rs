@@ -86,6 +86,7 @@ impl Grower {
             cut_top: None,
             made: (0, 0),
             dropped_branches: 0,
+            young_year: true,
             times: StepTimes::default(),
             options,
             measured,
@@ -137,6 +138,7 @@ impl Grower {
         }
         g.refresh_radii();
         g.update_light();
+        g.young_year = g.young_year();
         g
     }
 

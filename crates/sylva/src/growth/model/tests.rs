@@ -4,6 +4,29 @@ use super::*;
 use crate::growth::Database;
 
 #[test]
+fn a_young_tree_steps_twenty_times_a_year_a_grown_one_ten_and_each_year_ends_whole() {
+    let measured = Database::builtin()
+        .find("InlVal", "PLAC")
+        .expect("built in");
+    let mut grower = Grower::new(measured, GrowthOptions::default());
+    assert_eq!(grower.step_length(), 1.0 / 20.0, "a sapling's steps");
+    let mut seen_grown = false;
+    for _ in 0..12 {
+        let next = (grower.age() + 1e-9).floor() + 1.0;
+        let young = grower.targets(next).crown_height < SYLLEPTIC_CROWN;
+        assert_eq!(grower.step_length(), if young { 0.05 } else { 0.1 });
+        seen_grown |= !young;
+        grower.advance_to(next);
+        assert!(
+            (grower.age() - next).abs() < 1e-9,
+            "{} for {next}",
+            grower.age()
+        );
+    }
+    assert!(seen_grown, "the plane's crown passed 5 m within 12 years");
+}
+
+#[test]
 fn a_street_tree_grows_the_same_on_one_thread_or_three() {
     // The light's shade, the leaves' allocation, the crown's two measures and the skeleton's
     // leaves are each worked out on every core; the tree must not depend on how many.
@@ -17,8 +40,10 @@ fn a_street_tree_grows_the_same_on_one_thread_or_three() {
                 .find("InlVal", "ACSA1")
                 .expect("built in");
             let mut grower = Grower::new(measured, GrowthOptions::default());
+            // Past the young years' twenty steps into the grown tree's ten.
             let first = grower.age();
-            grower.advance_to(first + 6.0);
+            grower.advance_to(first + 9.0);
+            assert_eq!(grower.step_length(), 0.1, "a grown crown's steps");
             (grower.skeleton(), grower.light.clone())
         })
     };

@@ -160,8 +160,23 @@ impl Grower {
         }
     }
 
-    pub(super) fn step_length(&self) -> f64 {
-        1.0 / self.options.steps_per_year.max(1) as f64
+    /// The length of the next step, years (see [`GrowthOptions::steps_per_year`]): a young
+    /// tree's more, and shorter.
+    pub fn step_length(&self) -> f64 {
+        let steps = self.options.steps_per_year.max(1);
+        if self.young_year {
+            1.0 / steps.max(YOUNG_STEPS_PER_YEAR) as f64
+        } else {
+            1.0 / steps as f64
+        }
+    }
+
+    /// Whether the year beginning now is a young tree's (its crown next year under
+    /// `SYLLEPTIC_CROWN`): chosen only as a year begins, so every year's steps end on its last
+    /// day.
+    pub(super) fn young_year(&self) -> bool {
+        let next = self.targets((self.age + 1e-9).floor() + 1.0);
+        next.crown_height < SYLLEPTIC_CROWN
     }
 
     /// Radius of a segment's base now, m.
