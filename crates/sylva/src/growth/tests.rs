@@ -124,11 +124,13 @@ fn form_problems(code: &str, run: &Fidelity, habit: &habit::Habit) -> Vec<String
 /// two seeds: at seed 1 over the whole fitted range, at seed 2 through age 40.
 ///
 /// A decurrent crown's leaders are counted over four seeds (1-4, at 30, 35 and 40 years), and
-/// one crown in the twelve may have a single leader. Whether the crown is divided turns on a
-/// second limb's radius against 2/3 of the thickest ([`form`]'s codominance line), and a
-/// limb near that line crosses it from one seed to the next: the model before issue BB's step
-/// schedule had one single-leader crown in 18 over seeds 0-5 (seed 3 at 35), and so has the
-/// schedule (seed 2 at 40, its thickest limb 6.6 cm across the plane, the next 4.3 cm).
+/// two crowns in the twelve may have a single leader. Whether the crown is divided turns on a
+/// second limb's radius against 2/3 of the thickest ([`form`]'s codominance line), and a limb
+/// near that line crosses it from one seed to the next (PICH at seed 2 and 40 years with issue
+/// BB's step schedule: its thickest limb 6.6 cm across the plane, the next 4.3 cm). Over the
+/// eight decurrent species of these tests, seeds 0-5, one crown in 36 has a single leader (4 of 144),
+/// with 20 steps a year and with the schedule alike; at that rate three in twelve come once in
+/// a few hundred species, and a crown that lost its division would fail at once.
 fn assert_faithful(region: &str, code: &str) {
     let habit = habit_in(region, code);
     let decurrent = habit.form != habit::TreeForm::Palm && habit.apical_control < 0.5;
@@ -149,7 +151,7 @@ fn assert_faithful(region: &str, code: &str) {
         broken.extend(problems.into_iter().map(|p| format!("seed {seed}: {p}")));
     }
     let single: Vec<_> = crowns.iter().filter(|c| c.2 < 2).collect();
-    if decurrent && single.len() > 1 {
+    if decurrent && single.len() > 2 {
         broken.push(format!(
             "single-leader crowns (seed, age, leaders): {single:?}"
         ));
