@@ -309,16 +309,24 @@ fn instances(
     let Some(ext) = (json.extensions.as_ref()).and_then(|e| e.others.get(INSTANCING)) else {
         return Ok(None);
     };
+    use gltf::accessor::{DataType, Iter};
+    // Each attribute's accessor: floats, or for a ROTATION normalised 8- or 16-bit integers,
+    // as the extension allows (Sylva writes a twig's turns as 16-bit ones).
     let attribute = |name: &str| -> Result<Option<gltf::Accessor>, GlbError> {
         let Some(index) = ext["attributes"].get(name) else {
             return Ok(None);
         };
         let found = index.as_u64().and_then(|i| doc.accessors().nth(i as usize));
+        let integer_turn = |a: &gltf::Accessor| {
+            name == "ROTATION"
+                && a.normalized()
+                && matches!(a.data_type(), DataType::I16 | DataType::I8)
+        };
         match found {
-            Some(a) if a.data_type() == gltf::accessor::DataType::F32 => Ok(Some(a)),
+            Some(a) if a.data_type() == DataType::F32 || integer_turn(&a) => Ok(Some(a)),
             _ => fail!(
-                "{}: node {}'s EXT_mesh_gpu_instancing {name} names no accessor of floats (only \
-                 float copies are read)",
+                "{}: node {}'s EXT_mesh_gpu_instancing {name} names no accessor of floats (or, \
+                 for ROTATION, of normalised 8- or 16-bit integers)",
                 path.display(),
                 node.index()
             ),
@@ -326,14 +334,25 @@ fn instances(
     };
     let data = |b: gltf::Buffer| buffers.get(b.index()).map(|d| &d.0[..]);
     let read3 = |a: Option<gltf::Accessor>| -> Vec<[f32; 3]> {
-        a.and_then(|a| gltf::accessor::Iter::<[f32; 3]>::new(a, data))
+        a.and_then(|a| Iter::<[f32; 3]>::new(a, data))
             .map_or_else(Vec::new, Iterator::collect)
     };
     let moves = read3(attribute("TRANSLATION")?);
     let scales = read3(attribute("SCALE")?);
-    let turns: Vec<[f32; 4]> = attribute("ROTATION")?
-        .and_then(|a| gltf::accessor::Iter::<[f32; 4]>::new(a, data))
-        .map_or_else(Vec::new, Iterator::collect);
+    // glTF's normalised signed integers: c / max, and never below -1.
+    fn unit<T: Copy + Into<f32>>(q: [T; 4], max: f32) -> [f32; 4] {
+        q.map(|c| (c.into() / max).max(-1.0))
+    }
+    let turns: Vec<[f32; 4]> = match attribute("ROTATION")? {
+        None => Vec::new(),
+        Some(a) => match a.data_type() {
+            DataType::I16 => Iter::<[i16; 4]>::new(a, data)
+                .map_or_else(Vec::new, |q| q.map(|q| unit(q, 32767.0)).collect()),
+            DataType::I8 => Iter::<[i8; 4]>::new(a, data)
+                .map_or_else(Vec::new, |q| q.map(|q| unit(q, 127.0)).collect()),
+            _ => Iter::<[f32; 4]>::new(a, data).map_or_else(Vec::new, Iterator::collect),
+        },
+    };
     let n = moves.len().max(scales.len()).max(turns.len());
     let fits = |len: usize| len == 0 || len == n;
     if !(fits(moves.len()) && fits(scales.len()) && fits(turns.len())) {

@@ -18,6 +18,53 @@ fn aspen() -> (sylva::Skeleton, sylva::mesh::TreeMesh) {
     (sk, mesh)
 }
 
+/// A triangle's corner: position, normal, UV.
+type Corner = ([f32; 3], [f32; 3], [f32; 2]);
+
+/// Every triangle of each part of `mesh`, read back from the GLB `bytes` as glTF's corners
+/// (positions, normals and UVs, Y up) in the file's order, per material name; and checks that
+/// every primitive's indices are 16-bit, short of the reserved 65,535.
+fn corners_by_material(bytes: &[u8]) -> (Vec<String>, Vec<Vec<Corner>>) {
+    let (doc, buffers, _) = gltf::import_slice(bytes).expect("gltf reads the GLB");
+    let mut names: Vec<String> = Vec::new();
+    let mut corners: Vec<Vec<_>> = Vec::new();
+    for prim in doc.meshes().next().unwrap().primitives() {
+        let name = prim.material().name().unwrap().to_string();
+        if names.last() != Some(&name) {
+            names.push(name);
+            corners.push(Vec::new());
+        }
+        let reader = prim.reader(|b| Some(&buffers[b.index()]));
+        let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+        let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
+        let uvs: Vec<[f32; 2]> = reader.read_tex_coords(0).unwrap().into_f32().collect();
+        assert!(positions.len() <= 65_535);
+        let indices: Vec<u16> = match reader.read_indices().unwrap() {
+            gltf::mesh::util::ReadIndices::U16(it) => it.collect(),
+            _ => panic!("indices must be 16-bit"),
+        };
+        assert!(indices.iter().all(|&i| i < u16::MAX));
+        let out = corners.last_mut().unwrap();
+        out.extend(indices.iter().map(|&i| {
+            let i = i as usize;
+            (positions[i], normals[i], uvs[i])
+        }));
+    }
+    (names, corners)
+}
+
+/// `part`'s triangles' corners as a GLB holds them (Y up).
+fn corners_of(part: &sylva::mesh::Mesh) -> Vec<Corner> {
+    let up = |[x, y, z]: [f32; 3]| [x, z, -y];
+    part.indices
+        .iter()
+        .map(|&i| {
+            let i = i as usize;
+            (up(part.positions[i]), up(part.normals[i]), part.uvs[i])
+        })
+        .collect()
+}
+
 #[test]
 fn glb_reads_back_with_two_primitives_materials_and_y_up() {
     let (sk, mesh) = aspen();
@@ -27,43 +74,49 @@ fn glb_reads_back_with_two_primitives_materials_and_y_up() {
         u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
         bytes.len()
     );
-    let (doc, buffers, _) = gltf::import_slice(&bytes).expect("gltf reads the GLB");
-    let gmesh = doc.meshes().next().unwrap();
-    let prims: Vec<_> = gmesh.primitives().collect();
-    assert_eq!(prims.len(), 2);
-    let names: Vec<_> = prims
-        .iter()
-        .map(|p| p.material().name().unwrap().to_string())
-        .collect();
+    let (doc, _, _) = gltf::import_slice(&bytes).expect("gltf reads the GLB");
+    let materials: Vec<_> = doc.materials().collect();
+    assert!(!materials[0].double_sided(), "bark");
+    assert!(materials[1].double_sided(), "leaves");
+    let (names, corners) = corners_by_material(&bytes);
     assert_eq!(names, ["bark", "leaves"]);
-    assert!(!prims[0].material().double_sided());
-    assert!(prims[1].material().double_sided());
-    let mut max_y = f32::MIN;
-    let mut total_tris = 0;
-    for (prim, part) in prims.iter().zip([&mesh.bark, &mesh.leaves]) {
-        let reader = prim.reader(|b| Some(&buffers[b.index()]));
-        let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
-        let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
-        let uvs: Vec<[f32; 2]> = reader.read_tex_coords(0).unwrap().into_f32().collect();
-        let indices: Vec<u32> = match reader.read_indices().unwrap() {
-            gltf::mesh::util::ReadIndices::U32(it) => it.collect(),
-            _ => panic!("indices must be 32-bit"),
-        };
-        assert_eq!(positions.len(), part.vertex_count());
-        assert_eq!(normals.len(), positions.len());
-        assert_eq!(uvs.len(), positions.len());
-        assert_eq!(indices.len(), part.indices.len());
-        assert!(indices.iter().all(|&i| (i as usize) < positions.len()));
-        total_tris += indices.len() / 3;
-        max_y = positions.iter().fold(max_y, |m, p| m.max(p[1]));
-    }
-    assert_eq!(total_tris, mesh.triangle_count());
+    // Every triangle as meshed, in order, whether a part is one primitive or cut in several.
+    assert_eq!(corners[0], corners_of(&mesh.bark));
+    assert_eq!(corners[1], corners_of(&mesh.leaves));
     // Y up in the file: the highest point is the tree's height.
+    let max_y = corners
+        .iter()
+        .flatten()
+        .fold(f32::MIN, |m, c| m.max(c.0[1]));
     assert!(
         (max_y - sk.stats().height).abs() < 0.05,
         "{max_y} vs {}",
         sk.stats().height
     );
+}
+
+/// A part with more vertices than 16-bit indices reach is cut into primitives that each
+/// reach theirs, and reads back triangle for triangle.
+#[test]
+fn a_large_part_is_cut_into_primitives_of_16_bit_indices() {
+    let mut mesh = sylva::mesh::TreeMesh::default();
+    // 150,000 vertices in a strip of triangles, each using three neighbours.
+    let n = 150_000u32;
+    for k in 0..n {
+        let x = k as f32 * 1e-3;
+        mesh.bark.positions.push([x, (k % 2) as f32, x.sin()]);
+        mesh.bark.normals.push([0.0, 0.0, 1.0]);
+        mesh.bark.uvs.push([x, 0.5]);
+    }
+    for k in 0..n - 2 {
+        mesh.bark.indices.extend([k, k + 1, k + 2]);
+    }
+    let bytes = to_glb(&mesh, "strip", &Materials::default()).unwrap();
+    let (doc, _, _) = gltf::import_slice(&bytes).unwrap();
+    assert_eq!(doc.meshes().next().unwrap().primitives().count(), 3);
+    let (names, corners) = corners_by_material(&bytes);
+    assert_eq!(names, ["bark"]);
+    assert_eq!(corners[0], corners_of(&mesh.bark));
 }
 
 #[test]

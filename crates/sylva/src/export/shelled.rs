@@ -22,13 +22,13 @@ pub fn shelled_glb<'a>(
     let mut primitives = Vec::new();
     if !bark.indices.is_empty() {
         let m = b.root.push(material("bark", materials.bark, false, 0.95));
-        primitives.push(b.primitive(bark, m));
+        primitives.extend(b.primitives(bark, m));
     }
     if !shell.indices.is_empty() {
         let m = b
             .root
             .push(material("leaf shell", materials.leaves, false, 0.6));
-        primitives.push(b.primitive(shell, m));
+        primitives.extend(b.primitives(shell, m));
     }
     let mesh = b.root.push(json::Mesh {
         extensions: None,

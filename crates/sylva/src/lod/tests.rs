@@ -323,11 +323,23 @@ fn engine_meshes_carry_each_stem_vertexs_radius_to_the_glb() {
         &crate::export::Materials::from_srgb([0.4; 3], [0.2, 0.5, 0.2]),
     )
     .unwrap();
+    // Every bark primitive (a large bark is cut into primitives of 16-bit indices) carries
+    // its vertices' radii.
     let gltf = gltf::Gltf::from_slice(&glb).unwrap();
-    let bark = gltf.meshes().next().unwrap().primitives().next().unwrap();
-    let radius = bark
-        .attributes()
-        .find(|(s, _)| matches!(s, gltf::Semantic::Extras(name) if name == "RADIUS"))
-        .expect("the bark carries _RADIUS");
-    assert_eq!(radius.1.count(), mesh.bark.vertex_count());
+    let mut carried = 0;
+    for bark in gltf.meshes().next().unwrap().primitives() {
+        if bark.material().name() != Some("bark") {
+            continue;
+        }
+        let radius = bark
+            .attributes()
+            .find(|(s, _)| matches!(s, gltf::Semantic::Extras(name) if name == "RADIUS"))
+            .expect("the bark carries _RADIUS");
+        assert_eq!(
+            radius.1.count(),
+            bark.get(&gltf::Semantic::Positions).unwrap().count()
+        );
+        carried += radius.1.count();
+    }
+    assert_eq!(carried, mesh.bark.vertex_count());
 }

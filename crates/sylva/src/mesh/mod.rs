@@ -28,7 +28,8 @@ pub struct Mesh {
     pub positions: Vec<[f32; 3]>,
     /// Unit vertex normals.
     pub normals: Vec<[f32; 3]>,
-    /// Texture coordinates. Bark: u around (0..1, seam duplicated), v along the stem in units
+    /// Texture coordinates. Bark: u around (0..1, the seam's vertex repeated on rings of four
+    /// sides or more), v along the stem in units
     /// of the base circumference. Leaves: 0..1 over the blade.
     pub uvs: Vec<[f32; 2]>,
     /// Three indices per triangle.
