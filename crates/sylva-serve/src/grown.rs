@@ -11,7 +11,7 @@ use sylva::growth::survey::report::{AgeRecord, MESH};
 use sylva::growth::{Dress, Measured, dressed_mesh};
 use sylva::lod::{LodTree, leaf_shell};
 use sylva::mesh::{MeshOptions, TreeMesh, leaf_template};
-use sylva::skeleton::LeafShape;
+use sylva::skeleton::{Leaf, LeafShape};
 use sylva::street::study::{Spread, StreetTree, StudyYear};
 use sylva::street::{Assessor, Kind, Site, YearAccount, rank};
 
@@ -144,7 +144,12 @@ pub fn grow_all(
         let mut skeleton = skeleton;
         skeleton.drop_short_twigs();
         skeleton.leaves.shrink_to_fit();
-        let lod = LodTree::build(&kites(&skeleton), &web_mesh);
+        // The page's crown, its leaves as kites, lent the skeleton's wood for the build
+        // rather than a copy of it.
+        let kited = kites(&skeleton.leaves);
+        let leaves = std::mem::replace(&mut skeleton.leaves, kited);
+        let lod = LodTree::build(&skeleton, &web_mesh);
+        skeleton.leaves = leaves;
         let mut entry = AgeEntry {
             record,
             accounts,
@@ -245,17 +250,17 @@ pub fn web_glb(m: &Measured, entry: &AgeEntry, detail: u32) -> Result<Vec<u8>, E
     to_glb(&mesh, &m.label(), &materials)
 }
 
-/// The skeleton with every leaf drawn as a kite of the same area: ovals widened by
+/// The leaves, each drawn as a kite of the same area: ovals widened by
 /// [`KITE_WIDENING`], any other outline (a species' lobed, heart-shaped or compound leaf) by its
 /// template's area over the kite's. Four corners a leaf whatever the species wears, so the page's
 /// frame times hold for every species; the species still shows in its colours, and in its
 /// leaves' size and number.
-fn kites(skeleton: &Skeleton) -> Skeleton {
+fn kites(leaves: &[Leaf]) -> Vec<Leaf> {
     let kite = leaf_template(LeafShape::Triangle).area();
     // A tree's leaves share one or two shapes: each widening is worked out once.
     let mut widening: Vec<(LeafShape, f32)> = Vec::new();
-    let mut light = skeleton.clone();
-    for leaf in &mut light.leaves {
+    let mut light = leaves.to_vec();
+    for leaf in &mut light {
         let w = match widening.iter().find(|(s, _)| *s == leaf.shape) {
             Some(&(_, w)) => w,
             None => {
@@ -286,6 +291,14 @@ mod tests {
     use super::*;
     use sylva::growth::Database;
 
+    /// The skeleton with its leaves as kites.
+    fn with_kites(s: &Skeleton) -> Skeleton {
+        Skeleton {
+            leaves: kites(&s.leaves),
+            ..s.clone()
+        }
+    }
+
     #[test]
     fn the_built_in_sites_parse_and_have_what_the_page_draws() {
         let s = sites();
@@ -315,7 +328,7 @@ mod tests {
         }
         let s = &got[5].skeleton;
         let (full, _) = full_mesh(s, &plane);
-        let web = sylva::mesh::mesh_tree(&kites(s), &WEB_MESH);
+        let web = sylva::mesh::mesh_tree(&with_kites(s), &WEB_MESH);
         // Every leaf a kite of four corners.
         assert_eq!(web.leaves.vertex_count(), 4 * s.leaves.len());
         assert!(web.leaves.vertex_count() < full.leaves.vertex_count());
@@ -335,7 +348,7 @@ mod tests {
             "leaf area web {w:.2} vs full {f:.2} m²"
         );
         // Each coarser level draws fewer triangles and keeps the leaf area.
-        let lod = LodTree::build(&kites(s), &WEB_MESH);
+        let lod = LodTree::build(&with_kites(s), &WEB_MESH);
         let whole = lod.engine_mesh(DETAIL[0]);
         println!(
             "level 0: {} triangles (mesh_tree: {}), leaves {:.1} m²",

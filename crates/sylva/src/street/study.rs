@@ -8,6 +8,7 @@ use super::accounts::ledger::{Assessor, YearAccount};
 use super::accounts::prices::Prices;
 use super::accounts::pruner::{Pruner, PruningYear};
 use super::accounts::survival::Survival;
+use super::energy::crown::{Crown, leaves_of};
 use super::error::StreetError;
 use super::site::Site;
 use super::work::conflicts::{Conflict, Kind};
@@ -235,9 +236,18 @@ impl StreetTree {
         if self.pruner.is_some() {
             dims.dbh = record.measured.dbh;
         }
-        let mut accounts: Vec<YearAccount> = (self.assessors.iter_mut())
-            .map(|a| a.year(age, &dims, &skeleton))
-            .collect();
+        let mut accounts: Vec<YearAccount> = if self.assessors.len() > 1 {
+            // The tree's leaves and crown are the same on every site: made once.
+            let leaves = leaves_of(&skeleton);
+            let crown = Crown::with_leaves(&skeleton, &leaves).with_wood(&skeleton);
+            (self.assessors.iter_mut())
+                .map(|a| a.year_on(age, &dims, &skeleton, (&leaves, &crown)))
+                .collect()
+        } else {
+            (self.assessors.iter_mut())
+                .map(|a| a.year(age, &dims, &skeleton))
+                .collect()
+        };
         if let Some((s, _)) = &self.pruner {
             accounts[*s].record_pruning(cycle, span);
             accounts[*s].lines = lines;

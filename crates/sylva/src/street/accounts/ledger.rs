@@ -346,35 +346,76 @@ impl Assessor {
     /// `skeleton`. Call in rising order of age.
     pub fn year(&mut self, age: f64, dims: &Dimensions, skeleton: &Skeleton) -> YearAccount {
         let leaves = leaves_of(skeleton);
-        let facade = self.site.as_ref().and_then(|s| s.facade.as_ref());
         // The crown and its shade on the façade, and the site's conflicts, read the same leaves
         // and nothing of each other: on two threads they take the longer one's time, not the
         // sum (`sylva bench --street`).
         let ((crown, energy), conflicts) = rayon::join(
             || {
                 let crown = Crown::with_leaves(skeleton, &leaves).with_wood(skeleton);
-                let energy = match (facade, self.climate) {
-                    (Some(f), Some(c)) => {
-                        let mut e = energy(&crown, f, &Sky::of(c), self.evergreen);
-                        if let Some(k) = climate_effect(c.region) {
-                            e.climate = Some(k.of(crown.projection));
-                            e.useful_winter_share = k.useful_share();
-                        }
-                        Some(e)
-                    }
-                    _ => None,
-                };
+                let energy = self.energy_on(&crown);
                 (crown, energy)
             },
-            || {
-                let conflicts = (self.site.as_ref())
-                    .map(|s| conflicts_with(skeleton, &leaves, s))
-                    .unwrap_or_default();
-                let outside = (self.site.as_ref()).map(|s| leaf_outside_zones(&leaves, s));
-                (conflicts, outside)
-            },
+            || self.conflicts_on(skeleton, &leaves),
         );
-        let (conflicts, leaf_outside_zones_m2) = conflicts;
+        self.account(age, dims, &crown, energy, conflicts)
+    }
+
+    /// [`Assessor::year`] on the tree's leaves ([`leaves_of`]) and crown (with its leaves and
+    /// wood) already made: they are the same on every site, so a tree accounted on several
+    /// (the page's) makes them once a year, not once a site.
+    pub fn year_on(
+        &mut self,
+        age: f64,
+        dims: &Dimensions,
+        skeleton: &Skeleton,
+        (leaves, crown): (&[(glam::Vec3, f64)], &Crown),
+    ) -> YearAccount {
+        let (energy, conflicts) = rayon::join(
+            || self.energy_on(crown),
+            || self.conflicts_on(skeleton, leaves),
+        );
+        self.account(age, dims, crown, energy, conflicts)
+    }
+
+    /// The crown's shade on the site's façade, as energy, where the site has a façade and
+    /// the region a climate.
+    fn energy_on(&self, crown: &Crown) -> Option<Energy> {
+        let facade = self.site.as_ref().and_then(|s| s.facade.as_ref());
+        match (facade, self.climate) {
+            (Some(f), Some(c)) => {
+                let mut e = energy(crown, f, &Sky::of(c), self.evergreen);
+                if let Some(k) = climate_effect(c.region) {
+                    e.climate = Some(k.of(crown.projection));
+                    e.useful_winter_share = k.useful_share();
+                }
+                Some(e)
+            }
+            _ => None,
+        }
+    }
+
+    /// The site's conflicts with the tree, and its leaf outside the site's zones, m².
+    fn conflicts_on(
+        &self,
+        skeleton: &Skeleton,
+        leaves: &[(glam::Vec3, f64)],
+    ) -> (Vec<Conflict>, Option<f64>) {
+        let conflicts = (self.site.as_ref())
+            .map(|s| conflicts_with(skeleton, leaves, s))
+            .unwrap_or_default();
+        let outside = (self.site.as_ref()).map(|s| leaf_outside_zones(leaves, s));
+        (conflicts, outside)
+    }
+
+    /// The year's account from what the tree's crown and the site made of it.
+    fn account(
+        &mut self,
+        age: f64,
+        dims: &Dimensions,
+        crown: &Crown,
+        energy: Option<Energy>,
+        (conflicts, leaf_outside_zones_m2): (Vec<Conflict>, Option<f64>),
+    ) -> YearAccount {
         let dbh = dims.dbh;
         let stored = self.group.map(|g| co2_stored_kg(g, dbh));
         let sequestered = stored.map(|now| {
