@@ -217,10 +217,21 @@ impl Grower {
             points.push((last.end(), last.direction, total, tip_radius));
             is_kink.push(false);
             taper_through_kinks(&mut points, &is_kink);
+            // A segment's sections share its direction, and so its frame: worked out once a
+            // segment (the same quaternion from the same direction), not once a section.
+            let mut framed: Option<(Vec3, Quat)> = None;
             for &(p, d, at, radius) in &points {
+                let orientation = match framed {
+                    Some((was, q)) if was == d => q,
+                    _ => {
+                        let q = frame(d);
+                        framed = Some((d, q));
+                        q
+                    }
+                };
                 sections.push(CrossSection {
                     position: p,
-                    orientation: frame(d),
+                    orientation,
                     radius: radius.max(0.0008),
                     z: if total > 0.0 { at / total } else { 0.0 },
                 });
