@@ -11,7 +11,7 @@
 
 use super::order::prefix_len;
 use super::{LodTree, Run, Viewer};
-use crate::mesh::{leaf_template, leaf_triangles};
+use crate::mesh::leaf_triangles;
 use crate::skeleton::LeafShape;
 
 /// Primitives a tree may draw per pixel of its projected box (its height in pixels, squared).
@@ -25,7 +25,7 @@ pub const THINNED_OUTLINE: LeafShape = LeafShape::Triangle;
 /// The factor on the length and width of a leaf of outline `own` drawn with `outline` so that
 /// its area grows by `leaf_grow`.
 pub fn card_scale(own: LeafShape, outline: LeafShape, leaf_grow: f32) -> f32 {
-    let area = |s| leaf_template(s).area();
+    let area = crate::mesh::template_area;
     if own == outline {
         leaf_grow.sqrt()
     } else {
@@ -321,7 +321,7 @@ mod tests {
             // Drawn as kites of the oval's area, grown by the square root of the share.
             let (outline, scale) = c.card(&t.lists[3].runs[0]);
             assert_eq!(outline, THINNED_OUTLINE);
-            let area = |s| leaf_template(s).area();
+            let area = crate::mesh::template_area;
             let drawn = leaves as f32 * scale * scale * area(outline);
             let own = t.leaves.len() as f32 * area(LeafShape::Oval);
             assert!((drawn / own - 1.0).abs() < 1e-3, "{drawn} vs {own}");

@@ -42,6 +42,19 @@ pub fn leaf_template(shape: LeafShape) -> &'static LeafTemplate {
     &all[shape.slot().min(all.len() - 1)]
 }
 
+/// The area of a shape's template ([`LeafTemplate::area`]), worked out once per shape: what a
+/// leaf of unit length and width covers, read for every leaf of a tree by the measures and the
+/// crown's surfaces.
+pub fn template_area(shape: LeafShape) -> f32 {
+    static AREAS: OnceLock<Vec<f32>> = OnceLock::new();
+    let all = AREAS.get_or_init(|| {
+        LeafShape::every()
+            .map(|s| leaf_template(s).area())
+            .collect()
+    });
+    all[shape.slot().min(all.len() - 1)]
+}
+
 /// Triangles per leaf of a shape.
 pub fn leaf_triangles(shape: LeafShape) -> usize {
     leaf_template(shape).indices.len() / 3

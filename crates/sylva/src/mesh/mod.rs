@@ -12,7 +12,9 @@ mod twigs;
 
 pub use bark::{BarkPattern, young_bark_shade};
 pub use compound::{NEEDLE_SPRAY_LENGTH, natural_aspect};
-pub use leaves::{LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance};
+pub use leaves::{
+    LUMINANCE_CLASSES, LeafTemplate, leaf_template, leaf_triangles, luminance, template_area,
+};
 pub(crate) use stems::ring_frame;
 pub use stems::ring_vertices;
 #[cfg(test)]

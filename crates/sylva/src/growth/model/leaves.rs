@@ -203,7 +203,7 @@ impl Grower {
     /// shoots to carry the leaf area, m.
     pub(super) fn leaf_size_boosted(&self, boost: f32) -> (f32, f32) {
         let (l, w) = self.leaf_size_now();
-        let natural = l * w * crate::mesh::leaf_template(self.leaf_shape).area();
+        let natural = l * w * crate::mesh::template_area(self.leaf_shape);
         let k = (self.leaf_area_each() * boost / natural).sqrt();
         (l * k, w * k)
     }
@@ -236,7 +236,7 @@ impl Grower {
     pub(super) fn leaf_area_each(&self) -> f32 {
         let t = crate::mesh::leaf_template(self.leaf_shape);
         let (l, w) = self.leaf_size_now();
-        let mut natural = l * w * t.area();
+        let mut natural = l * w * crate::mesh::template_area(self.leaf_shape);
         if let Some((cap, generic_area)) = self.leaf_vertex_cap {
             // Vertices allowed: the cap's density over the crown (or over the free area),
             // but over no more leaf than the generic tree draws at its own size: past the leaf

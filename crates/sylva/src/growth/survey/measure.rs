@@ -53,8 +53,7 @@ pub fn measure(skeleton: &Skeleton) -> Dimensions {
     }
     let mut leaf_area = 0.0f64;
     for l in &skeleton.leaves {
-        let t = crate::mesh::leaf_template(l.shape);
-        leaf_area += (t.area() * l.length * l.width) as f64;
+        leaf_area += (crate::mesh::template_area(l.shape) * l.length * l.width) as f64;
         for p in [
             l.position,
             l.position + l.orientation * Vec3::new(0.0, 0.0, l.length),

@@ -2,21 +2,13 @@
 //! covers, and its leaf area density on a grid that sunlight crosses.
 
 use crate::Skeleton;
-use crate::mesh::leaf_template;
-use crate::skeleton::{Leaf, LeafShape};
+use crate::mesh::template_area;
+use crate::skeleton::Leaf;
 use glam::{DVec3, Vec3};
-use std::sync::OnceLock;
 
 /// One side of a leaf, m² (its template's area, computed once per shape, times its size).
 pub fn leaf_area(l: &Leaf) -> f64 {
-    static AREAS: OnceLock<Vec<f32>> = OnceLock::new();
-    let areas = AREAS.get_or_init(|| {
-        LeafShape::every()
-            .map(|s| leaf_template(s).area())
-            .collect()
-    });
-    let area = areas.get(l.shape.slot()).copied().unwrap_or(0.0);
-    (area * l.length * l.width) as f64
+    (template_area(l.shape) * l.length * l.width) as f64
 }
 
 /// A leaf's centre, where its area is counted.
@@ -360,7 +352,8 @@ pub(crate) fn leaf_block(origin: Vec3, counts: [usize; 3], step: Vec3) -> Skelet
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::skeleton::StemId;
+    use crate::mesh::leaf_template;
+    use crate::skeleton::{LeafShape, StemId};
     use glam::Quat;
 
     /// A cube of `n` x `n` x `n` square leaves `spacing` m apart, each `area` m², in the
